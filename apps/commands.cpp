@@ -1,0 +1,61 @@
+#include "apps/commands.h"
+
+#include <cstdio>
+
+namespace mfx::app {
+
+std::span<const Command> commands() {
+    static const Command table[] = {
+        {"info", "print the chosen Vulkan device and its capabilities", &runInfo},
+        {"render", "render a picture headless and write it as PNG", &runRender},
+    };
+    return table;
+}
+
+std::vector<cli::OptionSpec> deviceOptions() {
+    return {
+        {"device", "NAME",
+         std::string("use the Vulkan device whose name contains NAME (default: $") +
+             gpu::kDeviceEnvironmentVariable + ", else a GPU, else lavapipe)"},
+        {"validate", "", "enable the Vulkan validation layer; validation errors fail the run"},
+    };
+}
+
+gpu::ContextOptions contextOptions(const cli::ParsedArgs& args) {
+    gpu::ContextOptions options;
+    options.deviceName = args.value("device");
+    options.validation = args.has("validate");
+    return options;
+}
+
+void printError(const std::string& message) {
+    std::fprintf(stderr, "motionfx: error: %s\n", message.c_str());
+}
+
+bool parseOrExit(std::span<const std::string> args, std::span<const cli::OptionSpec> options,
+                 size_t maxPositional, const std::string& help, cli::ParsedArgs& parsed,
+                 int& exitCode) {
+    Result<cli::ParsedArgs> result = cli::parseArgs(args, options, maxPositional);
+    if (!result) {
+        printError(result.error().message + " (see --help)");
+        exitCode = kExitUsage;
+        return false;
+    }
+    parsed = std::move(result).value();
+    if (parsed.has("help")) {
+        std::printf("%s\n%s", help.c_str(), cli::describeOptions(options).c_str());
+        exitCode = kExitOk;
+        return false;
+    }
+    return true;
+}
+
+int finishValidation(const gpu::Context& ctx, int exitCode) {
+    if (!ctx.validationEnabled()) return exitCode;
+    const size_t errors = ctx.validationErrorCount();
+    if (errors == 0) return exitCode;
+    printError(std::to_string(errors) + " Vulkan validation error(s) were reported (above)");
+    return kExitFailure;
+}
+
+} // namespace mfx::app

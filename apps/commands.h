@@ -1,0 +1,44 @@
+// motionfx's subcommands. Each takes the words after its name and returns the exit status:
+// 0 success, 1 failure at run time (no device, unwritable output), 2 bad usage.
+#pragma once
+
+#include "apps/cli.h"
+#include "core/gpu/context.h"
+
+#include <span>
+#include <string>
+
+namespace mfx::app {
+
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitFailure = 1;
+inline constexpr int kExitUsage = 2;
+
+struct Command {
+    const char* name;
+    const char* summary;
+    int (*run)(std::span<const std::string> args);
+};
+
+std::span<const Command> commands();
+
+int runInfo(std::span<const std::string> args);
+int runRender(std::span<const std::string> args);
+
+// Options every GPU subcommand takes.
+std::vector<cli::OptionSpec> deviceOptions();
+gpu::ContextOptions contextOptions(const cli::ParsedArgs& args);
+
+// Prints "motionfx: error: <message>" to stderr.
+void printError(const std::string& message);
+
+// Parses `args`; on --help prints `help` + options and returns kExitOk in `exitCode`; on a bad
+// argument prints one line and returns kExitUsage in `exitCode`. Returns true to go on.
+bool parseOrExit(std::span<const std::string> args, std::span<const cli::OptionSpec> options,
+                 size_t maxPositional, const std::string& help, cli::ParsedArgs& parsed,
+                 int& exitCode);
+
+// After a run with --validate: reports recorded validation errors; returns kExitFailure if any.
+int finishValidation(const gpu::Context& ctx, int exitCode);
+
+} // namespace mfx::app

@@ -1,0 +1,152 @@
+// The Vulkan context: instance, chosen physical device, logical device, queues, limits and the
+// optional features the project uses. One Context is created by the program and passed explicitly
+// as the first argument to everything that touches the GPU; there are no globals.
+//
+// Device choice: a real GPU first (discrete, then integrated, then virtual), else a CPU
+// implementation such as Mesa's lavapipe ("llvmpipe"). ContextOptions::deviceName, or the
+// environment variable MOTIONFX_DEVICE when that is empty, picks a device by a case-insensitive
+// substring of its name instead.
+#pragma once
+
+#include "core/gpu/handle.h"
+#include "core/result.h"
+
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+#include <vulkan/vulkan.h>
+
+namespace mfx::gpu {
+
+// Environment variable naming the device (substring), used when no --device is given.
+inline constexpr const char* kDeviceEnvironmentVariable = "MOTIONFX_DEVICE";
+
+struct ContextOptions {
+    std::string deviceName;      // case-insensitive substring; empty: $MOTIONFX_DEVICE, then best
+    bool validation = false;     // enable VK_LAYER_KHRONOS_validation and record its errors
+    bool printValidation = true; // also print each recorded validation message to stderr
+    std::vector<const char*> instanceExtensions; // extra ones (e.g. window surfaces)
+    std::vector<const char*> deviceExtensions;   // extra ones (e.g. swapchain)
+};
+
+// Optional capabilities, enabled on the device whenever the device has them.
+struct DeviceFeatures {
+    bool geometryShader = false;
+    bool transformFeedback = false;        // VK_EXT_transform_feedback
+    bool geometryStreams = false;          // ... with multiple vertex streams
+    bool shaderFloat16 = false;            // fp16 arithmetic in shaders
+    bool storageBuffer16BitAccess = false; // fp16/int16 in storage buffers
+    bool bufferFloat32AtomicAdd = false;   // VK_EXT_shader_atomic_float on buffers
+    bool imageFloat32AtomicAdd = false;    // ... on storage images
+    bool storageImageReadWithoutFormat = false;
+    bool storageImageWriteWithoutFormat = false;
+    bool fillModeNonSolid = false;
+    bool wideLines = false;
+    bool samplerAnisotropy = false;
+    bool timestamps = false; // timestamp queries on the graphics/compute queue
+};
+
+struct Queue {
+    VkQueue queue = VK_NULL_HANDLE;
+    uint32_t family = 0;
+};
+
+enum class MessageSeverity { Warning, Error };
+
+struct ValidationMessage {
+    MessageSeverity severity;
+    std::string text;
+};
+
+// What one physical device is, as `motionfx info` reports it.
+struct DeviceInfo {
+    std::string name;
+    std::string driverName;
+    std::string driverInfo;
+    uint32_t apiVersion = 0;
+    VkPhysicalDeviceType type = VK_PHYSICAL_DEVICE_TYPE_OTHER;
+    bool isCpu() const { return type == VK_PHYSICAL_DEVICE_TYPE_CPU; }
+};
+
+std::string versionString(uint32_t apiVersion);
+const char* toString(VkPhysicalDeviceType type);
+
+class Context {
+public:
+    // Creates instance and device. Fails with a readable reason when there is no Vulkan driver, no
+    // device matches the requested name, no device meets the requirements (Vulkan 1.3 with dynamic
+    // rendering and synchronization2, a queue with graphics and compute), or validation was asked
+    // for but the layer is not installed.
+    static Result<std::unique_ptr<Context>> create(const ContextOptions& options);
+
+    ~Context();
+    Context(const Context&) = delete;
+    Context& operator=(const Context&) = delete;
+
+    VkInstance instance() const { return instance_; }
+    VkPhysicalDevice physicalDevice() const { return physicalDevice_; }
+    VkDevice device() const { return device_; }
+
+    // The graphics queue's family also supports compute. The compute queue is a second queue of
+    // the same family when the family has one, else the same queue; one family means resources
+    // never need ownership transfers between them.
+    const Queue& graphicsQueue() const { return graphicsQueue_; }
+    const Queue& computeQueue() const { return computeQueue_; }
+
+    const DeviceInfo& info() const { return info_; }
+    const DeviceFeatures& features() const { return features_; }
+    const VkPhysicalDeviceLimits& limits() const { return properties_.limits; }
+    const VkPhysicalDeviceMemoryProperties& memoryProperties() const { return memory_; }
+    double timestampPeriodNs() const { return properties_.limits.timestampPeriod; }
+    bool validationEnabled() const { return validation_; }
+
+    // Pool for one-shot command buffers on the graphics queue (see commands.h).
+    VkCommandPool oneShotPool() const { return oneShotPool_.get(); }
+
+    // Validation messages (errors, and warnings) recorded by the debug messenger since the last
+    // clear. Tests assert that no errors were recorded.
+    std::vector<ValidationMessage> validationMessages() const;
+    size_t validationErrorCount() const;
+    void clearValidationMessages();
+
+    // Index of a memory type allowed by `typeBits` with all `required` flags, preferring one that
+    // also has `preferred`; UINT32_MAX when none.
+    uint32_t findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags required,
+                            VkMemoryPropertyFlags preferred = 0) const;
+
+    // Gives a handle a name in validation messages and debuggers (no-op without validation).
+    void setDebugName(VkObjectType type, uint64_t handle, const char* name) const;
+
+    // Names of all physical devices, for error messages and `motionfx info --list`.
+    std::vector<DeviceInfo> listDevices() const;
+
+    void waitIdle() const;
+
+private:
+    Context() = default;
+    static VKAPI_ATTR VkBool32 VKAPI_CALL debugCallback(
+        VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT types,
+        const VkDebugUtilsMessengerCallbackDataEXT* data, void* user);
+
+    VkInstance instance_ = VK_NULL_HANDLE;
+    VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+    VkPhysicalDevice physicalDevice_ = VK_NULL_HANDLE;
+    VkDevice device_ = VK_NULL_HANDLE;
+    Queue graphicsQueue_;
+    Queue computeQueue_;
+    DeviceInfo info_;
+    DeviceFeatures features_;
+    VkPhysicalDeviceProperties properties_{};
+    VkPhysicalDeviceMemoryProperties memory_{};
+    bool validation_ = false;
+    bool printValidation_ = true;
+    UniqueCommandPool oneShotPool_;
+    PFN_vkSetDebugUtilsObjectNameEXT setObjectName_ = nullptr;
+
+    mutable std::mutex messagesMutex_;
+    std::vector<ValidationMessage> messages_;
+};
+
+} // namespace mfx::gpu

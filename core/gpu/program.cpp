@@ -1,0 +1,369 @@
+#include "core/gpu/program.h"
+
+#include "core/gpu/check.h"
+#include "core/gpu/context.h"
+#include "core/gpu/resources.h"
+
+#include <map>
+#include <stdexcept>
+
+namespace mfx::gpu {
+
+namespace {
+
+constexpr uint32_t kSpirvMagic = 0x07230203;
+
+UniqueShaderModule createShaderModule(const Context& ctx, std::span<const uint32_t> spirv,
+                                      const std::string& programName) {
+    if (spirv.size() < 5 || spirv[0] != kSpirvMagic)
+        throw std::logic_error("program " + programName + ": shader code is not SPIR-V");
+    VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+    info.codeSize = spirv.size_bytes();
+    info.pCode = spirv.data();
+    VkShaderModule module = VK_NULL_HANDLE;
+    MFX_VK_CHECK(vkCreateShaderModule(ctx.device(), &info, nullptr, &module));
+    return UniqueShaderModule(ctx.device(), module);
+}
+
+bool isImageType(VkDescriptorType type) {
+    switch (type) {
+    case VK_DESCRIPTOR_TYPE_SAMPLER:
+    case VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER:
+    case VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE:
+    case VK_DESCRIPTOR_TYPE_STORAGE_IMAGE:
+    case VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT:
+        return true;
+    default:
+        return false;
+    }
+}
+
+// Set layout, pipeline layout and descriptor pool from the program's binding table.
+void buildLayout(const Context& ctx, const std::string& name,
+                 const std::vector<BindingDesc>& bindings, uint32_t pushConstantSize,
+                 VkShaderStageFlags pushStages, uint32_t maxSets,
+                 UniqueDescriptorSetLayout& setLayout, UniquePipelineLayout& layout,
+                 UniqueDescriptorPool& pool) {
+    std::map<uint32_t, const BindingDesc*> seen;
+    std::vector<VkDescriptorSetLayoutBinding> layoutBindings;
+    std::map<VkDescriptorType, uint32_t> typeCounts;
+    for (const BindingDesc& b : bindings) {
+        if (!seen.emplace(b.binding, &b).second)
+            throw std::logic_error("program " + name + ": binding " + std::to_string(b.binding) +
+                                   " is declared twice");
+        layoutBindings.push_back({b.binding, b.type, 1, b.stages, nullptr});
+        typeCounts[b.type] += 1;
+    }
+    VkDescriptorSetLayout setLayoutHandle = VK_NULL_HANDLE;
+    if (!layoutBindings.empty()) {
+        VkDescriptorSetLayoutCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+        info.bindingCount = static_cast<uint32_t>(layoutBindings.size());
+        info.pBindings = layoutBindings.data();
+        MFX_VK_CHECK(vkCreateDescriptorSetLayout(ctx.device(), &info, nullptr, &setLayoutHandle));
+        setLayout = UniqueDescriptorSetLayout(ctx.device(), setLayoutHandle);
+
+        std::vector<VkDescriptorPoolSize> sizes;
+        for (auto [type, count] : typeCounts)
+            sizes.push_back({type, count * maxSets});
+        VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+        poolInfo.maxSets = maxSets;
+        poolInfo.poolSizeCount = static_cast<uint32_t>(sizes.size());
+        poolInfo.pPoolSizes = sizes.data();
+        VkDescriptorPool poolHandle = VK_NULL_HANDLE;
+        MFX_VK_CHECK(vkCreateDescriptorPool(ctx.device(), &poolInfo, nullptr, &poolHandle));
+        pool = UniqueDescriptorPool(ctx.device(), poolHandle);
+    }
+
+    VkPushConstantRange range{pushStages, 0, pushConstantSize};
+    VkPipelineLayoutCreateInfo info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    info.setLayoutCount = setLayoutHandle != VK_NULL_HANDLE ? 1 : 0;
+    info.pSetLayouts = &setLayoutHandle;
+    info.pushConstantRangeCount = pushConstantSize > 0 ? 1 : 0;
+    info.pPushConstantRanges = &range;
+    if (pushConstantSize > ctx.limits().maxPushConstantsSize)
+        throw std::logic_error("program " + name + ": " + std::to_string(pushConstantSize) +
+                               " bytes of push constants exceed the device limit of " +
+                               std::to_string(ctx.limits().maxPushConstantsSize));
+    VkPipelineLayout layoutHandle = VK_NULL_HANDLE;
+    MFX_VK_CHECK(vkCreatePipelineLayout(ctx.device(), &info, nullptr, &layoutHandle));
+    layout = UniquePipelineLayout(ctx.device(), layoutHandle);
+}
+
+struct Specialization {
+    std::vector<VkSpecializationMapEntry> entries;
+    VkSpecializationInfo info{};
+
+    explicit Specialization(const std::vector<uint32_t>& values) {
+        for (uint32_t i = 0; i < values.size(); ++i)
+            entries.push_back({i, i * uint32_t(sizeof(uint32_t)), sizeof(uint32_t)});
+        info.mapEntryCount = static_cast<uint32_t>(entries.size());
+        info.pMapEntries = entries.data();
+        info.dataSize = values.size() * sizeof(uint32_t);
+        info.pData = values.data();
+    }
+    const VkSpecializationInfo* get() const { return entries.empty() ? nullptr : &info; }
+};
+
+VkPipelineColorBlendAttachmentState blendState(BlendMode mode) {
+    VkPipelineColorBlendAttachmentState state{};
+    state.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
+                           VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+    state.colorBlendOp = VK_BLEND_OP_ADD;
+    state.alphaBlendOp = VK_BLEND_OP_ADD;
+    switch (mode) {
+    case BlendMode::Opaque:
+        state.blendEnable = VK_FALSE;
+        break;
+    case BlendMode::Alpha:
+        state.blendEnable = VK_TRUE;
+        state.srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
+        state.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+        state.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+        state.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+        break;
+    case BlendMode::PremultipliedAlpha:
+        state.blendEnable = VK_TRUE;
+        state.srcColorBlendFactor = VK_BLEND_FACTOR_ONE;
+        state.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+        state.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+        state.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+        break;
+    case BlendMode::Additive:
+        state.blendEnable = VK_TRUE;
+        state.srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
+        state.dstColorBlendFactor = VK_BLEND_FACTOR_ONE;
+        state.srcAlphaBlendFactor = VK_BLEND_FACTOR_ZERO;
+        state.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+        break;
+    }
+    return state;
+}
+
+} // namespace
+
+DescriptorWrite bindBuffer(uint32_t binding, const Buffer& buffer, VkDeviceSize offset,
+                           VkDeviceSize range) {
+    DescriptorWrite write;
+    write.binding = binding;
+    write.buffer = {buffer.get(), offset, range};
+    return write;
+}
+
+DescriptorWrite bindImage(uint32_t binding, const Image& image, VkImageLayout layout,
+                          VkSampler sampler) {
+    DescriptorWrite write;
+    write.binding = binding;
+    write.image = {sampler, image.view.get(), layout};
+    write.isImage = true;
+    return write;
+}
+
+Program createComputeProgram(const Context& ctx, const ComputeProgramDesc& desc) {
+    Program program;
+    program.name_ = desc.name;
+    program.bindings_ = desc.bindings;
+    program.pushConstantSize_ = desc.pushConstantSize;
+    program.pushStages_ = VK_SHADER_STAGE_COMPUTE_BIT;
+    program.bindPoint_ = VK_PIPELINE_BIND_POINT_COMPUTE;
+    buildLayout(ctx, program.name_, desc.bindings, desc.pushConstantSize, program.pushStages_,
+                desc.maxSets, program.setLayout_, program.layout_, program.pool_);
+
+    UniqueShaderModule module = createShaderModule(ctx, desc.spirv, program.name_);
+    const Specialization specialization(desc.specialization);
+    VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+    info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+    info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    info.stage.module = module.get();
+    info.stage.pName = "main";
+    info.stage.pSpecializationInfo = specialization.get();
+    info.layout = program.layout_.get();
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    MFX_VK_CHECK(
+        vkCreateComputePipelines(ctx.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
+    program.pipeline_ = UniquePipeline(ctx.device(), pipeline);
+    ctx.setDebugName(VK_OBJECT_TYPE_PIPELINE, reinterpret_cast<uint64_t>(pipeline), desc.name);
+    return program;
+}
+
+Program createGraphicsProgram(const Context& ctx, const GraphicsProgramDesc& desc) {
+    if (!desc.geometry.empty() && !ctx.features().geometryShader)
+        throw std::logic_error("program " + std::string(desc.name) +
+                               " needs geometry shaders, which " + ctx.info().name + " lacks");
+    Program program;
+    program.name_ = desc.name;
+    program.bindings_ = desc.bindings;
+    program.pushConstantSize_ = desc.pushConstantSize;
+    program.pushStages_ = VK_SHADER_STAGE_VERTEX_BIT;
+    if (!desc.geometry.empty()) program.pushStages_ |= VK_SHADER_STAGE_GEOMETRY_BIT;
+    if (!desc.fragment.empty()) program.pushStages_ |= VK_SHADER_STAGE_FRAGMENT_BIT;
+    program.bindPoint_ = VK_PIPELINE_BIND_POINT_GRAPHICS;
+    buildLayout(ctx, program.name_, desc.bindings, desc.pushConstantSize, program.pushStages_,
+                desc.maxSets, program.setLayout_, program.layout_, program.pool_);
+
+    const Specialization specialization(desc.specialization);
+    std::vector<UniqueShaderModule> modules;
+    std::vector<VkPipelineShaderStageCreateInfo> stages;
+    auto addStage = [&](std::span<const uint32_t> spirv, VkShaderStageFlagBits stage) {
+        if (spirv.empty()) return;
+        modules.push_back(createShaderModule(ctx, spirv, program.name_));
+        VkPipelineShaderStageCreateInfo info{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+        info.stage = stage;
+        info.module = modules.back().get();
+        info.pName = "main";
+        info.pSpecializationInfo = specialization.get();
+        stages.push_back(info);
+    };
+    addStage(desc.vertex, VK_SHADER_STAGE_VERTEX_BIT);
+    addStage(desc.geometry, VK_SHADER_STAGE_GEOMETRY_BIT);
+    addStage(desc.fragment, VK_SHADER_STAGE_FRAGMENT_BIT);
+
+    VkVertexInputBindingDescription vertexBinding{0, desc.vertexStride,
+                                                  VK_VERTEX_INPUT_RATE_VERTEX};
+    std::vector<VkVertexInputAttributeDescription> attributes;
+    for (const VertexAttribute& a : desc.attributes)
+        attributes.push_back({a.location, 0, a.format, a.offset});
+    VkPipelineVertexInputStateCreateInfo vertexInput{
+        VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+    vertexInput.vertexBindingDescriptionCount = desc.vertexStride > 0 ? 1 : 0;
+    vertexInput.pVertexBindingDescriptions = &vertexBinding;
+    vertexInput.vertexAttributeDescriptionCount = static_cast<uint32_t>(attributes.size());
+    vertexInput.pVertexAttributeDescriptions = attributes.data();
+
+    VkPipelineInputAssemblyStateCreateInfo inputAssembly{
+        VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+    inputAssembly.topology = desc.topology;
+
+    VkPipelineViewportStateCreateInfo viewport{
+        VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+    viewport.viewportCount = 1;
+    viewport.scissorCount = 1;
+
+    VkPipelineRasterizationStateCreateInfo raster{
+        VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+    raster.polygonMode = desc.polygonMode;
+    raster.cullMode = desc.cullMode;
+    raster.frontFace = desc.frontFace;
+    raster.lineWidth = 1.0f;
+    raster.rasterizerDiscardEnable = desc.rasterizerDiscard ? VK_TRUE : VK_FALSE;
+
+    VkPipelineMultisampleStateCreateInfo multisample{
+        VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+    multisample.rasterizationSamples = desc.samples;
+
+    VkPipelineDepthStencilStateCreateInfo depth{
+        VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+    depth.depthTestEnable = desc.depthTest ? VK_TRUE : VK_FALSE;
+    depth.depthWriteEnable = desc.depthWrite ? VK_TRUE : VK_FALSE;
+    depth.depthCompareOp = desc.depthCompare;
+
+    std::vector<VkPipelineColorBlendAttachmentState> blends(desc.colorFormats.size(),
+                                                            blendState(desc.blend));
+    VkPipelineColorBlendStateCreateInfo blend{
+        VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+    blend.attachmentCount = static_cast<uint32_t>(blends.size());
+    blend.pAttachments = blends.data();
+
+    const VkDynamicState dynamicStates[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+    VkPipelineDynamicStateCreateInfo dynamic{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
+    dynamic.dynamicStateCount = 2;
+    dynamic.pDynamicStates = dynamicStates;
+
+    VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
+    rendering.colorAttachmentCount = static_cast<uint32_t>(desc.colorFormats.size());
+    rendering.pColorAttachmentFormats = desc.colorFormats.data();
+    rendering.depthAttachmentFormat = desc.depthFormat;
+
+    VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+    info.pNext = &rendering;
+    info.stageCount = static_cast<uint32_t>(stages.size());
+    info.pStages = stages.data();
+    info.pVertexInputState = &vertexInput;
+    info.pInputAssemblyState = &inputAssembly;
+    info.pViewportState = &viewport;
+    info.pRasterizationState = &raster;
+    info.pMultisampleState = &multisample;
+    info.pDepthStencilState = &depth;
+    info.pColorBlendState = &blend;
+    info.pDynamicState = &dynamic;
+    info.layout = program.layout_.get();
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    MFX_VK_CHECK(
+        vkCreateGraphicsPipelines(ctx.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
+    program.pipeline_ = UniquePipeline(ctx.device(), pipeline);
+    ctx.setDebugName(VK_OBJECT_TYPE_PIPELINE, reinterpret_cast<uint64_t>(pipeline), desc.name);
+    return program;
+}
+
+VkDescriptorSet Program::createSet(const Context& ctx,
+                                   std::initializer_list<DescriptorWrite> writes) {
+    return createSet(ctx, std::span<const DescriptorWrite>(writes.begin(), writes.size()));
+}
+
+VkDescriptorSet Program::createSet(const Context& ctx, std::span<const DescriptorWrite> writes) {
+    if (!setLayout_)
+        throw std::logic_error("program " + name_ + " declares no bindings, so it has no sets");
+    std::map<uint32_t, const BindingDesc*> declared;
+    for (const BindingDesc& b : bindings_)
+        declared[b.binding] = &b;
+    std::map<uint32_t, bool> written;
+    std::vector<VkWriteDescriptorSet> vkWrites;
+    for (const DescriptorWrite& w : writes) {
+        auto it = declared.find(w.binding);
+        if (it == declared.end())
+            throw std::logic_error("program " + name_ + ": binding " + std::to_string(w.binding) +
+                                   " is not in its binding table");
+        if (written[w.binding])
+            throw std::logic_error("program " + name_ + ": binding " + std::to_string(w.binding) +
+                                   " is written twice");
+        written[w.binding] = true;
+        if (w.isImage != isImageType(it->second->type))
+            throw std::logic_error("program " + name_ + ": binding " + std::to_string(w.binding) +
+                                   (w.isImage ? " declares a buffer but got an image"
+                                              : " declares an image but got a buffer"));
+        if (it->second->type == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER &&
+            w.image.sampler == VK_NULL_HANDLE)
+            throw std::logic_error("program " + name_ + ": binding " + std::to_string(w.binding) +
+                                   " needs a sampler");
+    }
+    for (const BindingDesc& b : bindings_)
+        if (!written[b.binding])
+            throw std::logic_error("program " + name_ + ": binding " + std::to_string(b.binding) +
+                                   " is declared but not written");
+
+    VkDescriptorSetLayout setLayout = setLayout_.get();
+    VkDescriptorSetAllocateInfo allocate{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    allocate.descriptorPool = pool_.get();
+    allocate.descriptorSetCount = 1;
+    allocate.pSetLayouts = &setLayout;
+    VkDescriptorSet set = VK_NULL_HANDLE;
+    MFX_VK_CHECK(vkAllocateDescriptorSets(ctx.device(), &allocate, &set));
+
+    for (const DescriptorWrite& w : writes) {
+        VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        write.dstSet = set;
+        write.dstBinding = w.binding;
+        write.descriptorCount = 1;
+        write.descriptorType = declared[w.binding]->type;
+        write.pBufferInfo = w.isImage ? nullptr : &w.buffer;
+        write.pImageInfo = w.isImage ? &w.image : nullptr;
+        vkWrites.push_back(write);
+    }
+    vkUpdateDescriptorSets(ctx.device(), static_cast<uint32_t>(vkWrites.size()), vkWrites.data(), 0,
+                           nullptr);
+    return set;
+}
+
+void Program::bind(VkCommandBuffer cmd, VkDescriptorSet set) const {
+    vkCmdBindPipeline(cmd, bindPoint_, pipeline_.get());
+    if (set != VK_NULL_HANDLE)
+        vkCmdBindDescriptorSets(cmd, bindPoint_, layout_.get(), 0, 1, &set, 0, nullptr);
+}
+
+void Program::push(VkCommandBuffer cmd, const void* data, uint32_t size) const {
+    if (size != pushConstantSize_)
+        throw std::logic_error("program " + name_ + ": pushed " + std::to_string(size) +
+                               " bytes, declared " + std::to_string(pushConstantSize_));
+    vkCmdPushConstants(cmd, layout_.get(), pushStages_, 0, size, data);
+}
+
+} // namespace mfx::gpu

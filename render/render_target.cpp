@@ -1,0 +1,88 @@
+#include "render/render_target.h"
+
+#include <cstring>
+
+namespace mfx::render {
+
+RenderTarget createRenderTarget(const gpu::Context& ctx, uint32_t width, uint32_t height) {
+    RenderTarget target;
+    target.width = width;
+    target.height = height;
+    gpu::ImageDesc color;
+    color.extent = {width, height, 1};
+    color.format = kColorFormat;
+    color.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                  VK_IMAGE_USAGE_SAMPLED_BIT;
+    color.debugName = "render target colour";
+    target.color = gpu::createImage(ctx, color);
+    gpu::ImageDesc depth;
+    depth.extent = {width, height, 1};
+    depth.format = kDepthFormat;
+    depth.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                  VK_IMAGE_USAGE_SAMPLED_BIT;
+    depth.debugName = "render target depth";
+    target.depth = gpu::createImage(ctx, depth);
+    return target;
+}
+
+void beginRendering(VkCommandBuffer cmd, RenderTarget& target, const glm::vec4& clearColor) {
+    gpu::imageBarrier(cmd, target.color, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                      VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT,
+                      VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                      VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT |
+                          VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT);
+    gpu::imageBarrier(cmd, target.depth, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                      VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT,
+                      VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT |
+                          VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
+                          VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
+
+    VkRenderingAttachmentInfo colorAttachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    colorAttachment.imageView = target.color.view.get();
+    colorAttachment.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    colorAttachment.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    colorAttachment.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    std::memcpy(colorAttachment.clearValue.color.float32, &clearColor, sizeof(float) * 4);
+    VkRenderingAttachmentInfo depthAttachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    depthAttachment.imageView = target.depth.view.get();
+    depthAttachment.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+    depthAttachment.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    depthAttachment.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    depthAttachment.clearValue.depthStencil = {1.0f, 0};
+
+    VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    rendering.renderArea = {{0, 0}, {target.width, target.height}};
+    rendering.layerCount = 1;
+    rendering.colorAttachmentCount = 1;
+    rendering.pColorAttachments = &colorAttachment;
+    rendering.pDepthAttachment = &depthAttachment;
+    vkCmdBeginRendering(cmd, &rendering);
+
+    // Flipped viewport: +y up in clip space, as in OpenGL and GLM's projections.
+    const VkViewport viewport{
+        0.0f, float(target.height), float(target.width), -float(target.height), 0.0f, 1.0f};
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    const VkRect2D scissor{{0, 0}, {target.width, target.height}};
+    vkCmdSetScissor(cmd, 0, 1, &scissor);
+}
+
+void endRendering(VkCommandBuffer cmd) {
+    vkCmdEndRendering(cmd);
+}
+
+std::vector<uint8_t> readColor(const gpu::Context& ctx, RenderTarget& target) {
+    const std::vector<std::byte> bytes = gpu::readImage(ctx, target.color);
+    std::vector<uint8_t> rgba(bytes.size());
+    std::memcpy(rgba.data(), bytes.data(), bytes.size());
+    return rgba;
+}
+
+std::vector<float> readDepth(const gpu::Context& ctx, RenderTarget& target) {
+    const std::vector<std::byte> bytes = gpu::readImage(ctx, target.depth);
+    std::vector<float> depth(bytes.size() / sizeof(float));
+    std::memcpy(depth.data(), bytes.data(), depth.size() * sizeof(float));
+    return depth;
+}
+
+} // namespace mfx::render

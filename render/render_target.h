@@ -1,0 +1,37 @@
+// An offscreen render target: a colour image and a depth image of one size, rendered to with
+// dynamic rendering and read back for PNG output and tests.
+#pragma once
+
+#include "core/gpu/resources.h"
+
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <vector>
+
+namespace mfx::render {
+
+// sRGB colour: shading happens in linear space and the target encodes on write.
+inline constexpr VkFormat kColorFormat = VK_FORMAT_R8G8B8A8_SRGB;
+inline constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+
+struct RenderTarget {
+    gpu::Image color;
+    gpu::Image depth;
+    uint32_t width = 0;
+    uint32_t height = 0;
+};
+
+// Colour (attachment, transfer source, sampled) and depth (attachment, transfer source).
+RenderTarget createRenderTarget(const gpu::Context& ctx, uint32_t width, uint32_t height);
+
+// Transitions both images to attachment layouts and begins rendering, clearing colour to
+// `clearColor` (linear) and depth to 1; sets viewport and scissor to the whole target.
+void beginRendering(VkCommandBuffer cmd, RenderTarget& target, const glm::vec4& clearColor);
+void endRendering(VkCommandBuffer cmd);
+
+// RGBA8 rows, top row first (sRGB-encoded values, as a PNG stores them).
+std::vector<uint8_t> readColor(const gpu::Context& ctx, RenderTarget& target);
+// Depth in [0, 1] per pixel, top row first; 1 where nothing was drawn.
+std::vector<float> readDepth(const gpu::Context& ctx, RenderTarget& target);
+
+} // namespace mfx::render

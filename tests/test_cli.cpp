@@ -1,0 +1,150 @@
+// The motionfx program as a user meets it: exit codes, one-line errors, help, outputs.
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <gtest/gtest.h>
+#include <sstream>
+#include <stb_image.h>
+#include <string>
+#include <sys/wait.h>
+
+namespace {
+
+struct RunResult {
+    int exitCode = -1;
+    std::string out;
+    std::string err;
+};
+
+std::string readFile(const std::string& path) {
+    std::ifstream in(path);
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+// Runs motionfx with `arguments` (shell words) and optional environment assignments before it.
+RunResult runMotionfx(const std::string& arguments, const std::string& environment = "") {
+    const std::string dir = std::string(MFX_TEST_OUTPUT_DIR) + "/cli";
+    std::filesystem::create_directories(dir);
+    const std::string name = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    const std::string outPath = dir + "/" + name + ".stdout";
+    const std::string errPath = dir + "/" + name + ".stderr";
+    const std::string command = environment + " \"" + MFX_MOTIONFX_PATH + "\" " + arguments +
+                                " >\"" + outPath + "\" 2>\"" + errPath + "\"";
+    const int status = std::system(command.c_str());
+    RunResult result;
+    result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    result.out = readFile(outPath);
+    result.err = readFile(errPath);
+    return result;
+}
+
+size_t lineCount(const std::string& text) {
+    size_t lines = 0;
+    for (char c : text)
+        lines += c == '\n';
+    return lines + (!text.empty() && text.back() != '\n');
+}
+
+TEST(Cli, InfoNamesTheDeviceAndItsCapabilities) {
+    const RunResult r = runMotionfx("info --device llvmpipe");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("llvmpipe"), std::string::npos) << r.out;
+    for (const char* key : {"CPU implementation              yes", "geometryShader",
+                            "transformFeedback", "shaderFloat16", "maxComputeWorkGroupInvocations",
+                            "maxImageDimension3D", "timestampPeriod", "Vulkan version"})
+        EXPECT_NE(r.out.find(key), std::string::npos) << key << " missing from:\n" << r.out;
+}
+
+TEST(Cli, NoVulkanDriverIsOneClearSentence) {
+    const RunResult r =
+        runMotionfx("info", "VK_DRIVER_FILES=/nonexistent VK_ICD_FILENAMES=/nonexistent");
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+    EXPECT_EQ(r.err.rfind("motionfx: error: no Vulkan ", 0), 0u) << r.err;
+    EXPECT_EQ(r.out, "");
+}
+
+TEST(Cli, UnknownDeviceIsOneLine) {
+    const RunResult r = runMotionfx("info --device no-such-gpu-9000");
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+    EXPECT_NE(r.err.find("no-such-gpu-9000"), std::string::npos) << r.err;
+}
+
+TEST(Cli, NoCommandPrintsUsageAndFails) {
+    const RunResult r = runMotionfx("");
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_NE(r.err.find("usage: motionfx"), std::string::npos) << r.err;
+}
+
+TEST(Cli, UnknownCommandIsOneLine) {
+    const RunResult r = runMotionfx("explode");
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+    EXPECT_NE(r.err.find("unknown command 'explode'"), std::string::npos) << r.err;
+}
+
+TEST(Cli, UnknownOptionIsOneLine) {
+    const RunResult r = runMotionfx("render --colour red");
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+    EXPECT_NE(r.err.find("--colour"), std::string::npos) << r.err;
+}
+
+TEST(Cli, MissingOptionValueIsOneLine) {
+    const RunResult r = runMotionfx("render --size");
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+    EXPECT_NE(r.err.find("--size"), std::string::npos) << r.err;
+}
+
+TEST(Cli, BadSizeIsOneLine) {
+    for (const char* size : {"12x", "x9", "0x10", "10x-3", "99999x10", "abc", "1e3x10"}) {
+        const RunResult r = runMotionfx(std::string("render --size ") + size);
+        EXPECT_EQ(r.exitCode, 2) << size;
+        EXPECT_EQ(lineCount(r.err), 1u) << size << ": " << r.err;
+    }
+}
+
+TEST(Cli, UnwritableOutputIsOneLine) {
+    const std::string dir = std::string(MFX_TEST_OUTPUT_DIR) + "/cli";
+    std::filesystem::create_directories(dir);
+    const std::string file = dir + "/a_file";
+    { std::ofstream(file) << "not a directory"; }
+    const RunResult r = runMotionfx("render --size 32x32 --out " + file + "/frames");
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+    EXPECT_NE(r.err.find("a_file/frames"), std::string::npos) << r.err;
+}
+
+TEST(Cli, EveryCommandHasHelp) {
+    for (const char* command : {"info", "render"}) {
+        const RunResult r = runMotionfx(std::string(command) + " --help");
+        EXPECT_EQ(r.exitCode, 0) << command;
+        EXPECT_NE(r.out.find(std::string("usage: motionfx ") + command), std::string::npos)
+            << r.out;
+        EXPECT_NE(r.out.find("--device"), std::string::npos) << r.out;
+    }
+    const RunResult top = runMotionfx("--help");
+    EXPECT_EQ(top.exitCode, 0);
+    EXPECT_NE(top.out.find("render"), std::string::npos);
+}
+
+TEST(Cli, RenderWritesAPngWithValidationClean) {
+    const std::string dir = std::string(MFX_TEST_OUTPUT_DIR) + "/cli_render";
+    std::filesystem::remove_all(dir);
+    const RunResult r = runMotionfx("render --size 64x36 --validate --out " + dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.err, "") << "validation or other messages";
+    int w = 0, h = 0, channels = 0;
+    stbi_uc* pixels = stbi_load((dir + "/test_scene.png").c_str(), &w, &h, &channels, 4);
+    ASSERT_NE(pixels, nullptr) << "no PNG at " << dir << "/test_scene.png";
+    EXPECT_EQ(w, 64);
+    EXPECT_EQ(h, 36);
+    stbi_image_free(pixels);
+}
+
+} // namespace
