@@ -9,6 +9,7 @@
 #include "tests/gpu_test.h"
 
 #include <bit>
+#include <cmath>
 #include <vector>
 
 namespace mfx::test {
@@ -140,6 +141,85 @@ TEST_F(ComputeTest, FillsA3DStorageImageWithSpecializedPattern) {
                                   << ", expected " << expected;
             }
     EXPECT_EQ(mismatches, 0u);
+}
+
+// The CPU's trilinear interpolation of a size.x*size.y*size.z r32f volume at normalised
+// coordinate `p`, with clamp-to-edge addressing (Vulkan's linear filtering rule).
+float trilinear(const std::vector<float>& v, glm::ivec3 size, glm::vec3 p) {
+    const glm::vec3 u = p * glm::vec3(size) - 0.5f;
+    const glm::ivec3 i0 = glm::ivec3(glm::floor(u));
+    const glm::vec3 f = u - glm::floor(u);
+    auto at = [&](glm::ivec3 c) {
+        c = glm::clamp(c, glm::ivec3(0), size - 1);
+        return v[c.x + size.x * (c.y + size.y * c.z)];
+    };
+    float result = 0.0f;
+    for (int corner = 0; corner < 8; ++corner) {
+        const glm::ivec3 o{corner & 1, (corner >> 1) & 1, (corner >> 2) & 1};
+        const glm::vec3 w = glm::mix(1.0f - f, f, glm::vec3(o));
+        result += w.x * w.y * w.z * at(i0 + o);
+    }
+    return result;
+}
+
+TEST_F(ComputeTest, Sampled3DImageFiltersTrilinearly) {
+    const glm::ivec3 size{6, 5, 4};
+    std::vector<float> values(size_t(size.x) * size.y * size.z);
+    for (size_t i = 0; i < values.size(); ++i) values[i] = float((i * 37) % 101) / 100.0f;
+
+    gpu::ImageDesc desc;
+    desc.extent = {uint32_t(size.x), uint32_t(size.y), uint32_t(size.z)};
+    desc.format = VK_FORMAT_R32_SFLOAT;
+    desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    gpu::Image volume = gpu::createImage(ctx(), desc);
+    gpu::uploadImage(ctx(), volume, std::as_bytes(std::span<const float>(values)),
+                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    gpu::UniqueSampler sampler =
+        gpu::createSampler(ctx(), VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+
+    // Texel centres (exact), points between texels, and points past the edges (clamped).
+    std::vector<glm::vec4> coordinates;
+    for (int i = 0; i < 40; ++i) {
+        const float t = float(i) / 39.0f;
+        coordinates.push_back({t * 1.1f - 0.05f, 0.5f + 0.4f * std::sin(7.0f * t),
+                               0.5f + 0.45f * std::cos(5.0f * t), 0.0f});
+    }
+    coordinates.push_back({0.5f / 6.0f, 1.5f / 5.0f, 2.5f / 4.0f, 0.0f});
+    const uint32_t count = uint32_t(coordinates.size());
+    gpu::Buffer coordinateBuffer = gpu::createBuffer(
+        ctx(), count * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+        gpu::MemoryUsage::Upload, "coordinates");
+    gpu::uploadBuffer(ctx(), coordinateBuffer, std::span<const glm::vec4>(coordinates));
+    gpu::Buffer results = gpu::createBuffer(ctx(), count * sizeof(float),
+                                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                            gpu::MemoryUsage::Readback, "results");
+
+    gpu::ComputeProgramDesc programDesc;
+    programDesc.name = "selftest_sample_volume";
+    programDesc.spirv = shaders::selftest_sample_volume_comp;
+    programDesc.bindings = {
+        {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_COMPUTE_BIT},
+        {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
+        {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}};
+    programDesc.pushConstantSize = sizeof(shared::SampleVolumeConstants);
+    gpu::Program program = gpu::createComputeProgram(ctx(), programDesc);
+    VkDescriptorSet set = program.createSet(
+        ctx(), {gpu::bindImage(0, volume, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler.get()),
+                gpu::bindBuffer(1, coordinateBuffer), gpu::bindBuffer(2, results)});
+    gpu::submitOneShot(ctx(), [&](VkCommandBuffer cmd) {
+        program.bind(cmd, set);
+        program.push(cmd, shared::SampleVolumeConstants{count, 0, 0, 0});
+        vkCmdDispatch(cmd, gpu::groupCount(count, 64), 1, 1);
+    });
+    const std::vector<float> sampled = gpu::readBufferAs<float>(ctx(), results);
+    // Filtering weights may be quantised to subTexelPrecisionBits; values lie in [0, 1].
+    const float tolerance = 3.0f / float(1u << ctx().limits().subTexelPrecisionBits);
+    for (uint32_t i = 0; i < count; ++i)
+        EXPECT_NEAR(sampled[i], trilinear(values, size, glm::vec3(coordinates[i])), tolerance)
+            << "at (" << coordinates[i].x << ", " << coordinates[i].y << ", " << coordinates[i].z
+            << ")";
+    // A texel centre returns the texel itself.
+    EXPECT_NEAR(sampled.back(), values[0 + 6 * (1 + 5 * 2)], 1e-6f);
 }
 
 TEST_F(ComputeTest, ImageUploadAndReadbackRoundTrip) {

@@ -36,6 +36,14 @@ struct PointsToQuadsConstants {
     vec2 padding;
 };
 
+// result[i] = texture(volume, coordinates[i].xyz) for i < count (normalised coordinates).
+struct SampleVolumeConstants {
+    uint count;
+    uint padding0;
+    uint padding1;
+    uint padding2;
+};
+
 MFX_SHARED_END
 
 #ifdef __cplusplus
@@ -44,6 +52,7 @@ MFX_CHECK_LAYOUT(SaxpyConstants, iterations, 8);
 MFX_CHECK_SIZE(FillVolumeConstants, 32);
 MFX_CHECK_LAYOUT(FillVolumeConstants, offset, 16);
 MFX_CHECK_SIZE(PointsToQuadsConstants, 32);
+MFX_CHECK_SIZE(SampleVolumeConstants, 16);
 MFX_CHECK_LAYOUT(PointsToQuadsConstants, halfSize, 16);
 #endif
 
