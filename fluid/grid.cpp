@@ -13,9 +13,9 @@ Status validateGrid(const GridShape& grid, uint32_t maxDimension) {
     const uint32_t cells[3] = {grid.cellsX, grid.cellsY, grid.cellsZ};
     const char* axes[3] = {"x", "y", "z"};
     for (int axis = 0; axis < 3; ++axis) {
-        if (cells[axis] < 2)
+        if (cells[axis] < 1)
             return Error{"grid " + toString(grid) + ": the " + axes[axis] +
-                         " dimension must be at least 2 cells"};
+                         " dimension must be at least 1 cell"};
         if (cells[axis] > maxDimension)
             return Error{"grid " + toString(grid) + ": the " + axes[axis] + " dimension exceeds " +
                          std::to_string(maxDimension) + ", the device's largest 3D image"};

@@ -26,7 +26,7 @@ struct GridShape {
 // "64x64x64"
 std::string toString(const GridShape& grid);
 
-// Checks that every dimension is at least 2 and at most `maxDimension` (the device's
+// Checks that every dimension is at least 1 and at most `maxDimension` (the device's
 // maxImageDimension3D), and that the cell size is finite and positive. The error names the
 // offending value.
 Status validateGrid(const GridShape& grid, uint32_t maxDimension);

@@ -165,7 +165,8 @@ float trilinear(const std::vector<float>& v, glm::ivec3 size, glm::vec3 p) {
 TEST_F(ComputeTest, Sampled3DImageFiltersTrilinearly) {
     const glm::ivec3 size{6, 5, 4};
     std::vector<float> values(size_t(size.x) * size.y * size.z);
-    for (size_t i = 0; i < values.size(); ++i) values[i] = float((i * 37) % 101) / 100.0f;
+    for (size_t i = 0; i < values.size(); ++i)
+        values[i] = float((i * 37) % 101) / 100.0f;
 
     gpu::ImageDesc desc;
     desc.extent = {uint32_t(size.x), uint32_t(size.y), uint32_t(size.z)};
@@ -186,13 +187,13 @@ TEST_F(ComputeTest, Sampled3DImageFiltersTrilinearly) {
     }
     coordinates.push_back({0.5f / 6.0f, 1.5f / 5.0f, 2.5f / 4.0f, 0.0f});
     const uint32_t count = uint32_t(coordinates.size());
-    gpu::Buffer coordinateBuffer = gpu::createBuffer(
-        ctx(), count * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-        gpu::MemoryUsage::Upload, "coordinates");
+    gpu::Buffer coordinateBuffer =
+        gpu::createBuffer(ctx(), count * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                          gpu::MemoryUsage::Upload, "coordinates");
     gpu::uploadBuffer(ctx(), coordinateBuffer, std::span<const glm::vec4>(coordinates));
-    gpu::Buffer results = gpu::createBuffer(ctx(), count * sizeof(float),
-                                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                            gpu::MemoryUsage::Readback, "results");
+    gpu::Buffer results =
+        gpu::createBuffer(ctx(), count * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                          gpu::MemoryUsage::Readback, "results");
 
     gpu::ComputeProgramDesc programDesc;
     programDesc.name = "selftest_sample_volume";

@@ -353,6 +353,10 @@ VkDescriptorSet Program::createSet(const Context& ctx, std::span<const Descripto
     return set;
 }
 
+void Program::resetSets(const Context& ctx) {
+    if (pool_) MFX_VK_CHECK(vkResetDescriptorPool(ctx.device(), pool_.get(), 0));
+}
+
 void Program::bind(VkCommandBuffer cmd, VkDescriptorSet set) const {
     vkCmdBindPipeline(cmd, bindPoint_, pipeline_.get());
     if (set != VK_NULL_HANDLE)

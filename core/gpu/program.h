@@ -106,6 +106,9 @@ public:
     VkDescriptorSet createSet(const Context& ctx, std::initializer_list<DescriptorWrite> writes);
     VkDescriptorSet createSet(const Context& ctx, std::span<const DescriptorWrite> writes);
 
+    // Frees every set allocated from the program's pool (none may be in use by the GPU).
+    void resetSets(const Context& ctx);
+
     // Binds the pipeline (and a set, if given).
     void bind(VkCommandBuffer cmd, VkDescriptorSet set = VK_NULL_HANDLE) const;
     // Pushes `size` bytes; must equal the declared push constant size.

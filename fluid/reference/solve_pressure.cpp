@@ -1,0 +1,98 @@
+// solvePressure (docs/fluid.md): the Poisson equation of the projection, sum over the cell's
+// counted neighbours of (p_n - p) = h² div, by Jacobi sweeps
+//   p <- (sum of counted neighbour pressures - h² div) / count,
+// where a neighbour across a wall is not counted (zero normal gradient), one across an open face is
+// counted with p = 0, and a periodic one wraps. (The 7-point stencil divides by 6 in the interior;
+// the source paper's eq. 17 prints 8.) solvePressureExact solves the same matrix with Eigen's
+// conjugate gradient: the ground truth for how far N sweeps are from converged.
+#include "fluid/reference/reference_solver.h"
+
+#include <Eigen/IterativeLinearSolvers>
+#include <Eigen/SparseCore>
+#include <vector>
+
+namespace mfx::fluid {
+
+namespace {
+const glm::ivec3 kSteps[6] = {{-1, 0, 0}, {1, 0, 0}, {0, -1, 0}, {0, 1, 0}, {0, 0, -1}, {0, 0, 1}};
+}
+
+void ReferenceSolver::solvePressure() {
+    if (!options_.warmStart) pressure_.setZero();
+    Eigen::ArrayXd next = pressure_;
+    const double h2 = h_ * h_;
+    for (uint32_t iteration = 0; iteration < options_.jacobiIterations; ++iteration) {
+        for (int k = 0; k < cells_.z; ++k)
+            for (int j = 0; j < cells_.y; ++j)
+                for (int i = 0; i < cells_.x; ++i) {
+                    const glm::ivec3 q(i, j, k);
+                    double sum = 0.0;
+                    int count = 0;
+                    for (int s = 0; s < 6; ++s) {
+                        const int axis = s / 2;
+                        glm::ivec3 neighbour = q + kSteps[s];
+                        if (neighbour[axis] >= 0 && neighbour[axis] < cells_[axis]) {
+                            sum += pressure_[Eigen::Index(cellIndex(neighbour))];
+                            ++count;
+                        } else if (boundary(axis, s % 2 == 1) == Boundary::Periodic) {
+                            neighbour[axis] = (neighbour[axis] + cells_[axis]) % cells_[axis];
+                            sum += pressure_[Eigen::Index(cellIndex(neighbour))];
+                            ++count;
+                        } else if (boundary(axis, s % 2 == 1) == Boundary::Open) {
+                            ++count; // ghost pressure 0
+                        }
+                    }
+                    const Eigen::Index index = Eigen::Index(cellIndex(q));
+                    next[index] = count > 0 ? (sum - h2 * divergence_[index]) / count : 0.0;
+                }
+        std::swap(pressure_, next);
+    }
+}
+
+void ReferenceSolver::solvePressureExact() {
+    const Eigen::Index n = Eigen::Index(cells_.x) * cells_.y * cells_.z;
+    std::vector<Eigen::Triplet<double>> entries;
+    entries.reserve(size_t(n) * 7);
+    Eigen::VectorXd rhs(n);
+    bool anyOpen = false;
+    for (int k = 0; k < cells_.z; ++k)
+        for (int j = 0; j < cells_.y; ++j)
+            for (int i = 0; i < cells_.x; ++i) {
+                const glm::ivec3 q(i, j, k);
+                const Eigen::Index row = Eigen::Index(cellIndex(q));
+                double diagonal = 0.0;
+                for (int s = 0; s < 6; ++s) {
+                    const int axis = s / 2;
+                    glm::ivec3 neighbour = q + kSteps[s];
+                    const bool inside = neighbour[axis] >= 0 && neighbour[axis] < cells_[axis];
+                    const Boundary b = boundary(axis, s % 2 == 1);
+                    if (inside || b == Boundary::Periodic) {
+                        neighbour[axis] = (neighbour[axis] + cells_[axis]) % cells_[axis];
+                        const Eigen::Index column = Eigen::Index(cellIndex(neighbour));
+                        diagonal += 1.0;
+                        entries.emplace_back(row, column, -1.0);
+                    } else if (b == Boundary::Open) {
+                        diagonal += 1.0;
+                        anyOpen = true;
+                    }
+                }
+                // An isolated cell (a 1x1x1 box of walls) has no equation: pin p = 0.
+                entries.emplace_back(row, row, diagonal > 0.0 ? diagonal : 1.0);
+                rhs[row] = diagonal > 0.0 ? -h_ * h_ * divergence_[row] : 0.0;
+            }
+    Eigen::SparseMatrix<double> matrix(n, n);
+    matrix.setFromTriplets(entries.begin(), entries.end()); // duplicates (self-neighbours) sum
+    // Without an open face the matrix is singular (constants are in its null space); the system
+    // is consistent once the right-hand side has zero mean, which CG then solves.
+    if (!anyOpen) rhs.array() -= rhs.mean();
+
+    Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper> cg;
+    cg.setTolerance(1e-12);
+    cg.setMaxIterations(int(std::max<Eigen::Index>(10 * n, 1000)));
+    cg.compute(matrix);
+    Eigen::VectorXd guess = pressure_.matrix();
+    const Eigen::VectorXd solution = cg.solveWithGuess(rhs, guess);
+    pressure_ = solution.array();
+}
+
+} // namespace mfx::fluid

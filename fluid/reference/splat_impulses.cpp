@@ -1,0 +1,54 @@
+// splatImpulses (docs/fluid.md): every emitter pulls velocity and pigment towards its own values,
+// q += a (Q - q) with a = 1 - exp(-strength * falloff * dt) and falloff (1 - d²/r²)² inside the
+// radius: frame-rate independent, and never overshooting Q (0 <= a < 1).
+#include "fluid/reference/reference_solver.h"
+
+#include <cmath>
+
+namespace mfx::fluid {
+
+namespace {
+// Blend weight of emitter `e` at world position `x` over `dt`; 0 outside its radius.
+double emitterWeight(const shared::FluidEmitter& e, glm::dvec3 x, double dt) {
+    const glm::dvec3 d = x - glm::dvec3(e.positionRadius);
+    const double r2 = double(e.positionRadius.w) * double(e.positionRadius.w);
+    const double d2 = glm::dot(d, d);
+    if (d2 >= r2) return 0.0;
+    const double t = 1.0 - d2 / r2;
+    return 1.0 - std::exp(-double(e.velocityStrength.w) * t * t * dt);
+}
+} // namespace
+
+void ReferenceSolver::splatImpulses(std::span<const shared::FluidEmitter> emitters) {
+    if (emitters.empty()) return;
+    for (int c = 0; c < 3; ++c) {
+        const glm::ivec3 n = faceCount(c);
+        for (int k = 0; k < n.z; ++k)
+            for (int j = 0; j < n.y; ++j)
+                for (int i = 0; i < n.x; ++i) {
+                    const glm::ivec3 q(i, j, k);
+                    if (wallNormalFace(c, q)) continue;
+                    double& value = velocity_[c][Eigen::Index(faceIndex(c, q))];
+                    const glm::dvec3 x = facePosition(c, q);
+                    for (const shared::FluidEmitter& e : emitters) {
+                        const double a = emitterWeight(e, x, dt());
+                        value += a * (double(e.velocityStrength[c]) - value);
+                    }
+                }
+    }
+    for (int k = 0; k < cells_.z; ++k)
+        for (int j = 0; j < cells_.y; ++j)
+            for (int i = 0; i < cells_.x; ++i) {
+                const glm::ivec3 q(i, j, k);
+                const glm::dvec3 x = cellCentre(q);
+                for (const shared::FluidEmitter& e : emitters) {
+                    const double a = emitterWeight(e, x, dt());
+                    for (int channel = 0; channel < 4; ++channel) {
+                        double& p = pigment_[Eigen::Index(cellIndex(q) * 4 + size_t(channel))];
+                        p += a * (double(e.pigment[channel]) - p);
+                    }
+                }
+            }
+}
+
+} // namespace mfx::fluid

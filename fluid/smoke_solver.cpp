@@ -1,0 +1,458 @@
+#include "fluid/smoke_solver.h"
+
+#include "core/gpu/commands.h"
+#include "core/gpu/context.h"
+#include "shaders/embedded.h"
+#include "shaders/shared/fluid.h"
+
+#include <cstring>
+
+namespace mfx::fluid {
+
+namespace {
+
+constexpr VkImageUsageFlags kFieldUsage =
+    VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+constexpr uint32_t kSetsPerProgram = 16;
+
+gpu::BindingDesc uniformBinding(uint32_t binding) {
+    return {binding, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT};
+}
+gpu::BindingDesc bufferBinding(uint32_t binding) {
+    return {binding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT};
+}
+
+// A compute program whose binding 0 is the parameters uniform and bindings 1..images are storage
+// images (with binding `bufferAt`, if any, a storage buffer instead).
+gpu::Program makeProgram(const gpu::Context& ctx, const char* name, std::span<const uint32_t> spirv,
+                         uint32_t bindingCount, uint32_t bufferAt = 0) {
+    gpu::ComputeProgramDesc desc;
+    desc.name = name;
+    desc.spirv = spirv;
+    desc.bindings.push_back(uniformBinding(0));
+    for (uint32_t b = 1; b < bindingCount; ++b)
+        desc.bindings.push_back(b == bufferAt
+                                    ? bufferBinding(b)
+                                    : gpu::BindingDesc{b, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                                                       VK_SHADER_STAGE_COMPUTE_BIT});
+    desc.pushConstantSize = sizeof(shared::FluidDispatch);
+    desc.maxSets = kSetsPerProgram;
+    return gpu::createComputeProgram(ctx, desc);
+}
+
+gpu::DescriptorWrite storage(uint32_t binding, const gpu::Image& image) {
+    return gpu::bindImage(binding, image, VK_IMAGE_LAYOUT_GENERAL);
+}
+
+} // namespace
+
+Result<std::unique_ptr<SmokeSolver>> SmokeSolver::create(const gpu::Context& ctx,
+                                                         const SolverOptions& options) {
+    // Faces need one more texel than cells along their axis.
+    if (Status valid = validateOptions(options, ctx.limits().maxImageDimension3D - 1); !valid)
+        return valid.error();
+    return std::unique_ptr<SmokeSolver>(new SmokeSolver(ctx, options));
+}
+
+SmokeSolver::SmokeSolver(const gpu::Context& ctx, const SolverOptions& options)
+    : ctx_(ctx), options_(options),
+      cells_(options.grid.cellsX, options.grid.cellsY, options.grid.cellsZ) {
+    auto makeImage = [&](glm::uvec3 extent, VkFormat format, const char* name) {
+        gpu::ImageDesc desc;
+        desc.extent = {extent.x, extent.y, extent.z};
+        desc.format = format;
+        desc.usage = kFieldUsage;
+        desc.is3D = true;
+        desc.debugName = name;
+        return gpu::createImage(ctx, desc);
+    };
+    for (int set = 0; set < 3; ++set)
+        for (int c = 0; c < 3; ++c)
+            velocity_[set][c] =
+                makeImage(faceExtent(options.grid, c), VK_FORMAT_R32_SFLOAT, "velocity");
+    for (int i = 0; i < 2; ++i) {
+        pigment_[i] = makeImage(cells_, VK_FORMAT_R32G32B32A32_SFLOAT, "pigment");
+        pressure_[i] = makeImage(cells_, VK_FORMAT_R32_SFLOAT, "pressure");
+    }
+    divergence_ = makeImage(cells_, VK_FORMAT_R32_SFLOAT, "divergence");
+    vorticity_ = makeImage(cells_, VK_FORMAT_R32G32B32A32_SFLOAT, "vorticity");
+
+    // Everything starts at rest, in GENERAL layout for the whole of its life.
+    gpu::submitOneShot(ctx, [&](VkCommandBuffer cmd) {
+        auto clear = [&](gpu::Image& image) {
+            gpu::transitionImage(cmd, image, VK_IMAGE_LAYOUT_GENERAL);
+            const VkClearColorValue zero{};
+            const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+            vkCmdClearColorImage(cmd, image.get(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
+        };
+        for (auto& set : velocity_)
+            for (auto& image : set)
+                clear(image);
+        for (auto& image : pigment_)
+            clear(image);
+        for (auto& image : pressure_)
+            clear(image);
+        clear(divergence_);
+        clear(vorticity_);
+        barrier(cmd);
+    });
+
+    parameters_ =
+        gpu::createBuffer(ctx, sizeof(shared::FluidParameters), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                          gpu::MemoryUsage::Upload, "fluid parameters");
+    ownEmitters_ = gpu::createBuffer(ctx, 16 * sizeof(shared::FluidEmitter),
+                                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload,
+                                     "fluid emitters");
+    emitterBuffer_ = ownEmitters_.get();
+    emitterBufferSize_ = ownEmitters_.size;
+
+    writeParameters();
+}
+
+// Programs are compiled on first use: a solver that never runs a stage never pays for its
+// pipeline (on a CPU driver each compile costs tens of milliseconds).
+gpu::Program& SmokeSolver::program(Stage stage, int part) {
+    using namespace mfx::shaders;
+    gpu::Program& slot = programs_[size_t(stage)][size_t(part)];
+    if (slot.pipeline() != VK_NULL_HANDLE) return slot;
+    switch (stage) {
+    case Stage::SplatImpulses:
+        slot = makeProgram(ctx_, "splat_impulses", splat_impulses_comp, 6, 1);
+        break;
+    case Stage::AdvectVelocity:
+        slot = makeProgram(ctx_, "advect_velocity", advect_velocity_comp, 7);
+        break;
+    case Stage::AdvectPigment:
+        slot = makeProgram(ctx_, "advect_pigment", advect_pigment_comp, 6);
+        break;
+    case Stage::ApplyBuoyancy:
+        slot = makeProgram(ctx_, "apply_buoyancy", apply_buoyancy_comp, 3);
+        break;
+    case Stage::VorticityConfinement:
+        slot = part == 0
+                   ? makeProgram(ctx_, "compute_vorticity", compute_vorticity_comp, 5)
+                   : makeProgram(ctx_, "apply_vorticity_force", apply_vorticity_force_comp, 5);
+        break;
+    case Stage::DiffuseViscosity:
+        slot = makeProgram(ctx_, "diffuse_viscosity", diffuse_viscosity_comp, 10);
+        break;
+    case Stage::ApplyBoundaries:
+        slot = makeProgram(ctx_, "apply_boundaries", apply_boundaries_comp, 4);
+        break;
+    case Stage::ComputeDivergence:
+        slot = makeProgram(ctx_, "compute_divergence", compute_divergence_comp, 5);
+        break;
+    case Stage::SolvePressure:
+        slot = makeProgram(ctx_, "solve_pressure", solve_pressure_comp, 4);
+        break;
+    case Stage::Project:
+        slot = makeProgram(ctx_, "project", project_comp, 5);
+        break;
+    }
+    return slot;
+}
+
+void SmokeSolver::setState(const FieldState& state) {
+    auto upload = [&](gpu::Image& image, const std::vector<float>& values) {
+        gpu::uploadImage(ctx_, image, std::as_bytes(std::span<const float>(values)),
+                         VK_IMAGE_LAYOUT_GENERAL);
+    };
+    upload(velocity_[currentVelocity_][0], state.velocityX);
+    upload(velocity_[currentVelocity_][1], state.velocityY);
+    upload(velocity_[currentVelocity_][2], state.velocityZ);
+    upload(pressure_[currentPressure_], state.pressure);
+    upload(divergence_, state.divergence);
+    upload(pigment_[currentPigment_], state.pigment);
+}
+
+FieldState SmokeSolver::state() {
+    auto read = [&](gpu::Image& image) {
+        const std::vector<std::byte> bytes = gpu::readImage(ctx_, image);
+        std::vector<float> values(bytes.size() / sizeof(float));
+        std::memcpy(values.data(), bytes.data(), values.size() * sizeof(float));
+        return values;
+    };
+    FieldState state;
+    state.grid = options_.grid;
+    state.velocityX = read(velocity_[currentVelocity_][0]);
+    state.velocityY = read(velocity_[currentVelocity_][1]);
+    state.velocityZ = read(velocity_[currentVelocity_][2]);
+    state.pressure = read(pressure_[currentPressure_]);
+    state.divergence = read(divergence_);
+    state.pigment = read(pigment_[currentPigment_]);
+    return state;
+}
+
+Status SmokeSolver::setEmitters(std::span<const shared::FluidEmitter> emitters) {
+    if (Status valid = validateEmitters(emitters); !valid) return valid;
+    const VkDeviceSize bytes = emitters.size_bytes();
+    if (bytes > ownEmitters_.size) {
+        ownEmitters_ = gpu::createBuffer(ctx_, std::max<VkDeviceSize>(bytes, 2 * ownEmitters_.size),
+                                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                         gpu::MemoryUsage::Upload, "fluid emitters");
+    }
+    if (bytes > 0) std::memcpy(ownEmitters_.mapped, emitters.data(), bytes);
+    setEmitterBuffer(ownEmitters_, uint32_t(emitters.size()));
+    return Ok{};
+}
+
+void SmokeSolver::setEmitterBuffer(const gpu::Buffer& buffer, uint32_t count) {
+    if (buffer.get() != emitterBuffer_) {
+        // The splat program's sets name the old buffer: drop them all.
+        gpu::Program& splat = programs_[size_t(Stage::SplatImpulses)][0];
+        splat.resetSets(ctx_);
+        std::erase_if(sets_, [&](const auto& entry) { return std::get<0>(entry.first) == &splat; });
+        emitterBuffer_ = buffer.get();
+        emitterBufferSize_ = buffer.size;
+    }
+    emitterCount_ = std::min<uint32_t>(count, uint32_t(buffer.size / sizeof(shared::FluidEmitter)));
+}
+
+void SmokeSolver::writeParameters() {
+    const shared::FluidParameters parameters = makeParameters(options_, emitterCount_);
+    std::memcpy(parameters_.mapped, &parameters, sizeof(parameters));
+}
+
+void SmokeSolver::barrier(VkCommandBuffer cmd) const {
+    const VkPipelineStageFlags2 stages =
+        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
+    gpu::memoryBarrier(
+        cmd, stages, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT, stages,
+        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
+            VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT);
+}
+
+void SmokeSolver::dispatchTarget(VkCommandBuffer cmd, gpu::Program& program, VkDescriptorSet set,
+                                 uint32_t target, glm::uvec3 extent) const {
+    program.bind(cmd, set);
+    const shared::FluidDispatch dispatch{target, 0, 0, 0};
+    program.push(cmd, dispatch);
+    vkCmdDispatch(cmd, gpu::groupCount(extent.x, MFX_FLUID_GROUP_X),
+                  gpu::groupCount(extent.y, MFX_FLUID_GROUP_Y),
+                  gpu::groupCount(extent.z, MFX_FLUID_GROUP_Z));
+}
+
+template <typename MakeWrites>
+VkDescriptorSet SmokeSolver::set(gpu::Program& program, std::tuple<int, int, int> key,
+                                 MakeWrites makeWrites) {
+    const auto fullKey = std::make_tuple(static_cast<const gpu::Program*>(&program),
+                                         std::get<0>(key), std::get<1>(key), std::get<2>(key));
+    if (auto it = sets_.find(fullKey); it != sets_.end()) return it->second;
+    std::vector<gpu::DescriptorWrite> writes{gpu::bindBuffer(0, parameters_)};
+    makeWrites(writes);
+    VkDescriptorSet created = program.createSet(ctx_, writes);
+    sets_.emplace(fullKey, created);
+    return created;
+}
+
+void SmokeSolver::addVelocity(std::vector<gpu::DescriptorWrite>& writes, int velocitySet,
+                              uint32_t firstBinding) const {
+    for (uint32_t c = 0; c < 3; ++c)
+        writes.push_back(storage(firstBinding + c, velocity_[velocitySet][c]));
+}
+
+// --- Stages -------------------------------------------------------------------------------------
+
+void SmokeSolver::splatImpulses(VkCommandBuffer cmd) {
+    if (emitterCount_ == 0) return;
+    const int v = currentVelocity_, p = currentPigment_;
+    VkDescriptorSet s = set(program(Stage::SplatImpulses), {v, p, 0}, [&](auto& writes) {
+        gpu::DescriptorWrite emitters;
+        emitters.binding = 1;
+        emitters.buffer = {emitterBuffer_, 0, emitterBufferSize_};
+        writes.push_back(emitters);
+        addVelocity(writes, v, 2);
+        writes.push_back(storage(5, pigment_[p]));
+    });
+    for (uint32_t c = 0; c < 3; ++c)
+        dispatchTarget(cmd, program(Stage::SplatImpulses), s, c, faceExtent(options_.grid, int(c)));
+    dispatchTarget(cmd, program(Stage::SplatImpulses), s, MFX_TARGET_PIGMENT, cells_);
+    barrier(cmd);
+}
+
+void SmokeSolver::advectVelocity(VkCommandBuffer cmd) {
+    const int from = currentVelocity_, to = 1 - currentVelocity_;
+    VkDescriptorSet s = set(program(Stage::AdvectVelocity), {from, to, 0}, [&](auto& writes) {
+        addVelocity(writes, from, 1);
+        addVelocity(writes, to, 4);
+    });
+    for (uint32_t c = 0; c < 3; ++c)
+        dispatchTarget(cmd, program(Stage::AdvectVelocity), s, c,
+                       faceExtent(options_.grid, int(c)));
+    currentVelocity_ = to;
+    barrier(cmd);
+}
+
+void SmokeSolver::advectPigment(VkCommandBuffer cmd) {
+    const int v = currentVelocity_, from = currentPigment_, to = 1 - currentPigment_;
+    VkDescriptorSet s = set(program(Stage::AdvectPigment), {v, from, to}, [&](auto& writes) {
+        addVelocity(writes, v, 1);
+        writes.push_back(storage(4, pigment_[from]));
+        writes.push_back(storage(5, pigment_[to]));
+    });
+    dispatchTarget(cmd, program(Stage::AdvectPigment), s, MFX_TARGET_PIGMENT, cells_);
+    currentPigment_ = to;
+    barrier(cmd);
+}
+
+void SmokeSolver::applyBuoyancy(VkCommandBuffer cmd) {
+    if (options_.buoyancy == 0.0f) return;
+    const int v = currentVelocity_, p = currentPigment_;
+    VkDescriptorSet s = set(program(Stage::ApplyBuoyancy), {v, p, 0}, [&](auto& writes) {
+        writes.push_back(storage(1, velocity_[v][1]));
+        writes.push_back(storage(2, pigment_[p]));
+    });
+    dispatchTarget(cmd, program(Stage::ApplyBuoyancy), s, MFX_TARGET_VELOCITY_Y,
+                   faceExtent(options_.grid, 1));
+    barrier(cmd);
+}
+
+void SmokeSolver::vorticityConfinement(VkCommandBuffer cmd) {
+    if (options_.vorticity == 0.0f) return;
+    const int v = currentVelocity_;
+    auto writes = [&](auto& w) {
+        addVelocity(w, v, 1);
+        w.push_back(storage(4, vorticity_));
+    };
+    VkDescriptorSet compute = set(program(Stage::VorticityConfinement, 0), {v, 0, 0}, writes);
+    dispatchTarget(cmd, program(Stage::VorticityConfinement, 0), compute, 0, cells_);
+    barrier(cmd);
+    VkDescriptorSet apply = set(program(Stage::VorticityConfinement, 1), {v, 0, 0}, writes);
+    for (uint32_t c = 0; c < 3; ++c)
+        dispatchTarget(cmd, program(Stage::VorticityConfinement, 1), apply, c,
+                       faceExtent(options_.grid, int(c)));
+    barrier(cmd);
+}
+
+void SmokeSolver::diffuseViscosity(VkCommandBuffer cmd) {
+    const uint32_t sweeps = options_.viscosityIterations;
+    if (options_.viscosity == 0.0f || sweeps == 0) return;
+    const int source = currentVelocity_, other = 1 - currentVelocity_, scratch = 2;
+    // Alternate between `other` and the scratch set so that the last sweep lands in `other`.
+    int in = source;
+    int out = sweeps % 2 == 1 ? other : scratch;
+    for (uint32_t sweep = 0; sweep < sweeps; ++sweep) {
+        VkDescriptorSet s =
+            set(program(Stage::DiffuseViscosity), {source, in, out}, [&](auto& writes) {
+                addVelocity(writes, source, 1);
+                addVelocity(writes, in, 4);
+                addVelocity(writes, out, 7);
+            });
+        for (uint32_t c = 0; c < 3; ++c)
+            dispatchTarget(cmd, program(Stage::DiffuseViscosity), s, c,
+                           faceExtent(options_.grid, int(c)));
+        barrier(cmd);
+        in = out;
+        out = out == other ? scratch : other;
+    }
+    currentVelocity_ = other;
+}
+
+void SmokeSolver::applyBoundaries(VkCommandBuffer cmd) {
+    const int v = currentVelocity_;
+    VkDescriptorSet s = set(program(Stage::ApplyBoundaries), {v, 0, 0},
+                            [&](auto& writes) { addVelocity(writes, v, 1); });
+    for (uint32_t c = 0; c < 3; ++c)
+        dispatchTarget(cmd, program(Stage::ApplyBoundaries), s, c,
+                       faceExtent(options_.grid, int(c)));
+    barrier(cmd);
+}
+
+void SmokeSolver::computeDivergence(VkCommandBuffer cmd) {
+    const int v = currentVelocity_;
+    VkDescriptorSet s = set(program(Stage::ComputeDivergence), {v, 0, 0}, [&](auto& writes) {
+        addVelocity(writes, v, 1);
+        writes.push_back(storage(4, divergence_));
+    });
+    dispatchTarget(cmd, program(Stage::ComputeDivergence), s, 0, cells_);
+    barrier(cmd);
+}
+
+void SmokeSolver::solvePressure(VkCommandBuffer cmd) {
+    if (!options_.warmStart) {
+        const VkClearColorValue zero{};
+        const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        vkCmdClearColorImage(cmd, pressure_[currentPressure_].get(), VK_IMAGE_LAYOUT_GENERAL, &zero,
+                             1, &range);
+        barrier(cmd);
+    }
+    for (uint32_t iteration = 0; iteration < options_.jacobiIterations; ++iteration) {
+        const int in = currentPressure_, out = 1 - currentPressure_;
+        VkDescriptorSet s = set(program(Stage::SolvePressure), {in, out, 0}, [&](auto& writes) {
+            writes.push_back(storage(1, divergence_));
+            writes.push_back(storage(2, pressure_[in]));
+            writes.push_back(storage(3, pressure_[out]));
+        });
+        dispatchTarget(cmd, program(Stage::SolvePressure), s, 0, cells_);
+        barrier(cmd);
+        currentPressure_ = out;
+    }
+}
+
+void SmokeSolver::project(VkCommandBuffer cmd) {
+    const int v = currentVelocity_, p = currentPressure_;
+    VkDescriptorSet s = set(program(Stage::Project), {v, p, 0}, [&](auto& writes) {
+        addVelocity(writes, v, 1);
+        writes.push_back(storage(4, pressure_[p]));
+    });
+    for (uint32_t c = 0; c < 3; ++c)
+        dispatchTarget(cmd, program(Stage::Project), s, c, faceExtent(options_.grid, int(c)));
+    barrier(cmd);
+}
+
+// --- Recording
+// ------------------------------------------------------------------------------------
+
+void SmokeSolver::recordStage(VkCommandBuffer cmd, Stage stage, gpu::GpuTimer* timer) {
+    writeParameters();
+    if (timer) timer->begin(cmd, stageName(stage));
+    switch (stage) {
+    case Stage::SplatImpulses:
+        splatImpulses(cmd);
+        break;
+    case Stage::AdvectVelocity:
+        advectVelocity(cmd);
+        break;
+    case Stage::AdvectPigment:
+        advectPigment(cmd);
+        break;
+    case Stage::ApplyBuoyancy:
+        applyBuoyancy(cmd);
+        break;
+    case Stage::VorticityConfinement:
+        vorticityConfinement(cmd);
+        break;
+    case Stage::DiffuseViscosity:
+        diffuseViscosity(cmd);
+        break;
+    case Stage::ApplyBoundaries:
+        applyBoundaries(cmd);
+        break;
+    case Stage::ComputeDivergence:
+        computeDivergence(cmd);
+        break;
+    case Stage::SolvePressure:
+        solvePressure(cmd);
+        break;
+    case Stage::Project:
+        project(cmd);
+        break;
+    }
+    if (timer) timer->end(cmd);
+}
+
+void SmokeSolver::recordStep(VkCommandBuffer cmd, gpu::GpuTimer* timer) {
+    for (uint32_t substep = 0; substep < options_.substeps; ++substep)
+        for (Stage stage : kStepOrder)
+            recordStage(cmd, stage, timer);
+}
+
+void SmokeSolver::step() {
+    gpu::submitOneShot(ctx_, [&](VkCommandBuffer cmd) { recordStep(cmd); });
+}
+
+void SmokeSolver::runStage(Stage stage) {
+    gpu::submitOneShot(ctx_, [&](VkCommandBuffer cmd) { recordStage(cmd, stage); });
+}
+
+} // namespace mfx::fluid

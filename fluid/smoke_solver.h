@@ -1,0 +1,120 @@
+// The smoke solver on the GPU: a 3D MAC grid in storage images, one compute shader per stage
+// (shaders/<stage>.comp), the same stages and discretisation as the CPU reference
+// (fluid/reference/), written down in docs/fluid.md. One sub-step:
+//
+//   splatImpulses → advectVelocity → advectPigment → applyBuoyancy → vorticityConfinement →
+//   diffuseViscosity → applyBoundaries → computeDivergence → solvePressure (Jacobi) → project →
+//   applyBoundaries
+//
+// Fields live in r32f / rgba32f 3D storage images in GENERAL layout; velocity and pigment are
+// ping-ponged between image sets (no copies), and every dispatch is separated by a compute→compute
+// memory barrier.
+#pragma once
+
+#include "core/gpu/program.h"
+#include "core/gpu/resources.h"
+#include "core/gpu/timer.h"
+#include "fluid/solver_options.h"
+
+#include <array>
+#include <map>
+#include <memory>
+#include <span>
+#include <tuple>
+#include <vector>
+
+namespace mfx::gpu {
+class Context;
+}
+
+namespace mfx::fluid {
+
+class SmokeSolver {
+public:
+    // Fails when the options are invalid or the grid exceeds the device's 3D image size.
+    static Result<std::unique_ptr<SmokeSolver>> create(const gpu::Context& ctx,
+                                                       const SolverOptions& options);
+    SmokeSolver(const SmokeSolver&) = delete;
+    SmokeSolver& operator=(const SmokeSolver&) = delete;
+
+    const SolverOptions& options() const { return options_; }
+
+    // Uploads / reads back every field (waits for the GPU).
+    void setState(const FieldState& state);
+    FieldState state();
+
+    // Emitters for the following steps, copied into the solver's own buffer after validation.
+    Status setEmitters(std::span<const shared::FluidEmitter> emitters);
+    // Emitters read from a GPU buffer filled by other GPU work (e.g. trajectory segments):
+    // `count` records of shared::FluidEmitter. Not checked on the CPU; the splat shader ignores
+    // records with a non-finite position, radius or strength.
+    void setEmitterBuffer(const gpu::Buffer& buffer, uint32_t count);
+
+    // Records one whole step (all sub-steps) into `cmd`. With a timer, each stage is a pass
+    // named after it (stageName()), once per sub-step. The parameters uniform is written now,
+    // so the previous recording must have finished executing.
+    void recordStep(VkCommandBuffer cmd, gpu::GpuTimer* timer = nullptr);
+    // Records one stage alone (with the sub-step dt).
+    void recordStage(VkCommandBuffer cmd, Stage stage, gpu::GpuTimer* timer = nullptr);
+
+    // Convenience: record, submit and wait.
+    void step();
+    void runStage(Stage stage);
+
+    // Upper bound of timer passes one recordStep() makes.
+    uint32_t passesPerStep() const { return uint32_t(kStepOrder.size()) * options_.substeps; }
+
+private:
+    SmokeSolver(const gpu::Context& ctx, const SolverOptions& options);
+    void writeParameters();
+    void barrier(VkCommandBuffer cmd) const;
+    void dispatchTarget(VkCommandBuffer cmd, gpu::Program& program, VkDescriptorSet set,
+                        uint32_t target, glm::uvec3 extent) const;
+    // Descriptor set of `program` for a combination of image-set indices `key`, made by
+    // `writes()` the first time it is asked for.
+    template <typename MakeWrites>
+    VkDescriptorSet set(gpu::Program& program, std::tuple<int, int, int> key, MakeWrites writes);
+    // Bindings firstBinding.. of the three components of velocity image set `set`.
+    void addVelocity(std::vector<gpu::DescriptorWrite>& writes, int set,
+                     uint32_t firstBinding) const;
+
+    void splatImpulses(VkCommandBuffer cmd);
+    void advectVelocity(VkCommandBuffer cmd);
+    void advectPigment(VkCommandBuffer cmd);
+    void applyBuoyancy(VkCommandBuffer cmd);
+    void vorticityConfinement(VkCommandBuffer cmd);
+    void diffuseViscosity(VkCommandBuffer cmd);
+    void applyBoundaries(VkCommandBuffer cmd);
+    void computeDivergence(VkCommandBuffer cmd);
+    void solvePressure(VkCommandBuffer cmd);
+    void project(VkCommandBuffer cmd);
+
+    const gpu::Context& ctx_;
+    SolverOptions options_;
+    glm::uvec3 cells_;
+
+    // velocity_[set][component]: sets 0 and 1 ping-pong (current_ says which is live), set 2 is
+    // scratch for the viscosity sweeps.
+    std::array<std::array<gpu::Image, 3>, 3> velocity_;
+    std::array<gpu::Image, 2> pigment_;
+    std::array<gpu::Image, 2> pressure_;
+    gpu::Image divergence_;
+    gpu::Image vorticity_;
+    int currentVelocity_ = 0;
+    int currentPigment_ = 0;
+    int currentPressure_ = 0;
+
+    gpu::Buffer parameters_;
+    gpu::Buffer ownEmitters_;
+    VkBuffer emitterBuffer_ = VK_NULL_HANDLE;
+    VkDeviceSize emitterBufferSize_ = 0;
+    uint32_t emitterCount_ = 0;
+
+    // The program of a stage (part 1: the second program of vorticity confinement), compiled
+    // on first use.
+    gpu::Program& program(Stage stage, int part = 0);
+    std::array<std::array<gpu::Program, 2>, kAllStages.size()> programs_;
+    std::map<std::tuple<const gpu::Program*, int, int, int>, VkDescriptorSet> sets_;
+};
+
+} // namespace mfx::fluid

@@ -1,0 +1,132 @@
+#include "fluid/solver_options.h"
+
+#include <cmath>
+
+namespace mfx::fluid {
+
+namespace {
+
+bool finite(float x) {
+    return std::isfinite(x);
+}
+bool finite(const glm::vec4& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && std::isfinite(v.w);
+}
+
+const char* kFaceNames[6] = {"-x", "+x", "-y", "+y", "-z", "+z"};
+
+} // namespace
+
+Status validateOptions(const SolverOptions& o, uint32_t maxDimension) {
+    if (Status grid = validateGrid(o.grid, maxDimension); !grid) return grid;
+    auto bad = [](const std::string& what) { return Status(Error{what}); };
+    if (!finite(o.dt) || o.dt < 0.0f) return bad("dt must be a finite number >= 0");
+    if (o.substeps < 1 || o.substeps > 64) return bad("substeps must be between 1 and 64");
+    if (!finite(o.fade) || o.fade < 0.0f) return bad("fade must be a finite number >= 0");
+    if (!finite(o.buoyancy)) return bad("buoyancy must be finite");
+    if (!finite(o.vorticity) || o.vorticity < 0.0f)
+        return bad("vorticity must be a finite number >= 0");
+    if (!finite(o.viscosity) || o.viscosity < 0.0f)
+        return bad("viscosity must be a finite number >= 0");
+    if (o.viscosityIterations > 10000) return bad("viscosityIterations must be at most 10000");
+    if (o.jacobiIterations > 100000) return bad("jacobiIterations must be at most 100000");
+    for (int face = 0; face < 6; ++face) {
+        const glm::vec3 w = o.boundaries[face].wallVelocity;
+        if (!std::isfinite(w.x) || !std::isfinite(w.y) || !std::isfinite(w.z))
+            return bad(std::string("boundary ") + kFaceNames[face] +
+                       ": wall velocity must be finite");
+    }
+    for (int axis = 0; axis < 3; ++axis) {
+        const bool low = o.boundaries[2 * axis].kind == Boundary::Periodic;
+        const bool high = o.boundaries[2 * axis + 1].kind == Boundary::Periodic;
+        if (low != high)
+            return bad(std::string("boundary ") + kFaceNames[2 * axis] + "/" +
+                       kFaceNames[2 * axis + 1] + ": periodic must be set on both faces");
+    }
+    return Ok{};
+}
+
+Status validateEmitters(std::span<const shared::FluidEmitter> emitters) {
+    for (size_t i = 0; i < emitters.size(); ++i) {
+        const shared::FluidEmitter& e = emitters[i];
+        const std::string where = "emitter " + std::to_string(i) + ": ";
+        if (!finite(e.positionRadius)) return Error{where + "position or radius is not finite"};
+        if (!finite(e.velocityStrength)) return Error{where + "velocity or strength is not finite"};
+        if (!finite(e.pigment)) return Error{where + "pigment is not finite"};
+        if (e.positionRadius.w <= 0.0f) return Error{where + "radius must be > 0"};
+        if (e.velocityStrength.w < 0.0f) return Error{where + "strength must be >= 0"};
+        if (e.pigment.x < 0.0f || e.pigment.y < 0.0f || e.pigment.z < 0.0f || e.pigment.w < 0.0f)
+            return Error{where + "pigment components must be >= 0"};
+    }
+    return Ok{};
+}
+
+shared::FluidParameters makeParameters(const SolverOptions& o, uint32_t emitterCount) {
+    shared::FluidParameters p{};
+    p.size = glm::uvec4(o.grid.cellsX, o.grid.cellsY, o.grid.cellsZ, emitterCount);
+    const float dt = o.substepDt();
+    p.cell = glm::vec4(o.grid.cellSize, 1.0f / o.grid.cellSize, dt, 0.0f);
+    p.rates = glm::vec4(o.fade, o.buoyancy, o.vorticity,
+                        o.viscosity * dt / (o.grid.cellSize * o.grid.cellSize));
+    p.boundaryLow =
+        glm::uvec4(uint32_t(o.boundaries[FaceLowX].kind), uint32_t(o.boundaries[FaceLowY].kind),
+                   uint32_t(o.boundaries[FaceLowZ].kind), uint32_t(o.integrator));
+    p.boundaryHigh =
+        glm::uvec4(uint32_t(o.boundaries[FaceHighX].kind), uint32_t(o.boundaries[FaceHighY].kind),
+                   uint32_t(o.boundaries[FaceHighZ].kind), 0u);
+    for (int face = 0; face < 6; ++face)
+        p.wallVelocity[face] = glm::vec4(o.boundaries[face].wallVelocity, 0.0f);
+    return p;
+}
+
+const char* stageName(Stage stage) {
+    switch (stage) {
+    case Stage::SplatImpulses:
+        return "splat_impulses";
+    case Stage::AdvectVelocity:
+        return "advect_velocity";
+    case Stage::AdvectPigment:
+        return "advect_pigment";
+    case Stage::ApplyBuoyancy:
+        return "apply_buoyancy";
+    case Stage::VorticityConfinement:
+        return "vorticity_confinement";
+    case Stage::DiffuseViscosity:
+        return "diffuse_viscosity";
+    case Stage::ApplyBoundaries:
+        return "apply_boundaries";
+    case Stage::ComputeDivergence:
+        return "compute_divergence";
+    case Stage::SolvePressure:
+        return "solve_pressure";
+    case Stage::Project:
+        return "project";
+    }
+    return "unknown";
+}
+
+std::optional<Stage> stageFromName(std::string_view name) {
+    for (Stage stage : kAllStages)
+        if (name == stageName(stage)) return stage;
+    return std::nullopt;
+}
+
+glm::uvec3 faceExtent(const GridShape& grid, int component) {
+    return {grid.cellsX + (component == 0 ? 1u : 0u), grid.cellsY + (component == 1 ? 1u : 0u),
+            grid.cellsZ + (component == 2 ? 1u : 0u)};
+}
+
+FieldState FieldState::zero(const GridShape& grid) {
+    FieldState state;
+    state.grid = grid;
+    auto count = [](glm::uvec3 e) { return size_t(e.x) * e.y * e.z; };
+    state.velocityX.assign(count(faceExtent(grid, 0)), 0.0f);
+    state.velocityY.assign(count(faceExtent(grid, 1)), 0.0f);
+    state.velocityZ.assign(count(faceExtent(grid, 2)), 0.0f);
+    state.pressure.assign(grid.cellCount(), 0.0f);
+    state.divergence.assign(grid.cellCount(), 0.0f);
+    state.pigment.assign(grid.cellCount() * 4, 0.0f);
+    return state;
+}
+
+} // namespace mfx::fluid

@@ -1,0 +1,116 @@
+// What a smoke simulation is asked to do: grid, time step, stage parameters and boundaries, plus
+// the stage names shared by the GPU solver and the CPU reference. The discretisation behind each
+// option is written down in docs/fluid.md.
+#pragma once
+
+#include "core/result.h"
+#include "fluid/grid.h"
+#include "shaders/shared/fluid.h"
+
+#include <array>
+#include <glm/glm.hpp>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace mfx::fluid {
+
+enum class Boundary {
+    WallFreeSlip = MFX_BOUNDARY_WALL_FREE_SLIP, // no flow through; tangential flow slides freely
+    WallNoSlip = MFX_BOUNDARY_WALL_NO_SLIP,     // no flow through; tangential flow = wall velocity
+    Open = MFX_BOUNDARY_OPEN,                   // outflow: pressure 0 outside, zero gradient
+    Periodic = MFX_BOUNDARY_PERIODIC, // wraps to the opposite face (both faces of an axis)
+};
+
+enum class Integrator { Euler = MFX_INTEGRATOR_EULER, RK2 = MFX_INTEGRATOR_RK2 };
+
+// Domain faces in the order -x, +x, -y, +y, -z, +z.
+enum Face { FaceLowX = 0, FaceHighX, FaceLowY, FaceHighY, FaceLowZ, FaceHighZ };
+
+struct FaceBoundary {
+    Boundary kind = Boundary::WallFreeSlip;
+    // Velocity of a wall. Walls never move along their own normal (that component is ignored);
+    // a no-slip wall drags tangential flow towards the other components.
+    glm::vec3 wallVelocity{0.0f};
+};
+
+struct SolverOptions {
+    GridShape grid;
+    float dt = 1.0f / 60.0f; // seconds per step
+    uint32_t substeps = 1;   // each step runs every stage this many times with dt/substeps
+    Integrator integrator = Integrator::Euler;
+    float fade = 0.0f;                 // pigment decay rate per second: pigment *= exp(-fade*dt)
+    float buoyancy = 0.0f;             // upward acceleration per unit pigment alpha (0 = off)
+    float vorticity = 0.0f;            // vorticity confinement strength epsilon (0 = off)
+    float viscosity = 0.0f;            // kinematic viscosity nu, world units^2 per second (0 = off)
+    uint32_t viscosityIterations = 20; // Jacobi sweeps of the implicit diffusion solve
+    uint32_t jacobiIterations = 20;    // Jacobi sweeps of the pressure solve
+    bool warmStart = false;            // start the pressure solve from the last step's pressure
+    std::array<FaceBoundary, 6> boundaries{};
+
+    float substepDt() const { return dt / float(substeps); }
+    bool periodic(int axis) const { return boundaries[2 * axis].kind == Boundary::Periodic; }
+};
+
+// Checks every option: finite, in range, periodic faces paired. The error names the option.
+Status validateOptions(const SolverOptions& options, uint32_t maxDimension = 4096);
+
+// Refuses emitters with NaN/Inf, a radius <= 0, a negative strength or negative pigment; the
+// error names the emitter index and the field.
+Status validateEmitters(std::span<const shared::FluidEmitter> emitters);
+
+// The uniform block of one sub-step.
+shared::FluidParameters makeParameters(const SolverOptions& options, uint32_t emitterCount);
+
+// The stages of one sub-step, in order. ApplyBoundaries runs twice: before the divergence (so
+// periodic duplicate faces agree) and last.
+enum class Stage {
+    SplatImpulses,
+    AdvectVelocity,
+    AdvectPigment,
+    ApplyBuoyancy,
+    VorticityConfinement,
+    DiffuseViscosity,
+    ApplyBoundaries,
+    ComputeDivergence,
+    SolvePressure,
+    Project,
+};
+
+inline constexpr std::array<Stage, 10> kAllStages = {
+    Stage::SplatImpulses,   Stage::AdvectVelocity,       Stage::AdvectPigment,
+    Stage::ApplyBuoyancy,   Stage::VorticityConfinement, Stage::DiffuseViscosity,
+    Stage::ApplyBoundaries, Stage::ComputeDivergence,    Stage::SolvePressure,
+    Stage::Project};
+
+// The order one sub-step runs its stages in.
+inline constexpr std::array<Stage, 11> kStepOrder = {
+    Stage::SplatImpulses,   Stage::AdvectVelocity,       Stage::AdvectPigment,
+    Stage::ApplyBuoyancy,   Stage::VorticityConfinement, Stage::DiffuseViscosity,
+    Stage::ApplyBoundaries, Stage::ComputeDivergence,    Stage::SolvePressure,
+    Stage::Project,         Stage::ApplyBoundaries};
+
+// "splat_impulses", "advect_velocity", ... (the shader file names without extension).
+const char* stageName(Stage stage);
+std::optional<Stage> stageFromName(std::string_view name);
+
+// Every field of a simulation, as plain floats (x fastest): the exchange format between the GPU
+// solver, the CPU reference and the tests.
+struct FieldState {
+    GridShape grid;
+    std::vector<float> velocityX;  // (nx+1) * ny * nz faces
+    std::vector<float> velocityY;  // nx * (ny+1) * nz faces
+    std::vector<float> velocityZ;  // nx * ny * (nz+1) faces
+    std::vector<float> pressure;   // nx * ny * nz cells
+    std::vector<float> divergence; // nx * ny * nz cells
+    std::vector<float> pigment;    // nx * ny * nz cells, RGBA interleaved
+
+    static FieldState zero(const GridShape& grid);
+};
+
+// Faces along each axis of velocity component `component` (0 x, 1 y, 2 z).
+glm::uvec3 faceExtent(const GridShape& grid, int component);
+
+} // namespace mfx::fluid

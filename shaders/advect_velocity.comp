@@ -1,0 +1,36 @@
+// advectVelocity: semi-Lagrangian advection of each MAC face component (docs/fluid.md; Stam 1999,
+// eq. 7). Twin: fluid/reference/advect_velocity.cpp. One dispatch per component.
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "fluid_common.glsl"
+
+layout(binding = 1, r32f) uniform readonly image3D velocityX;
+layout(binding = 2, r32f) uniform readonly image3D velocityY;
+layout(binding = 3, r32f) uniform readonly image3D velocityZ;
+layout(binding = 4, r32f) uniform writeonly image3D outX;
+layout(binding = 5, r32f) uniform writeonly image3D outY;
+layout(binding = 6, r32f) uniform writeonly image3D outZ;
+
+float fetchVelocity(int c, ivec3 index) {
+    FaceRef r = resolveFace(c, index);
+    float raw = c == 0
+                    ? imageLoad(velocityX, r.index).r
+                    : (c == 1 ? imageLoad(velocityY, r.index).r : imageLoad(velocityZ, r.index).r);
+    return r.scale * raw + r.offset;
+}
+
+#include "fluid_sampling.glsl"
+
+void main() {
+    int c = int(dispatchInfo.target);
+    ivec3 q = ivec3(gl_GlobalInvocationID);
+    if (any(greaterThanEqual(q, faceCount(c)))) return;
+    float value = 0.0;
+    if (!wallNormalFace(c, q)) value = sampleVelocity(c, backTrace(facePosition(c, q)));
+    if (c == 0)
+        imageStore(outX, q, vec4(value));
+    else if (c == 1)
+        imageStore(outY, q, vec4(value));
+    else
+        imageStore(outZ, q, vec4(value));
+}

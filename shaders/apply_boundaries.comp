@@ -1,0 +1,31 @@
+// applyBoundaries: wall-normal faces are 0; the top face of a periodic axis repeats face 0
+// (docs/fluid.md). Twin: fluid/reference/apply_boundaries.cpp. One dispatch per component.
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "fluid_common.glsl"
+
+layout(binding = 1, r32f) uniform image3D velocityX;
+layout(binding = 2, r32f) uniform image3D velocityY;
+layout(binding = 3, r32f) uniform image3D velocityZ;
+
+void main() {
+    int c = int(dispatchInfo.target);
+    ivec3 q = ivec3(gl_GlobalInvocationID);
+    if (any(greaterThanEqual(q, faceCount(c)))) return;
+    bool wall = wallNormalFace(c, q);
+    bool periodicTop = periodicAxis(c) && q[c] == cellCount()[c];
+    if (!wall && !periodicTop) return;
+    float value = 0.0;
+    if (!wall) {
+        ivec3 first = q;
+        first[c] = 0;
+        value = c == 0 ? imageLoad(velocityX, first).r
+                       : (c == 1 ? imageLoad(velocityY, first).r : imageLoad(velocityZ, first).r);
+    }
+    if (c == 0)
+        imageStore(velocityX, q, vec4(value));
+    else if (c == 1)
+        imageStore(velocityY, q, vec4(value));
+    else
+        imageStore(velocityZ, q, vec4(value));
+}

@@ -1,0 +1,74 @@
+// Structures of the smoke solver (fluid/), shared by its compute shaders and C++.
+// The discretisation they parameterise is written down in docs/fluid.md.
+#ifndef MFX_SHARED_FLUID_H
+#define MFX_SHARED_FLUID_H
+
+#include "common.h"
+
+// Workgroup shape of every solver stage: 8x8x4 = 256 invocations, x fastest, matching the
+// x-fastest layout of the fields.
+#define MFX_FLUID_GROUP_X 8
+#define MFX_FLUID_GROUP_Y 8
+#define MFX_FLUID_GROUP_Z 4
+
+// Boundary kinds, per domain face (-x, +x, -y, +y, -z, +z).
+#define MFX_BOUNDARY_WALL_FREE_SLIP 0u
+#define MFX_BOUNDARY_WALL_NO_SLIP 1u
+#define MFX_BOUNDARY_OPEN 2u
+#define MFX_BOUNDARY_PERIODIC 3u
+
+// Back-trace integrators of the semi-Lagrangian advection.
+#define MFX_INTEGRATOR_EULER 0u
+#define MFX_INTEGRATOR_RK2 1u
+
+// Which field a dispatch works on (FluidDispatch.target).
+#define MFX_TARGET_VELOCITY_X 0u
+#define MFX_TARGET_VELOCITY_Y 1u
+#define MFX_TARGET_VELOCITY_Z 2u
+#define MFX_TARGET_PIGMENT 3u
+
+MFX_SHARED_BEGIN
+
+// Uniform buffer (std140), written once per sub-step.
+struct FluidParameters {
+    uvec4 size;           // cells nx, ny, nz; w: number of emitters
+    vec4 cell;            // x: cell size h, y: 1/h, z: dt of the sub-step, w: unused
+    vec4 rates;           // x: pigment fade per second, y: buoyancy, z: vorticity confinement
+                          // strength, w: viscosity coefficient nu*dt/h^2
+    uvec4 boundaryLow;    // boundary kind of the -x, -y, -z faces; w: integrator
+    uvec4 boundaryHigh;   // boundary kind of the +x, +y, +z faces; w: unused
+    vec4 wallVelocity[6]; // xyz: velocity of the wall on face -x, +x, -y, +y, -z, +z
+};
+
+// One emitter: pulls velocity and pigment towards its own values inside a sphere, at a rate of
+// `strength` per second scaled by a smooth falloff (docs/fluid.md, "splatImpulses").
+struct FluidEmitter {
+    vec4 positionRadius;   // xyz: centre in grid world units; w: radius (> 0)
+    vec4 velocityStrength; // xyz: velocity; w: strength per second (>= 0)
+    vec4 pigment;          // RGBA, each >= 0
+};
+
+// Push constants of every stage.
+struct FluidDispatch {
+    uint target; // MFX_TARGET_*
+    uint padding0;
+    uint padding1;
+    uint padding2;
+};
+
+MFX_SHARED_END
+
+#ifdef __cplusplus
+MFX_CHECK_SIZE(FluidParameters, 176);
+MFX_CHECK_LAYOUT(FluidParameters, cell, 16);
+MFX_CHECK_LAYOUT(FluidParameters, rates, 32);
+MFX_CHECK_LAYOUT(FluidParameters, boundaryLow, 48);
+MFX_CHECK_LAYOUT(FluidParameters, boundaryHigh, 64);
+MFX_CHECK_LAYOUT(FluidParameters, wallVelocity, 80);
+MFX_CHECK_SIZE(FluidEmitter, 48);
+MFX_CHECK_LAYOUT(FluidEmitter, velocityStrength, 16);
+MFX_CHECK_LAYOUT(FluidEmitter, pigment, 32);
+MFX_CHECK_SIZE(FluidDispatch, 16);
+#endif
+
+#endif
