@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 
 namespace mfx::cli {
 
@@ -68,6 +69,52 @@ Result<std::pair<uint32_t, uint32_t>> parseSize(const std::string& text, uint32_
         return Error{"size '" + text + "': width and height must be between 1 and " +
                      std::to_string(maxDimension)};
     return std::pair{width, height};
+}
+
+Result<std::array<uint32_t, 3>> parseGrid(const std::string& text, uint32_t maxDimension) {
+    std::array<uint32_t, 3> cells{};
+    size_t start = 0;
+    for (int axis = 0; axis < 3; ++axis) {
+        const size_t end = axis < 2 ? text.find('x', start) : text.size();
+        if (end == std::string::npos) break;
+        const std::string_view part = std::string_view(text).substr(start, end - start);
+        auto [ptr, error] = std::from_chars(part.data(), part.data() + part.size(), cells[axis]);
+        if (part.empty() || error != std::errc() || ptr != part.data() + part.size())
+            return Error{"grid '" + text + "' is not of the form NXxNYxNZ, e.g. 64x64x64"};
+        start = end + 1;
+        if (axis == 2) {
+            for (uint32_t n : cells)
+                if (n < 1 || n > maxDimension)
+                    return Error{"grid '" + text + "': each dimension must be between 1 and " +
+                                 std::to_string(maxDimension)};
+            return cells;
+        }
+    }
+    return Error{"grid '" + text + "' is not of the form NXxNYxNZ, e.g. 64x64x64"};
+}
+
+Result<uint32_t> parseUnsigned(const std::string& text, uint32_t minimum, uint32_t maximum,
+                               const std::string& what) {
+    uint32_t value = 0;
+    auto [ptr, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (text.empty() || error != std::errc() || ptr != text.data() + text.size() ||
+        value < minimum || value > maximum)
+        return Error{what + " '" + text + "' must be a whole number from " +
+                     std::to_string(minimum) + " to " + std::to_string(maximum)};
+    return value;
+}
+
+Result<double> parseNumber(const std::string& text, double minimum, double maximum,
+                           const std::string& what) {
+    double value = 0.0;
+    auto [ptr, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (text.empty() || error != std::errc() || ptr != text.data() + text.size())
+        return Error{what + " '" + text + "' is not a number"};
+    if (!std::isfinite(value)) return Error{what + " '" + text + "' must be finite"};
+    if (value < minimum || value > maximum)
+        return Error{what + " '" + text + "' must be between " + std::to_string(minimum) + " and " +
+                     std::to_string(maximum)};
+    return value;
 }
 
 std::string describeOptions(std::span<const OptionSpec> options) {

@@ -4,6 +4,7 @@
 
 #include "core/result.h"
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <set>
@@ -38,6 +39,17 @@ Result<ParsedArgs> parseArgs(std::span<const std::string> args, std::span<const 
 
 // "WxH" with 1 ≤ W, H ≤ maxDimension.
 Result<std::pair<uint32_t, uint32_t>> parseSize(const std::string& text, uint32_t maxDimension);
+
+// "NXxNYxNZ" with 1 <= each <= maxDimension, e.g. "64x64x64" or "96x64x48".
+Result<std::array<uint32_t, 3>> parseGrid(const std::string& text, uint32_t maxDimension);
+
+// A whole number in [minimum, maximum]; `what` names the option in the error.
+Result<uint32_t> parseUnsigned(const std::string& text, uint32_t minimum, uint32_t maximum,
+                               const std::string& what);
+
+// A finite number in [minimum, maximum] (NaN and infinities are refused).
+Result<double> parseNumber(const std::string& text, double minimum, double maximum,
+                           const std::string& what);
 
 // The options block of a help text.
 std::string describeOptions(std::span<const OptionSpec> options);

@@ -8,6 +8,9 @@ std::span<const Command> commands() {
     static const Command table[] = {
         {"info", "print the chosen Vulkan device and its capabilities", &runInfo},
         {"render", "render a picture headless and write it as PNG", &runRender},
+        {"compare", "run a solver scenario on GPU and CPU reference, print the differences",
+         &runCompare},
+        {"bench", "benchmarks (bench solver: GPU milliseconds per stage and step)", &runBench},
     };
     return table;
 }

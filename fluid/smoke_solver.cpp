@@ -25,7 +25,7 @@ gpu::BindingDesc bufferBinding(uint32_t binding) {
 // A compute program whose binding 0 is the parameters uniform and bindings 1..images are storage
 // images (with binding `bufferAt`, if any, a storage buffer instead).
 gpu::Program makeProgram(const gpu::Context& ctx, const char* name, std::span<const uint32_t> spirv,
-                         uint32_t bindingCount, uint32_t bufferAt = 0) {
+                         uint32_t target, uint32_t bindingCount, uint32_t bufferAt = 0) {
     gpu::ComputeProgramDesc desc;
     desc.name = name;
     desc.spirv = spirv;
@@ -37,6 +37,7 @@ gpu::Program makeProgram(const gpu::Context& ctx, const char* name, std::span<co
                                                        VK_SHADER_STAGE_COMPUTE_BIT});
     desc.pushConstantSize = sizeof(shared::FluidDispatch);
     desc.maxSets = kSetsPerProgram;
+    desc.specialization = {target};
     return gpu::createComputeProgram(ctx, desc);
 }
 
@@ -111,42 +112,42 @@ SmokeSolver::SmokeSolver(const gpu::Context& ctx, const SolverOptions& options)
 
 // Programs are compiled on first use: a solver that never runs a stage never pays for its
 // pipeline (on a CPU driver each compile costs tens of milliseconds).
-gpu::Program& SmokeSolver::program(Stage stage, int part) {
+gpu::Program& SmokeSolver::program(Stage stage, int part, uint32_t target) {
     using namespace mfx::shaders;
-    gpu::Program& slot = programs_[size_t(stage)][size_t(part)];
+    gpu::Program& slot = programs_[{int(stage), part, target}];
     if (slot.pipeline() != VK_NULL_HANDLE) return slot;
     switch (stage) {
     case Stage::SplatImpulses:
-        slot = makeProgram(ctx_, "splat_impulses", splat_impulses_comp, 6, 1);
+        slot = makeProgram(ctx_, "splat_impulses", splat_impulses_comp, target, 6, 1);
         break;
     case Stage::AdvectVelocity:
-        slot = makeProgram(ctx_, "advect_velocity", advect_velocity_comp, 7);
+        slot = makeProgram(ctx_, "advect_velocity", advect_velocity_comp, target, 7);
         break;
     case Stage::AdvectPigment:
-        slot = makeProgram(ctx_, "advect_pigment", advect_pigment_comp, 6);
+        slot = makeProgram(ctx_, "advect_pigment", advect_pigment_comp, target, 6);
         break;
     case Stage::ApplyBuoyancy:
-        slot = makeProgram(ctx_, "apply_buoyancy", apply_buoyancy_comp, 3);
+        slot = makeProgram(ctx_, "apply_buoyancy", apply_buoyancy_comp, target, 3);
         break;
     case Stage::VorticityConfinement:
-        slot = part == 0
-                   ? makeProgram(ctx_, "compute_vorticity", compute_vorticity_comp, 5)
-                   : makeProgram(ctx_, "apply_vorticity_force", apply_vorticity_force_comp, 5);
+        slot = part == 0 ? makeProgram(ctx_, "compute_vorticity", compute_vorticity_comp, target, 5)
+                         : makeProgram(ctx_, "apply_vorticity_force", apply_vorticity_force_comp,
+                                       target, 5);
         break;
     case Stage::DiffuseViscosity:
-        slot = makeProgram(ctx_, "diffuse_viscosity", diffuse_viscosity_comp, 10);
+        slot = makeProgram(ctx_, "diffuse_viscosity", diffuse_viscosity_comp, target, 10);
         break;
     case Stage::ApplyBoundaries:
-        slot = makeProgram(ctx_, "apply_boundaries", apply_boundaries_comp, 4);
+        slot = makeProgram(ctx_, "apply_boundaries", apply_boundaries_comp, target, 4);
         break;
     case Stage::ComputeDivergence:
-        slot = makeProgram(ctx_, "compute_divergence", compute_divergence_comp, 5);
+        slot = makeProgram(ctx_, "compute_divergence", compute_divergence_comp, target, 5);
         break;
     case Stage::SolvePressure:
-        slot = makeProgram(ctx_, "solve_pressure", solve_pressure_comp, 4);
+        slot = makeProgram(ctx_, "solve_pressure", solve_pressure_comp, target, 4);
         break;
     case Stage::Project:
-        slot = makeProgram(ctx_, "project", project_comp, 5);
+        slot = makeProgram(ctx_, "project", project_comp, target, 5);
         break;
     }
     return slot;
@@ -199,9 +200,12 @@ Status SmokeSolver::setEmitters(std::span<const shared::FluidEmitter> emitters) 
 void SmokeSolver::setEmitterBuffer(const gpu::Buffer& buffer, uint32_t count) {
     if (buffer.get() != emitterBuffer_) {
         // The splat program's sets name the old buffer: drop them all.
-        gpu::Program& splat = programs_[size_t(Stage::SplatImpulses)][0];
-        splat.resetSets(ctx_);
-        std::erase_if(sets_, [&](const auto& entry) { return std::get<0>(entry.first) == &splat; });
+        for (auto& [key, splat] : programs_) {
+            if (std::get<0>(key) != int(Stage::SplatImpulses)) continue;
+            splat.resetSets(ctx_);
+            std::erase_if(sets_,
+                          [&](const auto& entry) { return std::get<0>(entry.first) == &splat; });
+        }
         emitterBuffer_ = buffer.get();
         emitterBufferSize_ = buffer.size;
     }
@@ -222,10 +226,10 @@ void SmokeSolver::barrier(VkCommandBuffer cmd) const {
             VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT);
 }
 
-void SmokeSolver::dispatchTarget(VkCommandBuffer cmd, gpu::Program& program, VkDescriptorSet set,
-                                 uint32_t target, glm::uvec3 extent) const {
+void SmokeSolver::dispatch(VkCommandBuffer cmd, gpu::Program& program, VkDescriptorSet set,
+                           glm::uvec3 extent) const {
     program.bind(cmd, set);
-    const shared::FluidDispatch dispatch{target, 0, 0, 0};
+    const shared::FluidDispatch dispatch{0, 0, 0, 0};
     program.push(cmd, dispatch);
     vkCmdDispatch(cmd, gpu::groupCount(extent.x, MFX_FLUID_GROUP_X),
                   gpu::groupCount(extent.y, MFX_FLUID_GROUP_Y),
@@ -256,41 +260,45 @@ void SmokeSolver::addVelocity(std::vector<gpu::DescriptorWrite>& writes, int vel
 void SmokeSolver::splatImpulses(VkCommandBuffer cmd) {
     if (emitterCount_ == 0) return;
     const int v = currentVelocity_, p = currentPigment_;
-    VkDescriptorSet s = set(program(Stage::SplatImpulses), {v, p, 0}, [&](auto& writes) {
+    auto writes = [&](auto& w) {
         gpu::DescriptorWrite emitters;
         emitters.binding = 1;
         emitters.buffer = {emitterBuffer_, 0, emitterBufferSize_};
-        writes.push_back(emitters);
-        addVelocity(writes, v, 2);
-        writes.push_back(storage(5, pigment_[p]));
-    });
-    for (uint32_t c = 0; c < 3; ++c)
-        dispatchTarget(cmd, program(Stage::SplatImpulses), s, c, faceExtent(options_.grid, int(c)));
-    dispatchTarget(cmd, program(Stage::SplatImpulses), s, MFX_TARGET_PIGMENT, cells_);
+        w.push_back(emitters);
+        addVelocity(w, v, 2);
+        w.push_back(storage(5, pigment_[p]));
+    };
+    for (uint32_t target = 0; target < 4; ++target) {
+        gpu::Program& prog = program(Stage::SplatImpulses, 0, target);
+        dispatch(cmd, prog, set(prog, {v, p, 0}, writes),
+                 target == MFX_TARGET_PIGMENT ? cells_ : faceExtent(options_.grid, int(target)));
+    }
     barrier(cmd);
 }
 
 void SmokeSolver::advectVelocity(VkCommandBuffer cmd) {
     const int from = currentVelocity_, to = 1 - currentVelocity_;
-    VkDescriptorSet s = set(program(Stage::AdvectVelocity), {from, to, 0}, [&](auto& writes) {
-        addVelocity(writes, from, 1);
-        addVelocity(writes, to, 4);
-    });
-    for (uint32_t c = 0; c < 3; ++c)
-        dispatchTarget(cmd, program(Stage::AdvectVelocity), s, c,
-                       faceExtent(options_.grid, int(c)));
+    auto writes = [&](auto& w) {
+        addVelocity(w, from, 1);
+        addVelocity(w, to, 4);
+    };
+    for (uint32_t c = 0; c < 3; ++c) {
+        gpu::Program& prog = program(Stage::AdvectVelocity, 0, c);
+        dispatch(cmd, prog, set(prog, {from, to, 0}, writes), faceExtent(options_.grid, int(c)));
+    }
     currentVelocity_ = to;
     barrier(cmd);
 }
 
 void SmokeSolver::advectPigment(VkCommandBuffer cmd) {
     const int v = currentVelocity_, from = currentPigment_, to = 1 - currentPigment_;
-    VkDescriptorSet s = set(program(Stage::AdvectPigment), {v, from, to}, [&](auto& writes) {
-        addVelocity(writes, v, 1);
-        writes.push_back(storage(4, pigment_[from]));
-        writes.push_back(storage(5, pigment_[to]));
+    gpu::Program& prog = program(Stage::AdvectPigment, 0, MFX_TARGET_PIGMENT);
+    VkDescriptorSet s = set(prog, {v, from, to}, [&](auto& w) {
+        addVelocity(w, v, 1);
+        w.push_back(storage(4, pigment_[from]));
+        w.push_back(storage(5, pigment_[to]));
     });
-    dispatchTarget(cmd, program(Stage::AdvectPigment), s, MFX_TARGET_PIGMENT, cells_);
+    dispatch(cmd, prog, s, cells_);
     currentPigment_ = to;
     barrier(cmd);
 }
@@ -298,12 +306,12 @@ void SmokeSolver::advectPigment(VkCommandBuffer cmd) {
 void SmokeSolver::applyBuoyancy(VkCommandBuffer cmd) {
     if (options_.buoyancy == 0.0f) return;
     const int v = currentVelocity_, p = currentPigment_;
-    VkDescriptorSet s = set(program(Stage::ApplyBuoyancy), {v, p, 0}, [&](auto& writes) {
-        writes.push_back(storage(1, velocity_[v][1]));
-        writes.push_back(storage(2, pigment_[p]));
+    gpu::Program& prog = program(Stage::ApplyBuoyancy, 0, MFX_TARGET_VELOCITY_Y);
+    VkDescriptorSet s = set(prog, {v, p, 0}, [&](auto& w) {
+        w.push_back(storage(1, velocity_[v][1]));
+        w.push_back(storage(2, pigment_[p]));
     });
-    dispatchTarget(cmd, program(Stage::ApplyBuoyancy), s, MFX_TARGET_VELOCITY_Y,
-                   faceExtent(options_.grid, 1));
+    dispatch(cmd, prog, s, faceExtent(options_.grid, 1));
     barrier(cmd);
 }
 
@@ -314,13 +322,13 @@ void SmokeSolver::vorticityConfinement(VkCommandBuffer cmd) {
         addVelocity(w, v, 1);
         w.push_back(storage(4, vorticity_));
     };
-    VkDescriptorSet compute = set(program(Stage::VorticityConfinement, 0), {v, 0, 0}, writes);
-    dispatchTarget(cmd, program(Stage::VorticityConfinement, 0), compute, 0, cells_);
+    gpu::Program& compute = program(Stage::VorticityConfinement, 0, 0);
+    dispatch(cmd, compute, set(compute, {v, 0, 0}, writes), cells_);
     barrier(cmd);
-    VkDescriptorSet apply = set(program(Stage::VorticityConfinement, 1), {v, 0, 0}, writes);
-    for (uint32_t c = 0; c < 3; ++c)
-        dispatchTarget(cmd, program(Stage::VorticityConfinement, 1), apply, c,
-                       faceExtent(options_.grid, int(c)));
+    for (uint32_t c = 0; c < 3; ++c) {
+        gpu::Program& apply = program(Stage::VorticityConfinement, 1, c);
+        dispatch(cmd, apply, set(apply, {v, 0, 0}, writes), faceExtent(options_.grid, int(c)));
+    }
     barrier(cmd);
 }
 
@@ -332,15 +340,16 @@ void SmokeSolver::diffuseViscosity(VkCommandBuffer cmd) {
     int in = source;
     int out = sweeps % 2 == 1 ? other : scratch;
     for (uint32_t sweep = 0; sweep < sweeps; ++sweep) {
-        VkDescriptorSet s =
-            set(program(Stage::DiffuseViscosity), {source, in, out}, [&](auto& writes) {
-                addVelocity(writes, source, 1);
-                addVelocity(writes, in, 4);
-                addVelocity(writes, out, 7);
-            });
-        for (uint32_t c = 0; c < 3; ++c)
-            dispatchTarget(cmd, program(Stage::DiffuseViscosity), s, c,
-                           faceExtent(options_.grid, int(c)));
+        auto writes = [&](auto& w) {
+            addVelocity(w, source, 1);
+            addVelocity(w, in, 4);
+            addVelocity(w, out, 7);
+        };
+        for (uint32_t c = 0; c < 3; ++c) {
+            gpu::Program& prog = program(Stage::DiffuseViscosity, 0, c);
+            dispatch(cmd, prog, set(prog, {source, in, out}, writes),
+                     faceExtent(options_.grid, int(c)));
+        }
         barrier(cmd);
         in = out;
         out = out == other ? scratch : other;
@@ -350,21 +359,22 @@ void SmokeSolver::diffuseViscosity(VkCommandBuffer cmd) {
 
 void SmokeSolver::applyBoundaries(VkCommandBuffer cmd) {
     const int v = currentVelocity_;
-    VkDescriptorSet s = set(program(Stage::ApplyBoundaries), {v, 0, 0},
-                            [&](auto& writes) { addVelocity(writes, v, 1); });
-    for (uint32_t c = 0; c < 3; ++c)
-        dispatchTarget(cmd, program(Stage::ApplyBoundaries), s, c,
-                       faceExtent(options_.grid, int(c)));
+    for (uint32_t c = 0; c < 3; ++c) {
+        gpu::Program& prog = program(Stage::ApplyBoundaries, 0, c);
+        dispatch(cmd, prog, set(prog, {v, 0, 0}, [&](auto& w) { addVelocity(w, v, 1); }),
+                 faceExtent(options_.grid, int(c)));
+    }
     barrier(cmd);
 }
 
 void SmokeSolver::computeDivergence(VkCommandBuffer cmd) {
     const int v = currentVelocity_;
-    VkDescriptorSet s = set(program(Stage::ComputeDivergence), {v, 0, 0}, [&](auto& writes) {
-        addVelocity(writes, v, 1);
-        writes.push_back(storage(4, divergence_));
+    gpu::Program& prog = program(Stage::ComputeDivergence);
+    VkDescriptorSet s = set(prog, {v, 0, 0}, [&](auto& w) {
+        addVelocity(w, v, 1);
+        w.push_back(storage(4, divergence_));
     });
-    dispatchTarget(cmd, program(Stage::ComputeDivergence), s, 0, cells_);
+    dispatch(cmd, prog, s, cells_);
     barrier(cmd);
 }
 
@@ -376,14 +386,15 @@ void SmokeSolver::solvePressure(VkCommandBuffer cmd) {
                              1, &range);
         barrier(cmd);
     }
+    gpu::Program& prog = program(Stage::SolvePressure);
     for (uint32_t iteration = 0; iteration < options_.jacobiIterations; ++iteration) {
         const int in = currentPressure_, out = 1 - currentPressure_;
-        VkDescriptorSet s = set(program(Stage::SolvePressure), {in, out, 0}, [&](auto& writes) {
-            writes.push_back(storage(1, divergence_));
-            writes.push_back(storage(2, pressure_[in]));
-            writes.push_back(storage(3, pressure_[out]));
+        VkDescriptorSet s = set(prog, {in, out, 0}, [&](auto& w) {
+            w.push_back(storage(1, divergence_));
+            w.push_back(storage(2, pressure_[in]));
+            w.push_back(storage(3, pressure_[out]));
         });
-        dispatchTarget(cmd, program(Stage::SolvePressure), s, 0, cells_);
+        dispatch(cmd, prog, s, cells_);
         barrier(cmd);
         currentPressure_ = out;
     }
@@ -391,12 +402,14 @@ void SmokeSolver::solvePressure(VkCommandBuffer cmd) {
 
 void SmokeSolver::project(VkCommandBuffer cmd) {
     const int v = currentVelocity_, p = currentPressure_;
-    VkDescriptorSet s = set(program(Stage::Project), {v, p, 0}, [&](auto& writes) {
-        addVelocity(writes, v, 1);
-        writes.push_back(storage(4, pressure_[p]));
-    });
-    for (uint32_t c = 0; c < 3; ++c)
-        dispatchTarget(cmd, program(Stage::Project), s, c, faceExtent(options_.grid, int(c)));
+    auto writes = [&](auto& w) {
+        addVelocity(w, v, 1);
+        w.push_back(storage(4, pressure_[p]));
+    };
+    for (uint32_t c = 0; c < 3; ++c) {
+        gpu::Program& prog = program(Stage::Project, 0, c);
+        dispatch(cmd, prog, set(prog, {v, p, 0}, writes), faceExtent(options_.grid, int(c)));
+    }
     barrier(cmd);
 }
 

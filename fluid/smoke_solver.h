@@ -68,8 +68,8 @@ private:
     SmokeSolver(const gpu::Context& ctx, const SolverOptions& options);
     void writeParameters();
     void barrier(VkCommandBuffer cmd) const;
-    void dispatchTarget(VkCommandBuffer cmd, gpu::Program& program, VkDescriptorSet set,
-                        uint32_t target, glm::uvec3 extent) const;
+    void dispatch(VkCommandBuffer cmd, gpu::Program& program, VkDescriptorSet set,
+                  glm::uvec3 extent) const;
     // Descriptor set of `program` for a combination of image-set indices `key`, made by
     // `writes()` the first time it is asked for.
     template <typename MakeWrites>
@@ -110,10 +110,10 @@ private:
     VkDeviceSize emitterBufferSize_ = 0;
     uint32_t emitterCount_ = 0;
 
-    // The program of a stage (part 1: the second program of vorticity confinement), compiled
-    // on first use.
-    gpu::Program& program(Stage stage, int part = 0);
-    std::array<std::array<gpu::Program, 2>, kAllStages.size()> programs_;
+    // The program of a stage (part 1: the second program of vorticity confinement) for one
+    // target field (MFX_TARGET_*, a specialization constant), compiled on first use.
+    gpu::Program& program(Stage stage, int part = 0, uint32_t target = 0);
+    std::map<std::tuple<int, int, uint32_t>, gpu::Program> programs_; // node addresses are stable
     std::map<std::tuple<const gpu::Program*, int, int, int>, VkDescriptorSet> sets_;
 };
 

@@ -22,7 +22,7 @@ float fetchVelocity(int c, ivec3 index) {
 #include "fluid_sampling.glsl"
 
 void main() {
-    int c = int(dispatchInfo.target);
+    int c = int(kTarget);
     ivec3 q = ivec3(gl_GlobalInvocationID);
     if (any(greaterThanEqual(q, faceCount(c)))) return;
     float value = 0.0;

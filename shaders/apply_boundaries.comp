@@ -9,7 +9,7 @@ layout(binding = 2, r32f) uniform image3D velocityY;
 layout(binding = 3, r32f) uniform image3D velocityZ;
 
 void main() {
-    int c = int(dispatchInfo.target);
+    int c = int(kTarget);
     ivec3 q = ivec3(gl_GlobalInvocationID);
     if (any(greaterThanEqual(q, faceCount(c)))) return;
     bool wall = wallNormalFace(c, q);

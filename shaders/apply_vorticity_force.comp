@@ -29,7 +29,7 @@ vec3 confinementForce(ivec3 q) {
 }
 
 void main() {
-    int c = int(dispatchInfo.target);
+    int c = int(kTarget);
     ivec3 q = ivec3(gl_GlobalInvocationID);
     if (any(greaterThanEqual(q, faceCount(c))) || wallNormalFace(c, q)) return;
     ivec3 below = q;

@@ -23,7 +23,7 @@ float fetchGuess(int c, ivec3 index) {
 }
 
 void main() {
-    int c = int(dispatchInfo.target);
+    int c = int(kTarget);
     ivec3 q = ivec3(gl_GlobalInvocationID);
     if (any(greaterThanEqual(q, faceCount(c)))) return;
     float value = 0.0;

@@ -15,6 +15,11 @@ layout(push_constant) uniform Dispatch {
     FluidDispatch dispatchInfo;
 };
 
+// The field a pipeline works on (MFX_TARGET_*), fixed per pipeline by specialization: with the
+// component a constant, every index by component folds away (a CPU driver would otherwise
+// scalarise each dynamically indexed vector access lane by lane).
+layout(constant_id = 0) const uint kTarget = 0;
+
 ivec3 cellCount() {
     return ivec3(params.size.xyz);
 }
@@ -62,32 +67,31 @@ struct FaceRef {
     float offset;
 };
 
+// Resolves one axis of a face index (see resolveFace): wrap, or clamp and possibly mirror.
+void resolveFaceAxis(int c, int a, int n, inout int i, inout FaceRef ref) {
+    if (periodicAxis(a)) {
+        // Always wrapped: the top face of a periodic axis reads face 0, as in the reference.
+        i = wrapIndex(i, cellCount()[a]);
+        return;
+    }
+    if (i >= 0 && i < n) return;
+    bool high = i >= n;
+    i = high ? n - 1 : 0;
+    if (c != a && boundaryKind(a, high) == MFX_BOUNDARY_WALL_NO_SLIP) {
+        ref.scale = -ref.scale;
+        ref.offset = 2.0 * params.wallVelocity[2 * a + (high ? 1 : 0)][c] - ref.offset;
+    }
+}
+
 FaceRef resolveFace(int c, ivec3 index) {
     ivec3 n = faceCount(c);
     FaceRef ref;
     ref.scale = 1.0;
     ref.offset = 0.0;
-    bool mirror[3] = bool[3](false, false, false);
-    int side[3] = int[3](0, 0, 0);
-    for (int a = 0; a < 3; ++a) {
-        if (periodicAxis(a)) {
-            index[a] = wrapIndex(index[a], cellCount()[a]);
-        } else if (index[a] < 0) {
-            index[a] = 0;
-            mirror[a] = c != a && boundaryKind(a, false) == MFX_BOUNDARY_WALL_NO_SLIP;
-            side[a] = 2 * a;
-        } else if (index[a] > n[a] - 1) {
-            index[a] = n[a] - 1;
-            mirror[a] = c != a && boundaryKind(a, true) == MFX_BOUNDARY_WALL_NO_SLIP;
-            side[a] = 2 * a + 1;
-        }
-    }
-    for (int a = 0; a < 3; ++a) {
-        if (mirror[a]) {
-            ref.scale = -ref.scale;
-            ref.offset = 2.0 * params.wallVelocity[side[a]][c] - ref.offset;
-        }
-    }
+    // Axes in the order x, y, z, as the reference composes its mirrors.
+    resolveFaceAxis(c, 0, n.x, index.x, ref);
+    resolveFaceAxis(c, 1, n.y, index.y, ref);
+    resolveFaceAxis(c, 2, n.z, index.z, ref);
     ref.index = index;
     return ref;
 }

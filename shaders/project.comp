@@ -21,7 +21,7 @@ float pressureAt(ivec3 q, int axis) {
 }
 
 void main() {
-    int c = int(dispatchInfo.target);
+    int c = int(kTarget);
     ivec3 q = ivec3(gl_GlobalInvocationID);
     if (any(greaterThanEqual(q, faceCount(c))) || wallNormalFace(c, q)) return;
     ivec3 below = q;

@@ -9,30 +9,50 @@ layout(binding = 1, r32f) uniform readonly image3D divergence;
 layout(binding = 2, r32f) uniform readonly image3D pressureIn;
 layout(binding = 3, r32f) uniform writeonly image3D pressureOut;
 
+// Adds neighbour `neighbour` (one step along `axis` towards `high`) of a cell to the sweep's sum
+// and count.
+void addNeighbour(ivec3 neighbour, int axis, bool high, inout float sum, inout int count) {
+    int n = cellCount()[axis];
+    if (neighbour[axis] >= 0 && neighbour[axis] < n) {
+        sum += imageLoad(pressureIn, neighbour).r;
+        ++count;
+        return;
+    }
+    uint kind = boundaryKind(axis, high);
+    if (kind == MFX_BOUNDARY_PERIODIC) {
+        neighbour[axis] = wrapIndex(neighbour[axis], n);
+        sum += imageLoad(pressureIn, neighbour).r;
+        ++count;
+    } else if (kind == MFX_BOUNDARY_OPEN) {
+        ++count; // ghost pressure 0
+    }
+}
+
 void main() {
     ivec3 q = ivec3(gl_GlobalInvocationID);
-    ivec3 n = cellCount();
-    if (any(greaterThanEqual(q, n))) return;
+    if (any(greaterThanEqual(q, cellCount()))) return;
+    float h = cellSize();
+    float divergenceTerm = h * h * imageLoad(divergence, q).r;
+    if (all(greaterThan(q, ivec3(0))) && all(lessThan(q, cellCount() - 1))) {
+        // Interior cell (the common case, kept free of boundary branches): same summation order.
+        float interior = imageLoad(pressureIn, q - ivec3(1, 0, 0)).r +
+                         imageLoad(pressureIn, q + ivec3(1, 0, 0)).r +
+                         imageLoad(pressureIn, q - ivec3(0, 1, 0)).r +
+                         imageLoad(pressureIn, q + ivec3(0, 1, 0)).r +
+                         imageLoad(pressureIn, q - ivec3(0, 0, 1)).r +
+                         imageLoad(pressureIn, q + ivec3(0, 0, 1)).r;
+        imageStore(pressureOut, q, vec4((interior - divergenceTerm) / 6.0));
+        return;
+    }
     float sum = 0.0;
     int count = 0;
-    for (int s = 0; s < 6; ++s) {
-        int axis = s / 2;
-        bool high = (s % 2) == 1;
-        ivec3 neighbour = q;
-        neighbour[axis] += high ? 1 : -1;
-        uint kind = boundaryKind(axis, high);
-        if (neighbour[axis] >= 0 && neighbour[axis] < n[axis]) {
-            sum += imageLoad(pressureIn, neighbour).r;
-            ++count;
-        } else if (kind == MFX_BOUNDARY_PERIODIC) {
-            neighbour[axis] = wrapIndex(neighbour[axis], n[axis]);
-            sum += imageLoad(pressureIn, neighbour).r;
-            ++count;
-        } else if (kind == MFX_BOUNDARY_OPEN) {
-            ++count;
-        }
-    }
-    float h = cellSize();
-    float p = count > 0 ? (sum - h * h * imageLoad(divergence, q).r) / float(count) : 0.0;
+    // The reference's order: -x, +x, -y, +y, -z, +z.
+    addNeighbour(q - ivec3(1, 0, 0), 0, false, sum, count);
+    addNeighbour(q + ivec3(1, 0, 0), 0, true, sum, count);
+    addNeighbour(q - ivec3(0, 1, 0), 1, false, sum, count);
+    addNeighbour(q + ivec3(0, 1, 0), 1, true, sum, count);
+    addNeighbour(q - ivec3(0, 0, 1), 2, false, sum, count);
+    addNeighbour(q + ivec3(0, 0, 1), 2, true, sum, count);
+    float p = count > 0 ? (sum - divergenceTerm) / float(count) : 0.0;
     imageStore(pressureOut, q, vec4(p));
 }

@@ -31,7 +31,7 @@ float emitterWeight(FluidEmitter e, vec3 x) {
 
 void main() {
     ivec3 q = ivec3(gl_GlobalInvocationID);
-    uint target = dispatchInfo.target;
+    uint target = kTarget;
     uint count = params.size.w;
     if (target == MFX_TARGET_PIGMENT) {
         if (any(greaterThanEqual(q, cellCount()))) return;

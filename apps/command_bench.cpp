@@ -1,0 +1,215 @@
+// motionfx bench: benchmark programs that print tables (never pass/fail on time).
+//   motionfx bench solver   GPU milliseconds per solver stage and per step, by grid size.
+#include "apps/commands.h"
+
+#include "core/gpu/commands.h"
+#include "core/gpu/timer.h"
+#include "fluid/scenarios.h"
+#include "fluid/smoke_solver.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+namespace mfx::app {
+
+namespace {
+
+double median(std::vector<double> values) {
+    if (values.empty()) return 0.0;
+    std::sort(values.begin(), values.end());
+    const size_t mid = values.size() / 2;
+    return values.size() % 2 ? values[mid] : 0.5 * (values[mid - 1] + values[mid]);
+}
+
+struct GridResult {
+    std::array<uint32_t, 3> grid;
+    double stepMs = 0.0;                   // median GPU time of a whole step (sum of its stages)
+    double wallMs = 0.0;                   // median CPU wall time of record + submit + wait
+    std::map<std::string, double> stageMs; // median per stage
+};
+
+Result<std::vector<std::array<uint32_t, 3>>> parseGridList(const std::string& text) {
+    std::vector<std::array<uint32_t, 3>> grids;
+    std::stringstream stream(text);
+    std::string item;
+    while (std::getline(stream, item, ',')) {
+        if (item.find('x') == std::string::npos) item = item + "x" + item + "x" + item;
+        auto grid = cli::parseGrid(item, 1024);
+        if (!grid) return Error{"--grids: " + grid.error().message};
+        grids.push_back(grid.value());
+    }
+    if (grids.empty()) return Error{"--grids needs at least one grid, e.g. 32,64 or 96x64x48"};
+    return grids;
+}
+
+int runBenchSolver(std::span<const std::string> args) {
+    std::vector<cli::OptionSpec> options = deviceOptions();
+    options.push_back(
+        {"grids", "LIST", "comma-separated grids, N or NXxNYxNZ (default 32,64,96,128)"});
+    options.push_back({"jacobi", "N", "Jacobi sweeps per step (default 20)"});
+    options.push_back({"steps", "K", "timed steps per grid after 3 warm-up steps (default 10)"});
+    options.push_back({"scenario", "NAME", "scenario whose stages are timed (default puff)"});
+    options.push_back({"json", "FILE", "also write the results as JSON"});
+    cli::ParsedArgs parsed;
+    int exitCode = kExitOk;
+    if (!parseOrExit(args, options, 0,
+                     "usage: motionfx bench solver [options]\n\nTimes the GPU smoke solver with "
+                     "timestamp queries: the median milliseconds of each stage and of a whole "
+                     "step, per grid size. Pipelines are compiled and warmed up before timing.",
+                     parsed, exitCode))
+        return exitCode;
+    auto grids = parseGridList(parsed.value("grids", "32,64,96,128"));
+    auto jacobi = cli::parseUnsigned(parsed.value("jacobi", "20"), 0, 100000, "--jacobi");
+    auto steps = cli::parseUnsigned(parsed.value("steps", "10"), 1, 10000, "--steps");
+    for (const Error* e :
+         {grids.ok() ? nullptr : &grids.error(), jacobi.ok() ? nullptr : &jacobi.error(),
+          steps.ok() ? nullptr : &steps.error()})
+        if (e) {
+            printError(e->message);
+            return kExitUsage;
+        }
+    const std::string scenarioName = parsed.value("scenario", "puff");
+    if (!fluid::makeScenario(scenarioName, {2, 2, 2})) {
+        printError(fluid::makeScenario(scenarioName, {2, 2, 2}).error().message);
+        return kExitUsage;
+    }
+    const std::string jsonPath = parsed.value("json");
+    std::ofstream jsonFile;
+    if (!jsonPath.empty()) {
+        jsonFile.open(jsonPath);
+        if (!jsonFile) {
+            printError("cannot write " + jsonPath);
+            return kExitFailure;
+        }
+    }
+
+    auto created = gpu::Context::create(contextOptions(parsed));
+    if (!created) {
+        printError(created.error().message);
+        return kExitFailure;
+    }
+    const gpu::Context& ctx = *created.value();
+    if (!ctx.features().timestamps) {
+        printError(ctx.info().name + " has no timestamp queries; the solver cannot be timed");
+        return kExitFailure;
+    }
+    std::printf("smoke solver benchmark on %s (%s)\nscenario %s, %u Jacobi sweeps, median of %u "
+                "steps after 3 warm-up steps; GPU milliseconds from timestamp queries\n\n",
+                ctx.info().name.c_str(), ctx.info().driverInfo.c_str(), scenarioName.c_str(),
+                jacobi.value(), steps.value());
+
+    std::vector<GridResult> results;
+    for (const auto& cells : grids.value()) {
+        fluid::Scenario scenario =
+            fluid::makeScenario(scenarioName, glm::uvec3(cells[0], cells[1], cells[2])).value();
+        scenario.options.jacobiIterations = jacobi.value();
+        auto solverResult = fluid::SmokeSolver::create(ctx, scenario.options);
+        if (!solverResult) {
+            printError(solverResult.error().message);
+            return kExitFailure;
+        }
+        fluid::SmokeSolver& solver = *solverResult.value();
+        solver.setState(scenario.initial);
+        gpu::GpuTimer timer(ctx, solver.passesPerStep());
+        std::vector<double> stepTimes, wallTimes;
+        std::map<std::string, std::vector<double>> stageTimes;
+        std::fprintf(stderr, "  %ux%ux%u ", cells[0], cells[1], cells[2]);
+        const uint32_t warmup = 3;
+        for (uint32_t step = 0; step < warmup + steps.value(); ++step) {
+            // Emitters stay on (the scenario's first step) so every stage has work each step.
+            if (Status ok = solver.setEmitters(scenario.emitters(0)); !ok) {
+                printError(ok.error().message);
+                return kExitFailure;
+            }
+            const auto start = std::chrono::steady_clock::now();
+            gpu::submitOneShot(ctx, [&](VkCommandBuffer cmd) {
+                timer.reset(cmd);
+                solver.recordStep(cmd, &timer);
+            });
+            const double wall =
+                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                    .count();
+            std::fputc('.', stderr);
+            if (step < warmup) continue;
+            std::map<std::string, double> perStage;
+            double total = 0.0;
+            for (const gpu::PassTime& pass : timer.results()) {
+                perStage[pass.name] += pass.milliseconds;
+                total += pass.milliseconds;
+            }
+            for (const auto& [name, ms] : perStage)
+                stageTimes[name].push_back(ms);
+            stepTimes.push_back(total);
+            wallTimes.push_back(wall);
+        }
+        std::fputc('\n', stderr);
+        GridResult r{cells, median(stepTimes), median(wallTimes), {}};
+        for (const auto& [name, times] : stageTimes)
+            r.stageMs[name] = median(times);
+        results.push_back(std::move(r));
+    }
+
+    // Table: one row per stage (in step order), one column per grid.
+    std::printf("%-24s", "stage (ms)");
+    for (const GridResult& r : results) {
+        const std::string label = std::to_string(r.grid[0]) + "x" + std::to_string(r.grid[1]) +
+                                  "x" + std::to_string(r.grid[2]);
+        std::printf(" %12s", label.c_str());
+    }
+    std::printf("\n");
+    for (fluid::Stage stage : fluid::kAllStages) {
+        std::printf("%-24s", fluid::stageName(stage));
+        for (const GridResult& r : results) {
+            auto it = r.stageMs.find(fluid::stageName(stage));
+            std::printf(" %12.3f", it == r.stageMs.end() ? 0.0 : it->second);
+        }
+        std::printf("\n");
+    }
+    std::printf("%-24s", "whole step (GPU)");
+    for (const GridResult& r : results)
+        std::printf(" %12.3f", r.stepMs);
+    std::printf("\n%-24s", "whole step (wall)");
+    for (const GridResult& r : results)
+        std::printf(" %12.3f", r.wallMs);
+    std::printf("\n");
+
+    if (jsonFile.is_open()) {
+        nlohmann::json list = nlohmann::json::array();
+        for (const GridResult& r : results)
+            list.push_back({{"grid", r.grid},
+                            {"jacobi", jacobi.value()},
+                            {"step_ms", r.stepMs},
+                            {"wall_ms", r.wallMs},
+                            {"stages", r.stageMs}});
+        jsonFile << nlohmann::json{{"device", ctx.info().name},
+                                   {"driver", ctx.info().driverInfo},
+                                   {"scenario", scenarioName},
+                                   {"steps", steps.value()},
+                                   {"results", list}}
+                        .dump(2)
+                 << "\n";
+    }
+    return finishValidation(ctx, kExitOk);
+}
+
+} // namespace
+
+int runBench(std::span<const std::string> args) {
+    const std::string usage = "usage: motionfx bench solver [options]   (see --help of each)";
+    if (args.empty() || args[0] == "--help") {
+        std::printf("%s\n\nbenchmarks:\n  solver     GPU milliseconds per solver stage and per "
+                    "step, by grid size\n",
+                    usage.c_str());
+        return args.empty() ? kExitUsage : kExitOk;
+    }
+    if (args[0] == "solver") return runBenchSolver(args.subspan(1));
+    printError("unknown benchmark '" + args[0] + "'; benchmarks are: solver");
+    return kExitUsage;
+}
+
+} // namespace mfx::app
