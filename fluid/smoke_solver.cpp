@@ -361,8 +361,9 @@ void SmokeSolver::applyBoundaries(VkCommandBuffer cmd) {
     const int v = currentVelocity_;
     for (uint32_t c = 0; c < 3; ++c) {
         gpu::Program& prog = program(Stage::ApplyBoundaries, 0, c);
-        dispatch(cmd, prog, set(prog, {v, 0, 0}, [&](auto& w) { addVelocity(w, v, 1); }),
-                 faceExtent(options_.grid, int(c)));
+        glm::uvec3 layers = faceExtent(options_.grid, int(c));
+        layers[int(c)] = 2; // only the two boundary layers of faces normal to c
+        dispatch(cmd, prog, set(prog, {v, 0, 0}, [&](auto& w) { addVelocity(w, v, 1); }), layers);
     }
     barrier(cmd);
 }

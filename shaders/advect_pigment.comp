@@ -10,12 +10,9 @@ layout(binding = 3, r32f) uniform readonly image3D velocityZ;
 layout(binding = 4, rgba32f) uniform readonly image3D pigmentIn;
 layout(binding = 5, rgba32f) uniform writeonly image3D pigmentOut;
 
-float fetchVelocity(int c, ivec3 index) {
-    FaceRef r = resolveFace(c, index);
-    float raw = c == 0
-                    ? imageLoad(velocityX, r.index).r
-                    : (c == 1 ? imageLoad(velocityY, r.index).r : imageLoad(velocityZ, r.index).r);
-    return r.scale * raw + r.offset;
+float loadVelocity(int c, ivec3 index) {
+    return c == 0 ? imageLoad(velocityX, index).r
+                  : (c == 1 ? imageLoad(velocityY, index).r : imageLoad(velocityZ, index).r);
 }
 
 #include "fluid_sampling.glsl"

@@ -11,12 +11,9 @@ layout(binding = 4, r32f) uniform writeonly image3D outX;
 layout(binding = 5, r32f) uniform writeonly image3D outY;
 layout(binding = 6, r32f) uniform writeonly image3D outZ;
 
-float fetchVelocity(int c, ivec3 index) {
-    FaceRef r = resolveFace(c, index);
-    float raw = c == 0
-                    ? imageLoad(velocityX, r.index).r
-                    : (c == 1 ? imageLoad(velocityY, r.index).r : imageLoad(velocityZ, r.index).r);
-    return r.scale * raw + r.offset;
+float loadVelocity(int c, ivec3 index) {
+    return c == 0 ? imageLoad(velocityX, index).r
+                  : (c == 1 ? imageLoad(velocityY, index).r : imageLoad(velocityZ, index).r);
 }
 
 #include "fluid_sampling.glsl"

@@ -10,8 +10,13 @@ layout(binding = 3, r32f) uniform image3D velocityZ;
 
 void main() {
     int c = int(kTarget);
+    // Dispatched over the two boundary layers of faces normal to c only: layer 0 is face 0,
+    // layer 1 the top face n_c. Nothing else can be a wall-normal or periodic-top face.
     ivec3 q = ivec3(gl_GlobalInvocationID);
-    if (any(greaterThanEqual(q, faceCount(c)))) return;
+    ivec3 extent = faceCount(c);
+    extent[c] = 2;
+    if (any(greaterThanEqual(q, extent))) return;
+    q[c] = q[c] == 0 ? 0 : cellCount()[c];
     bool wall = wallNormalFace(c, q);
     bool periodicTop = periodicAxis(c) && q[c] == cellCount()[c];
     if (!wall && !periodicTop) return;

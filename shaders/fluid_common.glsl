@@ -49,8 +49,12 @@ ivec3 faceCount(int c) {
     return n;
 }
 
+// i mod n for -n <= i < 3n (callers are at most one cell outside a face array), without an
+// integer division, which a CPU driver's SIMD code would do lane by lane.
 int wrapIndex(int i, int n) {
-    return ((i % n) + n) % n;
+    i = i < 0 ? i + n : i;
+    i = i >= n ? i - n : i;
+    return i >= n ? i - n : i; // a one-cell axis can be two periods out (face n + 1)
 }
 float lerpValue(float a, float b, float t) {
     return a + t * (b - a);
@@ -68,19 +72,33 @@ struct FaceRef {
 };
 
 // Resolves one axis of a face index (see resolveFace): wrap, or clamp and possibly mirror.
+// Written without branches: a CPU driver runs both sides of every branch under a lane mask, so
+// straight-line selects are cheaper than ifs here.
 void resolveFaceAxis(int c, int a, int n, inout int i, inout FaceRef ref) {
-    if (periodicAxis(a)) {
-        // Always wrapped: the top face of a periodic axis reads face 0, as in the reference.
-        i = wrapIndex(i, cellCount()[a]);
-        return;
-    }
-    if (i >= 0 && i < n) return;
+    bool periodic = periodicAxis(a);
     bool high = i >= n;
-    i = high ? n - 1 : 0;
-    if (c != a && boundaryKind(a, high) == MFX_BOUNDARY_WALL_NO_SLIP) {
-        ref.scale = -ref.scale;
-        ref.offset = 2.0 * params.wallVelocity[2 * a + (high ? 1 : 0)][c] - ref.offset;
-    }
+    bool outside = !periodic && (i < 0 || high);
+    bool mirror = outside && c != a && boundaryKind(a, high) == MFX_BOUNDARY_WALL_NO_SLIP;
+    float wall = params.wallVelocity[2 * a + (high ? 1 : 0)][c];
+    i = periodic ? wrapIndex(i, cellCount()[a]) : clamp(i, 0, n - 1);
+    ref.scale = mirror ? -ref.scale : ref.scale;
+    ref.offset = mirror ? 2.0 * wall - ref.offset : ref.offset;
+}
+
+// One axis of a face index resolved on its own: the index to load, and the affine map
+// v -> scale * v + offset that the axis's mirror (if any) applies.
+struct AxisRef {
+    int index;
+    float scale;
+    float offset;
+};
+
+AxisRef resolveAxis(int c, int a, int n, int i) {
+    FaceRef ref;
+    ref.scale = 1.0;
+    ref.offset = 0.0;
+    resolveFaceAxis(c, a, n, i, ref);
+    return AxisRef(i, ref.scale, ref.offset);
 }
 
 FaceRef resolveFace(int c, ivec3 index) {

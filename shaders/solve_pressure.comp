@@ -10,22 +10,17 @@ layout(binding = 2, r32f) uniform readonly image3D pressureIn;
 layout(binding = 3, r32f) uniform writeonly image3D pressureOut;
 
 // Adds neighbour `neighbour` (one step along `axis` towards `high`) of a cell to the sweep's sum
-// and count.
+// and count. Branch-free (a CPU driver executes both sides of every branch): the load always
+// reads a valid texel, and selects decide whether it counts.
 void addNeighbour(ivec3 neighbour, int axis, bool high, inout float sum, inout int count) {
     int n = cellCount()[axis];
-    if (neighbour[axis] >= 0 && neighbour[axis] < n) {
-        sum += imageLoad(pressureIn, neighbour).r;
-        ++count;
-        return;
-    }
     uint kind = boundaryKind(axis, high);
-    if (kind == MFX_BOUNDARY_PERIODIC) {
-        neighbour[axis] = wrapIndex(neighbour[axis], n);
-        sum += imageLoad(pressureIn, neighbour).r;
-        ++count;
-    } else if (kind == MFX_BOUNDARY_OPEN) {
-        ++count; // ghost pressure 0
-    }
+    bool inside = neighbour[axis] >= 0 && neighbour[axis] < n;
+    bool periodic = kind == MFX_BOUNDARY_PERIODIC;
+    neighbour[axis] = periodic ? wrapIndex(neighbour[axis], n) : clamp(neighbour[axis], 0, n - 1);
+    float value = imageLoad(pressureIn, neighbour).r;
+    sum += (inside || periodic) ? value : 0.0; // adding 0.0 leaves the sum exactly as skipping
+    count += (inside || periodic || kind == MFX_BOUNDARY_OPEN) ? 1 : 0; // open: ghost p = 0
 }
 
 void main() {
@@ -33,17 +28,6 @@ void main() {
     if (any(greaterThanEqual(q, cellCount()))) return;
     float h = cellSize();
     float divergenceTerm = h * h * imageLoad(divergence, q).r;
-    if (all(greaterThan(q, ivec3(0))) && all(lessThan(q, cellCount() - 1))) {
-        // Interior cell (the common case, kept free of boundary branches): same summation order.
-        float interior = imageLoad(pressureIn, q - ivec3(1, 0, 0)).r +
-                         imageLoad(pressureIn, q + ivec3(1, 0, 0)).r +
-                         imageLoad(pressureIn, q - ivec3(0, 1, 0)).r +
-                         imageLoad(pressureIn, q + ivec3(0, 1, 0)).r +
-                         imageLoad(pressureIn, q - ivec3(0, 0, 1)).r +
-                         imageLoad(pressureIn, q + ivec3(0, 0, 1)).r;
-        imageStore(pressureOut, q, vec4((interior - divergenceTerm) / 6.0));
-        return;
-    }
     float sum = 0.0;
     int count = 0;
     // The reference's order: -x, +x, -y, +y, -z, +z.
