@@ -24,8 +24,9 @@ gpu::BindingDesc bufferBinding(uint32_t binding) {
 
 // A compute program whose binding 0 is the parameters uniform and bindings 1..images are storage
 // images (with binding `bufferAt`, if any, a storage buffer instead).
-gpu::Program makeProgram(const gpu::Context& ctx, const char* name, std::span<const uint32_t> spirv,
-                         uint32_t target, uint32_t bindingCount, uint32_t bufferAt = 0) {
+gpu::Program makeProgram(const gpu::Context& ctx, const SolverOptions& options, const char* name,
+                         std::span<const uint32_t> spirv, uint32_t target, uint32_t bindingCount,
+                         uint32_t bufferAt = 0) {
     gpu::ComputeProgramDesc desc;
     desc.name = name;
     desc.spirv = spirv;
@@ -37,7 +38,11 @@ gpu::Program makeProgram(const gpu::Context& ctx, const char* name, std::span<co
                                                        VK_SHADER_STAGE_COMPUTE_BIT});
     desc.pushConstantSize = sizeof(shared::FluidDispatch);
     desc.maxSets = kSetsPerProgram;
+    // Constant ids as in shaders/fluid_common.glsl: target, the six boundary kinds, integrator.
     desc.specialization = {target};
+    for (const FaceBoundary& face : options.boundaries)
+        desc.specialization.push_back(uint32_t(face.kind));
+    desc.specialization.push_back(uint32_t(options.integrator));
     return gpu::createComputeProgram(ctx, desc);
 }
 
@@ -118,36 +123,36 @@ gpu::Program& SmokeSolver::program(Stage stage, int part, uint32_t target) {
     if (slot.pipeline() != VK_NULL_HANDLE) return slot;
     switch (stage) {
     case Stage::SplatImpulses:
-        slot = makeProgram(ctx_, "splat_impulses", splat_impulses_comp, target, 6, 1);
+        slot = makeProgram(ctx_, options_, "splat_impulses", splat_impulses_comp, target, 6, 1);
         break;
     case Stage::AdvectVelocity:
-        slot = makeProgram(ctx_, "advect_velocity", advect_velocity_comp, target, 7);
+        slot = makeProgram(ctx_, options_, "advect_velocity", advect_velocity_comp, target, 7);
         break;
     case Stage::AdvectPigment:
-        slot = makeProgram(ctx_, "advect_pigment", advect_pigment_comp, target, 6);
+        slot = makeProgram(ctx_, options_, "advect_pigment", advect_pigment_comp, target, 6);
         break;
     case Stage::ApplyBuoyancy:
-        slot = makeProgram(ctx_, "apply_buoyancy", apply_buoyancy_comp, target, 3);
+        slot = makeProgram(ctx_, options_, "apply_buoyancy", apply_buoyancy_comp, target, 3);
         break;
     case Stage::VorticityConfinement:
-        slot = part == 0 ? makeProgram(ctx_, "compute_vorticity", compute_vorticity_comp, target, 5)
-                         : makeProgram(ctx_, "apply_vorticity_force", apply_vorticity_force_comp,
+        slot = part == 0 ? makeProgram(ctx_, options_, "compute_vorticity", compute_vorticity_comp, target, 5)
+                         : makeProgram(ctx_, options_, "apply_vorticity_force", apply_vorticity_force_comp,
                                        target, 5);
         break;
     case Stage::DiffuseViscosity:
-        slot = makeProgram(ctx_, "diffuse_viscosity", diffuse_viscosity_comp, target, 10);
+        slot = makeProgram(ctx_, options_, "diffuse_viscosity", diffuse_viscosity_comp, target, 10);
         break;
     case Stage::ApplyBoundaries:
-        slot = makeProgram(ctx_, "apply_boundaries", apply_boundaries_comp, target, 4);
+        slot = makeProgram(ctx_, options_, "apply_boundaries", apply_boundaries_comp, target, 4);
         break;
     case Stage::ComputeDivergence:
-        slot = makeProgram(ctx_, "compute_divergence", compute_divergence_comp, target, 5);
+        slot = makeProgram(ctx_, options_, "compute_divergence", compute_divergence_comp, target, 5);
         break;
     case Stage::SolvePressure:
-        slot = makeProgram(ctx_, "solve_pressure", solve_pressure_comp, target, 4);
+        slot = makeProgram(ctx_, options_, "solve_pressure", solve_pressure_comp, target, 4);
         break;
     case Stage::Project:
-        slot = makeProgram(ctx_, "project", project_comp, target, 5);
+        slot = makeProgram(ctx_, options_, "project", project_comp, target, 5);
         break;
     }
     return slot;

@@ -33,11 +33,24 @@ float timeStep() {
     return params.cell.z;
 }
 
+// Boundary kinds and the integrator are fixed for a solver's life and given by specialization
+// (the same values as FluidParameters.boundaryLow/High): every boundary test then folds to a
+// constant instead of a uniform load and a select per lane.
+layout(constant_id = 1) const uint kBoundaryLowX = 0;
+layout(constant_id = 2) const uint kBoundaryHighX = 0;
+layout(constant_id = 3) const uint kBoundaryLowY = 0;
+layout(constant_id = 4) const uint kBoundaryHighY = 0;
+layout(constant_id = 5) const uint kBoundaryLowZ = 0;
+layout(constant_id = 6) const uint kBoundaryHighZ = 0;
+layout(constant_id = 7) const uint kIntegrator = MFX_INTEGRATOR_EULER;
+
 uint boundaryKind(int axis, bool high) {
-    return high ? params.boundaryHigh[axis] : params.boundaryLow[axis];
+    uint low = axis == 0 ? kBoundaryLowX : (axis == 1 ? kBoundaryLowY : kBoundaryLowZ);
+    uint top = axis == 0 ? kBoundaryHighX : (axis == 1 ? kBoundaryHighY : kBoundaryHighZ);
+    return high ? top : low;
 }
 bool periodicAxis(int axis) {
-    return params.boundaryLow[axis] == MFX_BOUNDARY_PERIODIC;
+    return boundaryKind(axis, false) == MFX_BOUNDARY_PERIODIC;
 }
 bool isWall(uint kind) {
     return kind == MFX_BOUNDARY_WALL_FREE_SLIP || kind == MFX_BOUNDARY_WALL_NO_SLIP;

@@ -36,7 +36,7 @@ vec3 velocityAt(vec3 x) {
 
 vec3 backTrace(vec3 x) {
     vec3 v = velocityAt(x);
-    if (params.boundaryLow.w == MFX_INTEGRATOR_EULER) return clampToDomain(x - timeStep() * v);
+    if (kIntegrator == MFX_INTEGRATOR_EULER) return clampToDomain(x - timeStep() * v);
     vec3 mid = clampToDomain(x - 0.5 * timeStep() * v);
     return clampToDomain(x - timeStep() * velocityAt(mid));
 }
