@@ -135,9 +135,10 @@ gpu::Program& SmokeSolver::program(Stage stage, int part, uint32_t target) {
         slot = makeProgram(ctx_, options_, "apply_buoyancy", apply_buoyancy_comp, target, 3);
         break;
     case Stage::VorticityConfinement:
-        slot = part == 0 ? makeProgram(ctx_, options_, "compute_vorticity", compute_vorticity_comp, target, 5)
-                         : makeProgram(ctx_, options_, "apply_vorticity_force", apply_vorticity_force_comp,
-                                       target, 5);
+        slot = part == 0 ? makeProgram(ctx_, options_, "compute_vorticity", compute_vorticity_comp,
+                                       target, 5)
+                         : makeProgram(ctx_, options_, "apply_vorticity_force",
+                                       apply_vorticity_force_comp, target, 5);
         break;
     case Stage::DiffuseViscosity:
         slot = makeProgram(ctx_, options_, "diffuse_viscosity", diffuse_viscosity_comp, target, 10);
@@ -146,7 +147,8 @@ gpu::Program& SmokeSolver::program(Stage stage, int part, uint32_t target) {
         slot = makeProgram(ctx_, options_, "apply_boundaries", apply_boundaries_comp, target, 4);
         break;
     case Stage::ComputeDivergence:
-        slot = makeProgram(ctx_, options_, "compute_divergence", compute_divergence_comp, target, 5);
+        slot =
+            makeProgram(ctx_, options_, "compute_divergence", compute_divergence_comp, target, 5);
         break;
     case Stage::SolvePressure:
         slot = makeProgram(ctx_, options_, "solve_pressure", solve_pressure_comp, target, 4);
@@ -199,10 +201,20 @@ Status SmokeSolver::setEmitters(std::span<const shared::FluidEmitter> emitters) 
     }
     if (bytes > 0) std::memcpy(ownEmitters_.mapped, emitters.data(), bytes);
     setEmitterBuffer(ownEmitters_, uint32_t(emitters.size()));
+    // World-space box around every emitter's sphere (after setEmitterBuffer, which clears it).
+    if (!emitters.empty()) {
+        glm::vec3 lo(INFINITY), hi(-INFINITY);
+        for (const shared::FluidEmitter& e : emitters) {
+            lo = glm::min(lo, glm::vec3(e.positionRadius) - e.positionRadius.w);
+            hi = glm::max(hi, glm::vec3(e.positionRadius) + e.positionRadius.w);
+        }
+        emitterBounds_ = std::pair{lo, hi};
+    }
     return Ok{};
 }
 
 void SmokeSolver::setEmitterBuffer(const gpu::Buffer& buffer, uint32_t count) {
+    emitterBounds_.reset();
     if (buffer.get() != emitterBuffer_) {
         // The splat program's sets name the old buffer: drop them all.
         for (auto& [key, splat] : programs_) {
@@ -232,9 +244,9 @@ void SmokeSolver::barrier(VkCommandBuffer cmd) const {
 }
 
 void SmokeSolver::dispatch(VkCommandBuffer cmd, gpu::Program& program, VkDescriptorSet set,
-                           glm::uvec3 extent) const {
+                           glm::uvec3 extent, glm::uvec3 origin) const {
     program.bind(cmd, set);
-    const shared::FluidDispatch dispatch{0, 0, 0, 0};
+    const shared::FluidDispatch dispatch{0, origin.x, origin.y, origin.z};
     program.push(cmd, dispatch);
     vkCmdDispatch(cmd, gpu::groupCount(extent.x, MFX_FLUID_GROUP_X),
                   gpu::groupCount(extent.y, MFX_FLUID_GROUP_Y),
@@ -275,8 +287,26 @@ void SmokeSolver::splatImpulses(VkCommandBuffer cmd) {
     };
     for (uint32_t target = 0; target < 4; ++target) {
         gpu::Program& prog = program(Stage::SplatImpulses, 0, target);
-        dispatch(cmd, prog, set(prog, {v, p, 0}, writes),
-                 target == MFX_TARGET_PIGMENT ? cells_ : faceExtent(options_.grid, int(target)));
+        const glm::uvec3 extent =
+            target == MFX_TARGET_PIGMENT ? cells_ : faceExtent(options_.grid, int(target));
+        // Only the emitters' bounding box can change (emitters read from a GPU buffer: all).
+        glm::uvec3 lo(0), hi = extent;
+        if (emitterBounds_) {
+            const glm::vec3 shift = target == MFX_TARGET_PIGMENT ? glm::vec3(0.5f)
+                                    : target == 0                ? glm::vec3(0.0f, 0.5f, 0.5f)
+                                    : target == 1                ? glm::vec3(0.5f, 0.0f, 0.5f)
+                                                                 : glm::vec3(0.5f, 0.5f, 0.0f);
+            // Sample positions (index + shift) * h inside [min, max]: a margin of one index.
+            const glm::vec3 first =
+                glm::floor(emitterBounds_->first / options_.grid.cellSize - shift);
+            const glm::vec3 last =
+                glm::ceil(emitterBounds_->second / options_.grid.cellSize - shift);
+            const glm::vec3 top = glm::vec3(extent);
+            lo = glm::uvec3(glm::clamp(first, glm::vec3(0.0f), top));
+            hi = glm::uvec3(glm::clamp(last + 1.0f, glm::vec3(0.0f), top));
+            if (glm::any(glm::lessThanEqual(hi, lo))) continue; // wholly outside the grid
+        }
+        dispatch(cmd, prog, set(prog, {v, p, 0}, writes), hi - lo, lo);
     }
     barrier(cmd);
 }

@@ -19,6 +19,7 @@
 #include <array>
 #include <map>
 #include <memory>
+#include <optional>
 #include <span>
 #include <tuple>
 #include <vector>
@@ -69,7 +70,7 @@ private:
     void writeParameters();
     void barrier(VkCommandBuffer cmd) const;
     void dispatch(VkCommandBuffer cmd, gpu::Program& program, VkDescriptorSet set,
-                  glm::uvec3 extent) const;
+                  glm::uvec3 extent, glm::uvec3 origin = glm::uvec3(0)) const;
     // Descriptor set of `program` for a combination of image-set indices `key`, made by
     // `writes()` the first time it is asked for.
     template <typename MakeWrites>
@@ -109,6 +110,8 @@ private:
     VkBuffer emitterBuffer_ = VK_NULL_HANDLE;
     VkDeviceSize emitterBufferSize_ = 0;
     uint32_t emitterCount_ = 0;
+    // World-space bounds of the emitters when they came from the CPU (none for a GPU buffer).
+    std::optional<std::pair<glm::vec3, glm::vec3>> emitterBounds_;
 
     // The program of a stage (part 1: the second program of vorticity confinement) for one
     // target field (MFX_TARGET_*, a specialization constant), compiled on first use.

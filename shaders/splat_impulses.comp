@@ -30,7 +30,8 @@ float emitterWeight(FluidEmitter e, vec3 x) {
 }
 
 void main() {
-    ivec3 q = ivec3(gl_GlobalInvocationID);
+    ivec3 q = ivec3(gl_GlobalInvocationID) +
+              ivec3(dispatchInfo.originX, dispatchInfo.originY, dispatchInfo.originZ);
     uint target = kTarget;
     uint count = params.size.w;
     if (target == MFX_TARGET_PIGMENT) {

@@ -50,10 +50,10 @@ struct FluidEmitter {
 
 // Push constants of every stage.
 struct FluidDispatch {
-    uint target; // MFX_TARGET_*
-    uint padding0;
-    uint padding1;
-    uint padding2;
+    uint target;  // unused: the target is a specialization constant (kTarget)
+    uint originX; // first cell/face of the dispatched region (splatImpulses covers only the
+    uint originY; // emitters' bounding box when the emitters are known on the CPU)
+    uint originZ;
 };
 
 MFX_SHARED_END
