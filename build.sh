@@ -60,9 +60,10 @@ build() {
 
 run_tests() {
     local dir=$1
+    shift
     say "running the tests in $dir"
     # Each test is a process of its own; two at a time on the 2-core CI machine.
-    ctest --test-dir "$dir" --output-on-failure -j "$JOBS" --timeout 600
+    ctest --test-dir "$dir" --output-on-failure -j "$JOBS" --timeout 600 "$@"
 }
 
 command=${1:-run}
@@ -86,6 +87,11 @@ test)
     run_tests "$BUILD_DIR"
     if [ "${MOTIONFX_SKIP_ASAN:-0}" != 1 ]; then
         build "$BUILD_DIR-asan" -DMOTIONFX_SANITIZE=ON
+        # The long numerical solver runs (thousands of steps of arithmetic on fixed-size arrays,
+        # no input from outside) take most of the sanitizer pass's time and run in the normal
+        # pass above; everything else, bad-input tests included, runs under the sanitizers.
+        ASAN_EXCLUDE='^FluidStability/|^Scenarios/|TaylorGreen'
+
         # The loader unloads the Vulkan driver and the validation layer before exit, which leaves
         # LeakSanitizer unable to tell their memory from ours. Preloading both keeps them mapped:
         # lavapipe's memory then stays reachable, and the validation layer's own leaks are
@@ -94,7 +100,7 @@ test)
         ASAN_OPTIONS=abort_on_error=1:detect_leaks=1 \
         LSAN_OPTIONS="suppressions=$ROOT/tests/sanitizers/lsan.supp:print_suppressions=0" \
         UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-            run_tests "$BUILD_DIR-asan"
+            run_tests "$BUILD_DIR-asan" -E "$ASAN_EXCLUDE"
     fi
     say "all tests passed"
     ;;
