@@ -94,20 +94,11 @@ int runCompare(std::span<const std::string> args) {
     }
     const std::string jsonPath = parsed.value("json");
     std::ofstream jsonFile;
-    if (!jsonPath.empty()) {
-        jsonFile.open(jsonPath);
-        if (!jsonFile) {
-            printError("cannot write " + jsonPath);
-            return kExitFailure;
-        }
-    }
+    if (!openOutputFile(jsonPath, jsonFile)) return kExitFailure;
 
-    auto created = gpu::Context::create(contextOptions(parsed));
-    if (!created) {
-        printError(created.error().message);
-        return kExitFailure;
-    }
-    const gpu::Context& ctx = *created.value();
+    const std::unique_ptr<gpu::Context> context = createContext(parsed);
+    if (!context) return kExitFailure;
+    const gpu::Context& ctx = *context;
     const fluid::Scenario& s = scenario.value();
     auto gpuSolver = fluid::SmokeSolver::create(ctx, s.options);
     if (!gpuSolver) {

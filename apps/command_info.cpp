@@ -16,12 +16,9 @@ int runInfo(std::span<const std::string> args) {
                      parsed, exitCode))
         return exitCode;
 
-    auto created = gpu::Context::create(contextOptions(parsed));
-    if (!created) {
-        printError(created.error().message);
-        return kExitFailure;
-    }
-    const gpu::Context& ctx = *created.value();
+    const std::unique_ptr<gpu::Context> context = createContext(parsed);
+    if (!context) return kExitFailure;
+    const gpu::Context& ctx = *context;
     const gpu::DeviceInfo& info = ctx.info();
     const gpu::DeviceFeatures& f = ctx.features();
     auto yes = [](bool b) { return b ? "yes" : "no"; };

@@ -36,12 +36,9 @@ int runRender(std::span<const std::string> args) {
         return kExitFailure;
     }
 
-    auto created = gpu::Context::create(contextOptions(parsed));
-    if (!created) {
-        printError(created.error().message);
-        return kExitFailure;
-    }
-    const gpu::Context& ctx = *created.value();
+    const std::unique_ptr<gpu::Context> context = createContext(parsed);
+    if (!context) return kExitFailure;
+    const gpu::Context& ctx = *context;
     if (width > ctx.limits().maxImageDimension2D || height > ctx.limits().maxImageDimension2D) {
         printError("size " + std::to_string(width) + "x" + std::to_string(height) + " exceeds " +
                    ctx.info().name + "'s largest image, " +

@@ -31,6 +31,23 @@ gpu::ContextOptions contextOptions(const cli::ParsedArgs& args) {
     return options;
 }
 
+std::unique_ptr<gpu::Context> createContext(const cli::ParsedArgs& args) {
+    auto created = gpu::Context::create(contextOptions(args));
+    if (!created) {
+        printError(created.error().message);
+        return nullptr;
+    }
+    return std::move(created).value();
+}
+
+bool openOutputFile(const std::string& path, std::ofstream& file) {
+    if (path.empty()) return true;
+    file.open(path);
+    if (file) return true;
+    printError("cannot write " + path);
+    return false;
+}
+
 void printError(const std::string& message) {
     std::fprintf(stderr, "motionfx: error: %s\n", message.c_str());
 }

@@ -5,6 +5,8 @@
 #include "apps/cli.h"
 #include "core/gpu/context.h"
 
+#include <fstream>
+#include <memory>
 #include <span>
 #include <string>
 
@@ -30,6 +32,12 @@ int runBench(std::span<const std::string> args);
 // Options every GPU subcommand takes.
 std::vector<cli::OptionSpec> deviceOptions();
 gpu::ContextOptions contextOptions(const cli::ParsedArgs& args);
+
+// The Context the options ask for, or nullptr after printing why there is none.
+std::unique_ptr<gpu::Context> createContext(const cli::ParsedArgs& args);
+
+// Opens `path` for writing when it is not empty; false (after printing why) when it cannot be.
+bool openOutputFile(const std::string& path, std::ofstream& file);
 
 // Prints "motionfx: error: <message>" to stderr.
 void printError(const std::string& message);

@@ -454,6 +454,10 @@ void SmokeSolver::project(VkCommandBuffer cmd) {
 
 void SmokeSolver::recordStage(VkCommandBuffer cmd, Stage stage, gpu::GpuTimer* timer) {
     writeParameters();
+    recordStageOnly(cmd, stage, timer);
+}
+
+void SmokeSolver::recordStageOnly(VkCommandBuffer cmd, Stage stage, gpu::GpuTimer* timer) {
     if (timer) timer->begin(cmd, stageName(stage));
     switch (stage) {
     case Stage::SplatImpulses:
@@ -491,9 +495,10 @@ void SmokeSolver::recordStage(VkCommandBuffer cmd, Stage stage, gpu::GpuTimer* t
 }
 
 void SmokeSolver::recordStep(VkCommandBuffer cmd, gpu::GpuTimer* timer) {
+    writeParameters(); // once: every sub-step and stage reads the same uniform
     for (uint32_t substep = 0; substep < options_.substeps; ++substep)
         for (Stage stage : kStepOrder)
-            recordStage(cmd, stage, timer);
+            recordStageOnly(cmd, stage, timer);
 }
 
 void SmokeSolver::step() {

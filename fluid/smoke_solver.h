@@ -68,6 +68,7 @@ public:
 private:
     SmokeSolver(const gpu::Context& ctx, const SolverOptions& options);
     void writeParameters();
+    void recordStageOnly(VkCommandBuffer cmd, Stage stage, gpu::GpuTimer* timer);
     void barrier(VkCommandBuffer cmd) const;
     void dispatch(VkCommandBuffer cmd, gpu::Program& program, VkDescriptorSet set,
                   glm::uvec3 extent, glm::uvec3 origin = glm::uvec3(0)) const;
