@@ -28,6 +28,7 @@ double median(std::vector<double> values) {
 
 struct GridResult {
     std::array<uint32_t, 3> grid;
+    std::array<uint32_t, 3> workgroup;
     double stepMs = 0.0;                   // median GPU time of a whole step (sum of its stages)
     double wallMs = 0.0;                   // median CPU wall time of record + submit + wait
     std::map<std::string, double> stageMs; // median per stage
@@ -47,6 +48,73 @@ Result<std::vector<std::array<uint32_t, 3>>> parseGridList(const std::string& te
     return grids;
 }
 
+Result<std::vector<std::array<uint32_t, 3>>> parseWorkgroupList(const std::string& text) {
+    std::vector<std::array<uint32_t, 3>> shapes;
+    std::stringstream stream(text);
+    std::string item;
+    while (std::getline(stream, item, ',')) {
+        auto shape = cli::parseGrid(item, 1024);
+        if (!shape)
+            return Error{"--workgroups: '" + item + "' is not of the form XxYxZ, e.g. 8x8x4"};
+        shapes.push_back(shape.value());
+    }
+    if (shapes.empty()) return Error{"--workgroups needs at least one shape, e.g. 8x8x4,32x4x2"};
+    return shapes;
+}
+
+std::string shapeLabel(const std::array<uint32_t, 3>& s) {
+    return std::to_string(s[0]) + "x" + std::to_string(s[1]) + "x" + std::to_string(s[2]);
+}
+
+// Times one grid with one workgroup shape: the median of `steps` steps after 3 warm-up steps.
+Result<GridResult> benchGrid(const gpu::Context& ctx, const std::string& scenarioName,
+                             std::array<uint32_t, 3> cells, std::array<uint32_t, 3> workgroup,
+                             uint32_t jacobi, uint32_t steps) {
+    fluid::Scenario scenario =
+        fluid::makeScenario(scenarioName, glm::uvec3(cells[0], cells[1], cells[2])).value();
+    scenario.options.jacobiIterations = jacobi;
+    scenario.options.workgroup = workgroup;
+    auto solverResult = fluid::SmokeSolver::create(ctx, scenario.options);
+    if (!solverResult) return solverResult.error();
+    fluid::SmokeSolver& solver = *solverResult.value();
+    solver.setState(scenario.initial);
+    gpu::GpuTimer timer(ctx, solver.passesPerStep());
+    std::vector<double> stepTimes, wallTimes;
+    std::map<std::string, std::vector<double>> stageTimes;
+    std::fprintf(stderr, "  %ux%ux%u, workgroup %s ", cells[0], cells[1], cells[2],
+                 shapeLabel(workgroup).c_str());
+    const uint32_t warmup = 3;
+    for (uint32_t step = 0; step < warmup + steps; ++step) {
+        // Emitters stay on (the scenario's first step) so every stage has work each step.
+        if (Status ok = solver.setEmitters(scenario.emitters(0)); !ok) return ok.error();
+        const auto start = std::chrono::steady_clock::now();
+        gpu::submitOneShot(ctx, [&](VkCommandBuffer cmd) {
+            timer.reset(cmd);
+            solver.recordStep(cmd, &timer);
+        });
+        const double wall =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                .count();
+        std::fputc('.', stderr);
+        if (step < warmup) continue;
+        std::map<std::string, double> perStage;
+        double total = 0.0;
+        for (const gpu::PassTime& pass : timer.results()) {
+            perStage[pass.name] += pass.milliseconds;
+            total += pass.milliseconds;
+        }
+        for (const auto& [name, ms] : perStage)
+            stageTimes[name].push_back(ms);
+        stepTimes.push_back(total);
+        wallTimes.push_back(wall);
+    }
+    std::fputc('\n', stderr);
+    GridResult r{cells, workgroup, median(stepTimes), median(wallTimes), {}};
+    for (const auto& [name, times] : stageTimes)
+        r.stageMs[name] = median(times);
+    return r;
+}
+
 int runBenchSolver(std::span<const std::string> args) {
     std::vector<cli::OptionSpec> options = deviceOptions();
     options.push_back(
@@ -54,6 +122,10 @@ int runBenchSolver(std::span<const std::string> args) {
     options.push_back({"jacobi", "N", "Jacobi sweeps per step (default 20)"});
     options.push_back({"steps", "K", "timed steps per grid after 3 warm-up steps (default 10)"});
     options.push_back({"scenario", "NAME", "scenario whose stages are timed (default puff)"});
+    options.push_back({"workgroups", "LIST",
+                       "comma-separated compute workgroup shapes XxYxZ to compare (default: the "
+                       "solver's, " +
+                           shapeLabel(fluid::SolverOptions{}.workgroup) + ")"});
     options.push_back({"json", "FILE", "also write the results as JSON"});
     cli::ParsedArgs parsed;
     int exitCode = kExitOk;
@@ -66,9 +138,11 @@ int runBenchSolver(std::span<const std::string> args) {
     auto grids = parseGridList(parsed.value("grids", "32,64,96,128"));
     auto jacobi = cli::parseUnsigned(parsed.value("jacobi", "20"), 0, 100000, "--jacobi");
     auto steps = cli::parseUnsigned(parsed.value("steps", "10"), 1, 10000, "--steps");
+    auto workgroups = parseWorkgroupList(
+        parsed.value("workgroups", shapeLabel(fluid::SolverOptions{}.workgroup)));
     for (const Error* e :
          {grids.ok() ? nullptr : &grids.error(), jacobi.ok() ? nullptr : &jacobi.error(),
-          steps.ok() ? nullptr : &steps.error()})
+          steps.ok() ? nullptr : &steps.error(), workgroups.ok() ? nullptr : &workgroups.error()})
         if (e) {
             printError(e->message);
             return kExitUsage;
@@ -95,64 +169,28 @@ int runBenchSolver(std::span<const std::string> args) {
                 jacobi.value(), steps.value());
 
     std::vector<GridResult> results;
-    for (const auto& cells : grids.value()) {
-        fluid::Scenario scenario =
-            fluid::makeScenario(scenarioName, glm::uvec3(cells[0], cells[1], cells[2])).value();
-        scenario.options.jacobiIterations = jacobi.value();
-        auto solverResult = fluid::SmokeSolver::create(ctx, scenario.options);
-        if (!solverResult) {
-            printError(solverResult.error().message);
-            return kExitFailure;
-        }
-        fluid::SmokeSolver& solver = *solverResult.value();
-        solver.setState(scenario.initial);
-        gpu::GpuTimer timer(ctx, solver.passesPerStep());
-        std::vector<double> stepTimes, wallTimes;
-        std::map<std::string, std::vector<double>> stageTimes;
-        std::fprintf(stderr, "  %ux%ux%u ", cells[0], cells[1], cells[2]);
-        const uint32_t warmup = 3;
-        for (uint32_t step = 0; step < warmup + steps.value(); ++step) {
-            // Emitters stay on (the scenario's first step) so every stage has work each step.
-            if (Status ok = solver.setEmitters(scenario.emitters(0)); !ok) {
-                printError(ok.error().message);
+    for (const auto& cells : grids.value())
+        for (const auto& workgroup : workgroups.value()) {
+            auto r = benchGrid(ctx, scenarioName, cells, workgroup, jacobi.value(), steps.value());
+            if (!r) {
+                printError(r.error().message);
                 return kExitFailure;
             }
-            const auto start = std::chrono::steady_clock::now();
-            gpu::submitOneShot(ctx, [&](VkCommandBuffer cmd) {
-                timer.reset(cmd);
-                solver.recordStep(cmd, &timer);
-            });
-            const double wall =
-                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-                    .count();
-            std::fputc('.', stderr);
-            if (step < warmup) continue;
-            std::map<std::string, double> perStage;
-            double total = 0.0;
-            for (const gpu::PassTime& pass : timer.results()) {
-                perStage[pass.name] += pass.milliseconds;
-                total += pass.milliseconds;
-            }
-            for (const auto& [name, ms] : perStage)
-                stageTimes[name].push_back(ms);
-            stepTimes.push_back(total);
-            wallTimes.push_back(wall);
+            results.push_back(std::move(r.value()));
         }
-        std::fputc('\n', stderr);
-        GridResult r{cells, median(stepTimes), median(wallTimes), {}};
-        for (const auto& [name, times] : stageTimes)
-            r.stageMs[name] = median(times);
-        results.push_back(std::move(r));
-    }
 
-    // Table: one row per stage (in step order), one column per grid.
+    // Table: one row per stage (in step order), one column per grid (and workgroup shape).
+    const bool shapes = workgroups.value().size() > 1;
     std::printf("%-24s", "stage (ms)");
-    for (const GridResult& r : results) {
-        const std::string label = std::to_string(r.grid[0]) + "x" + std::to_string(r.grid[1]) +
-                                  "x" + std::to_string(r.grid[2]);
-        std::printf(" %12s", label.c_str());
-    }
+    for (const GridResult& r : results)
+        std::printf(" %12s", shapeLabel(r.grid).c_str());
     std::printf("\n");
+    if (shapes) {
+        std::printf("%-24s", "workgroup");
+        for (const GridResult& r : results)
+            std::printf(" %12s", shapeLabel(r.workgroup).c_str());
+        std::printf("\n");
+    }
     for (fluid::Stage stage : fluid::kAllStages) {
         std::printf("%-24s", fluid::stageName(stage));
         for (const GridResult& r : results) {
@@ -173,6 +211,7 @@ int runBenchSolver(std::span<const std::string> args) {
         nlohmann::json list = nlohmann::json::array();
         for (const GridResult& r : results)
             list.push_back({{"grid", r.grid},
+                            {"workgroup", r.workgroup},
                             {"jacobi", jacobi.value()},
                             {"step_ms", r.stepMs},
                             {"wall_ms", r.wallMs},

@@ -43,6 +43,8 @@ gpu::Program makeProgram(const gpu::Context& ctx, const SolverOptions& options, 
     for (const FaceBoundary& face : options.boundaries)
         desc.specialization.push_back(uint32_t(face.kind));
     desc.specialization.push_back(uint32_t(options.integrator));
+    for (uint32_t size : options.workgroup) // ids 8-10: the workgroup shape
+        desc.specialization.push_back(size);
     return gpu::createComputeProgram(ctx, desc);
 }
 
@@ -55,8 +57,16 @@ gpu::DescriptorWrite storage(uint32_t binding, const gpu::Image& image) {
 Result<std::unique_ptr<SmokeSolver>> SmokeSolver::create(const gpu::Context& ctx,
                                                          const SolverOptions& options) {
     // Faces need one more texel than cells along their axis.
-    if (Status valid = validateOptions(options, ctx.limits().maxImageDimension3D - 1); !valid)
+    const VkPhysicalDeviceLimits& limits = ctx.limits();
+    if (Status valid = validateOptions(options, limits.maxImageDimension3D - 1,
+                                       limits.maxComputeWorkGroupInvocations);
+        !valid)
         return valid.error();
+    for (int axis = 0; axis < 3; ++axis)
+        if (options.workgroup[axis] > limits.maxComputeWorkGroupSize[axis])
+            return Error{"workgroup size " + std::to_string(options.workgroup[axis]) + " along " +
+                         std::string(1, "xyz"[axis]) + " exceeds the device's limit of " +
+                         std::to_string(limits.maxComputeWorkGroupSize[axis])};
     return std::unique_ptr<SmokeSolver>(new SmokeSolver(ctx, options));
 }
 
@@ -248,9 +258,9 @@ void SmokeSolver::dispatch(VkCommandBuffer cmd, gpu::Program& program, VkDescrip
     program.bind(cmd, set);
     const shared::FluidDispatch dispatch{0, origin.x, origin.y, origin.z};
     program.push(cmd, dispatch);
-    vkCmdDispatch(cmd, gpu::groupCount(extent.x, MFX_FLUID_GROUP_X),
-                  gpu::groupCount(extent.y, MFX_FLUID_GROUP_Y),
-                  gpu::groupCount(extent.z, MFX_FLUID_GROUP_Z));
+    const std::array<uint32_t, 3>& group = options_.workgroup;
+    vkCmdDispatch(cmd, gpu::groupCount(extent.x, group[0]), gpu::groupCount(extent.y, group[1]),
+                  gpu::groupCount(extent.z, group[2]));
 }
 
 template <typename MakeWrites>

@@ -17,7 +17,7 @@ const char* kFaceNames[6] = {"-x", "+x", "-y", "+y", "-z", "+z"};
 
 } // namespace
 
-Status validateOptions(const SolverOptions& o, uint32_t maxDimension) {
+Status validateOptions(const SolverOptions& o, uint32_t maxDimension, uint32_t maxInvocations) {
     if (Status grid = validateGrid(o.grid, maxDimension); !grid) return grid;
     auto bad = [](const std::string& what) { return Status(Error{what}); };
     if (!finite(o.dt) || o.dt < 0.0f) return bad("dt must be a finite number >= 0");
@@ -30,6 +30,12 @@ Status validateOptions(const SolverOptions& o, uint32_t maxDimension) {
         return bad("viscosity must be a finite number >= 0");
     if (o.viscosityIterations > 10000) return bad("viscosityIterations must be at most 10000");
     if (o.jacobiIterations > 100000) return bad("jacobiIterations must be at most 100000");
+    const uint64_t invocations =
+        uint64_t(o.workgroup[0]) * uint64_t(o.workgroup[1]) * uint64_t(o.workgroup[2]);
+    if (invocations == 0 || invocations > maxInvocations)
+        return bad("workgroup " + std::to_string(o.workgroup[0]) + "x" +
+                   std::to_string(o.workgroup[1]) + "x" + std::to_string(o.workgroup[2]) +
+                   " must have between 1 and " + std::to_string(maxInvocations) + " invocations");
     for (int face = 0; face < 6; ++face) {
         const glm::vec3 w = o.boundaries[face].wallVelocity;
         if (!std::isfinite(w.x) || !std::isfinite(w.y) || !std::isfinite(w.z))

@@ -49,13 +49,17 @@ struct SolverOptions {
     uint32_t jacobiIterations = 20;    // Jacobi sweeps of the pressure solve
     bool warmStart = false;            // start the pressure solve from the last step's pressure
     std::array<FaceBoundary, 6> boundaries{};
+    // Workgroup shape of every compute dispatch (a performance setting only: results do not
+    // depend on it). At most the device's maxComputeWorkGroupInvocations in all.
+    std::array<uint32_t, 3> workgroup{MFX_FLUID_GROUP_X, MFX_FLUID_GROUP_Y, MFX_FLUID_GROUP_Z};
 
     float substepDt() const { return dt / float(substeps); }
     bool periodic(int axis) const { return boundaries[2 * axis].kind == Boundary::Periodic; }
 };
 
 // Checks every option: finite, in range, periodic faces paired. The error names the option.
-Status validateOptions(const SolverOptions& options, uint32_t maxDimension = 4096);
+Status validateOptions(const SolverOptions& options, uint32_t maxDimension = 4096,
+                       uint32_t maxInvocations = 1024);
 
 // Refuses emitters with NaN/Inf, a radius <= 0, a negative strength or negative pigment; the
 // error names the emitter index and the field.

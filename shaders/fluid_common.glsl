@@ -5,8 +5,9 @@
 
 #include "shared/fluid.h"
 
-layout(local_size_x = MFX_FLUID_GROUP_X, local_size_y = MFX_FLUID_GROUP_Y,
-       local_size_z = MFX_FLUID_GROUP_Z) in;
+// The workgroup shape is given by specialization (SolverOptions::workgroup; constant ids 8-10),
+// the defaults being the shared header's.
+layout(local_size_x_id = 8, local_size_y_id = 9, local_size_z_id = 10) in;
 
 layout(std140, binding = 0) uniform Parameters {
     FluidParameters params;

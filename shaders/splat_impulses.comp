@@ -33,7 +33,10 @@ void main() {
     ivec3 q = ivec3(gl_GlobalInvocationID) +
               ivec3(dispatchInfo.originX, dispatchInfo.originY, dispatchInfo.originZ);
     uint target = kTarget;
-    uint count = params.size.w;
+    // Bounded by the buffer's own length as well: never reads past the bound range. It also keeps
+    // the loop bound from being a pure uniform, which a CPU driver (lavapipe) would otherwise fold
+    // into a freshly compiled shader variant on every dispatch.
+    uint count = min(params.size.w, uint(emitters.length()));
     if (target == MFX_TARGET_PIGMENT) {
         if (any(greaterThanEqual(q, cellCount()))) return;
         vec3 x = cellCentre(q);

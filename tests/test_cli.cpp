@@ -109,6 +109,35 @@ TEST(Cli, BadSizeIsOneLine) {
     }
 }
 
+TEST(Cli, BenchSolverPrintsATableAndWritesJson) {
+    const std::string json = std::string(MFX_TEST_OUTPUT_DIR) + "/cli/bench_solver.json";
+    std::filesystem::remove(json);
+    const RunResult r = runMotionfx("bench solver --grids 8,6x5x4 --steps 2 --jacobi 3 "
+                                    "--workgroups 8x8x4,4x4x4 --json \"" +
+                                    json + "\"");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("solve_pressure"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("whole step (GPU)"), std::string::npos) << r.out;
+    const std::string text = readFile(json);
+    for (const char* key : {"\"device\"", "\"results\"", "\"grid\"", "\"jacobi\": 3",
+                            "\"step_ms\"", "\"stages\"", "\"workgroup\"", "\"solve_pressure\""})
+        EXPECT_NE(text.find(key), std::string::npos) << key << " missing from " << text;
+}
+
+TEST(Cli, BenchSolverBadValuesAreOneLine) {
+    for (const char* args : {"--grids 0", "--grids 8x8", "--workgroups 8x8", "--workgroups 0x8x4",
+                             "--jacobi -1", "--steps 0", "--scenario nope"}) {
+        const RunResult r = runMotionfx(std::string("bench solver ") + args);
+        EXPECT_EQ(r.exitCode, 2) << args;
+        EXPECT_EQ(lineCount(r.err), 1u) << args << ": " << r.err;
+    }
+    // A shape the device cannot run is refused when the solver is made.
+    const RunResult r = runMotionfx("bench solver --grids 8 --workgroups 64x64x64");
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+    EXPECT_NE(r.err.find("workgroup"), std::string::npos) << r.err;
+}
+
 TEST(Cli, UnwritableOutputIsOneLine) {
     const std::string dir = std::string(MFX_TEST_OUTPUT_DIR) + "/cli";
     std::filesystem::create_directories(dir);

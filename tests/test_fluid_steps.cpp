@@ -47,6 +47,47 @@ TEST_P(FluidStepsTest, HundredStepsStayCloseToReference) {
     EXPECT_EQ(diagnostics.nonFinite, 0u);
 }
 
+// The workgroup shape is a performance setting only: an odd shape that leaves partial groups on
+// every axis gives bit-for-bit the same fields as the default.
+TEST_F(GpuTest, FluidWorkgroupShapeDoesNotChangeResults) {
+    auto scenario = fluid::makeScenario("puff", {13, 16, 11});
+    ASSERT_TRUE(scenario.ok()) << scenario.error().message;
+    fluid::FieldState states[2];
+    const std::array<uint32_t, 3> shapes[2] = {fluid::SolverOptions{}.workgroup, {5, 3, 2}};
+    for (int i = 0; i < 2; ++i) {
+        fluid::SolverOptions options = scenario.value().options;
+        options.workgroup = shapes[i];
+        auto created = fluid::SmokeSolver::create(ctx(), options);
+        ASSERT_TRUE(created.ok()) << created.error().message;
+        fluid::SmokeSolver& gpu = *created.value();
+        gpu.setState(scenario.value().initial);
+        for (uint32_t step = 0; step < 12; ++step) {
+            ASSERT_TRUE(gpu.setEmitters(scenario.value().emitters(step)).ok());
+            gpu.step();
+        }
+        states[i] = gpu.state();
+    }
+    EXPECT_EQ(states[0].velocityX, states[1].velocityX);
+    EXPECT_EQ(states[0].velocityY, states[1].velocityY);
+    EXPECT_EQ(states[0].velocityZ, states[1].velocityZ);
+    EXPECT_EQ(states[0].pressure, states[1].pressure);
+    EXPECT_EQ(states[0].pigment, states[1].pigment);
+    EXPECT_GT(fluid::computeDiagnostics(scenario.value().options, states[0]).totalPigment.w, 0.0);
+}
+
+TEST_F(GpuTest, FluidBadWorkgroupIsRefused) {
+    fluid::SolverOptions options;
+    options.grid = {8, 8, 8, 0.125f};
+    for (const std::array<uint32_t, 3>& shape :
+         {std::array<uint32_t, 3>{0, 8, 4}, std::array<uint32_t, 3>{64, 64, 64}}) {
+        options.workgroup = shape;
+        auto created = fluid::SmokeSolver::create(ctx(), options);
+        ASSERT_FALSE(created.ok());
+        EXPECT_NE(created.error().message.find("workgroup"), std::string::npos)
+            << created.error().message;
+    }
+}
+
 INSTANTIATE_TEST_SUITE_P(Scenarios, FluidStepsTest,
                          ::testing::Values("puff", "jet", "swirl", "random-impulses"),
                          [](const auto& param) {

@@ -5,8 +5,8 @@
 
 #include "common.h"
 
-// Workgroup shape of every solver stage: 8x8x4 = 256 invocations, x fastest, matching the
-// x-fastest layout of the fields.
+// Default workgroup shape of every solver stage (SolverOptions::workgroup): x fastest, matching
+// the x-fastest layout of the fields.
 #define MFX_FLUID_GROUP_X 8
 #define MFX_FLUID_GROUP_Y 8
 #define MFX_FLUID_GROUP_Z 4
