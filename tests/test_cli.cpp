@@ -119,8 +119,8 @@ TEST(Cli, BenchSolverPrintsATableAndWritesJson) {
     EXPECT_NE(r.out.find("solve_pressure"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("whole step (GPU)"), std::string::npos) << r.out;
     const std::string text = readFile(json);
-    for (const char* key : {"\"device\"", "\"results\"", "\"grid\"", "\"jacobi\": 3",
-                            "\"step_ms\"", "\"stages\"", "\"workgroup\"", "\"solve_pressure\""})
+    for (const char* key : {"\"device\"", "\"results\"", "\"grid\"", "\"jacobi\": 3", "\"step_ms\"",
+                            "\"stages\"", "\"workgroup\"", "\"solve_pressure\""})
         EXPECT_NE(text.find(key), std::string::npos) << key << " missing from " << text;
 }
 

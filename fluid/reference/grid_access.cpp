@@ -9,7 +9,8 @@ namespace mfx::fluid {
 
 namespace {
 int wrap(int i, int n) {
-    return ((i % n) + n) % n;
+    const int r = i % n;
+    return r < 0 ? r + n : r;
 }
 double lerp(double a, double b, double t) {
     return a + t * (b - a);
