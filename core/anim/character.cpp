@@ -13,21 +13,21 @@ glm::mat4 Transform::matrix() const {
     return m;
 }
 
-std::optional<int> Character::findNode(std::string_view name) const {
+std::optional<int> Character::findNode(std::string_view nodeName) const {
     for (size_t i = 0; i < nodes.size(); ++i)
-        if (nodes[i].name == name) return int(i);
+        if (nodes[i].name == nodeName) return int(i);
     return std::nullopt;
 }
 
-const Mesh* Character::findMesh(std::string_view name) const {
+const Mesh* Character::findMesh(std::string_view meshName) const {
     for (const Mesh& mesh : meshes)
-        if (mesh.name == name) return &mesh;
+        if (mesh.name == meshName) return &mesh;
     return nullptr;
 }
 
-const Clip* Character::findClip(std::string_view name) const {
+const Clip* Character::findClip(std::string_view clipName) const {
     for (const Clip& clip : clips)
-        if (clip.name == name) return &clip;
+        if (clip.name == clipName) return &clip;
     return nullptr;
 }
 

@@ -90,9 +90,9 @@ struct Character {
     std::vector<Mesh> meshes;
     std::vector<Clip> clips;
 
-    std::optional<int> findNode(std::string_view name) const;
-    const Mesh* findMesh(std::string_view name) const;
-    const Clip* findClip(std::string_view name) const;
+    std::optional<int> findNode(std::string_view nodeName) const;
+    const Mesh* findMesh(std::string_view meshName) const;
+    const Clip* findClip(std::string_view clipName) const;
 };
 
 // Checks the invariants above; the error names the element (e.g. "skins[0]: 3 inverse bind
