@@ -115,8 +115,8 @@ Status checkInvariants(const Character& c) {
             if (channel.times.empty()) return Error{where + ": no keys"};
             const size_t perKey = channel.interpolation == Interpolation::CubicSpline ? 3 : 1;
             if (channel.values.size() != perKey * channel.times.size())
-                return Error{where + ": " + std::to_string(channel.values.size()) +
-                             " values for " + std::to_string(channel.times.size()) + " keys"};
+                return Error{where + ": " + std::to_string(channel.values.size()) + " values for " +
+                             std::to_string(channel.times.size()) + " keys"};
             for (size_t i = 0; i < channel.times.size(); ++i) {
                 if (!std::isfinite(channel.times[i]) || channel.times[i] < 0.0f)
                     return Error{where + ": key time " + std::to_string(i) + " is not finite"};

@@ -42,8 +42,8 @@ struct Node {
 
 struct Skin {
     std::string name;
-    std::vector<int> joints;             // node indices
-    std::vector<glm::mat4> inverseBind;  // one per joint
+    std::vector<int> joints;            // node indices
+    std::vector<glm::mat4> inverseBind; // one per joint
 };
 
 enum class Interpolation { Linear, Step, CubicSpline };
@@ -67,13 +67,13 @@ struct Clip {
 
 struct Primitive {
     std::vector<glm::vec3> positions;
-    std::vector<glm::vec3> normals;      // computed smooth when the file has none
-    std::vector<glm::vec2> uvs;          // empty when absent
-    std::vector<glm::uvec4> joints;      // indices into the skin's joint list; empty when unskinned
-    std::vector<glm::vec4> weights;      // empty when unskinned
-    std::vector<uint32_t> indices;       // triangle list
-    glm::vec4 baseColor{1.0f};           // linear RGBA
-    int skin = -1;                       // index into Character::skins, or -1
+    std::vector<glm::vec3> normals; // computed smooth when the file has none
+    std::vector<glm::vec2> uvs;     // empty when absent
+    std::vector<glm::uvec4> joints; // indices into the skin's joint list; empty when unskinned
+    std::vector<glm::vec4> weights; // empty when unskinned
+    std::vector<uint32_t> indices;  // triangle list
+    glm::vec4 baseColor{1.0f};      // linear RGBA
+    int skin = -1;                  // index into Character::skins, or -1
     // For an unskinned primitive: the node it is rigidly attached to (its world matrix places it).
     int node = -1;
 };

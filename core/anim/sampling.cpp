@@ -56,7 +56,7 @@ glm::vec4 sampleChannel(const Channel& channel, float t) {
     case Interpolation::CubicSpline: {
         // glTF 2.0 Appendix C: Hermite spline with tangents scaled by the key interval.
         const glm::vec4 p0 = value(k), p1 = value(k + 1);
-        const glm::vec4 m0 = dt * channel.values[k * 3 + 2];      // out-tangent of key k
+        const glm::vec4 m0 = dt * channel.values[k * 3 + 2];       // out-tangent of key k
         const glm::vec4 m1 = dt * channel.values[(k + 1) * 3 + 0]; // in-tangent of key k + 1
         const float u2 = u * u, u3 = u2 * u;
         const glm::vec4 p = (2.0f * u3 - 3.0f * u2 + 1.0f) * p0 + (u3 - 2.0f * u2 + u) * m0 +

@@ -17,15 +17,19 @@ SkinnedVertex skinDualQuat(const std::vector<DualQuatJoint>& palette, glm::vec3 
     int first = 0;
     while (first < 3 && !(weights[first] > 0.0f))
         ++first;
+    if (!(weights[first] > 0.0f)) return {position, glm::normalize(normal)}; // no influence
     const math::DualQuat& reference = palette[joints[first]].rigid;
     math::DualQuat blended{glm::quat(0.0f, 0.0f, 0.0f, 0.0f), glm::quat(0.0f, 0.0f, 0.0f, 0.0f)};
     glm::vec3 scale(0.0f);
+    float total = 0.0f;
     for (int k = 0; k < 4; ++k) {
         if (!(weights[k] > 0.0f)) continue;
         const DualQuatJoint& joint = palette[joints[k]];
         blended = blended + weights[k] * math::alignedWith(joint.rigid, reference);
         scale += weights[k] * joint.scale;
+        total += weights[k];
     }
+    scale /= total; // weights that do not sum to 1 still blend the scale as an average
     blended = blended.normalized();
     SkinnedVertex out;
     out.position = blended.transformPoint(scale * position);
@@ -49,7 +53,8 @@ std::vector<SkinnedVertex> skinPrimitive(const Character& character, const Primi
     const size_t count = primitive.positions.size();
     std::vector<SkinnedVertex> out(count);
     if (primitive.skin < 0) {
-        const glm::mat4 m = primitive.node < 0 ? glm::mat4(1.0f) : pose.world[size_t(primitive.node)];
+        const glm::mat4 m =
+            primitive.node < 0 ? glm::mat4(1.0f) : pose.world[size_t(primitive.node)];
         const glm::mat3 n = glm::transpose(glm::inverse(glm::mat3(m)));
         for (size_t v = 0; v < count; ++v)
             out[v] = {glm::vec3(m * glm::vec4(primitive.positions[v], 1.0f)),

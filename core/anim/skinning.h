@@ -27,7 +27,7 @@ struct SkinnedVertex {
 
 // Blends the influences' dual quaternions by weight, each first aligned with the first influence
 // of non-zero weight (the sign rule), and their scales linearly; the vertex is scaled (the normal
-// by 1/S), then moved by the normalised blend.
+// by 1/S), then moved by the normalised blend. A vertex with no positive weight stays as it is.
 SkinnedVertex skinDualQuat(const std::vector<DualQuatJoint>& palette, glm::vec3 position,
                            glm::vec3 normal, glm::uvec4 joints, glm::vec4 weights);
 
