@@ -1,0 +1,18 @@
+// The built-in fighter: a skinned humanoid built in code, so that everything runs with no asset.
+// 21 joints (hips root, spine, chest, neck, head; per side shoulder, upper arm, forearm, hand,
+// thigh, shin, foot, toe), a body of smooth tubes in a two-colour outfit with skin-coloured head
+// and hands, and a sword (its own mesh, "sword", bound to hand_r). Clips: idle, roundhouse_kick,
+// straight_punch, sword_slash, spin. Y up, facing +z, metres; deterministic.
+#pragma once
+
+#include "core/anim/character.h"
+
+namespace mfx::anim {
+
+Character makeFighter();
+
+// Smooth (area-weighted) vertex normals of a triangle list; a vertex on no triangle gets +y.
+std::vector<glm::vec3> smoothNormals(const std::vector<glm::vec3>& positions,
+                                     const std::vector<uint32_t>& indices);
+
+} // namespace mfx::anim
