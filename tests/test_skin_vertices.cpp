@@ -1,5 +1,6 @@
 // The skinning pass on the GPU against its CPU twin (anim::skinDualQuat): same palette, same
 // vertices, positions and normals within 1e-5.
+#include "core/anim/fighter.h"
 #include "core/anim/skin_vertices.h"
 #include "core/gpu/commands.h"
 #include "tests/gpu_test.h"
@@ -135,6 +136,66 @@ TEST_F(SkinVerticesTest, GpuEqualsCpuAtTenTimes) {
         EXPECT_GT(glm::length(cpuOut.back().position - prim.positions.back()), 0.1f);
     }
     RecordProperty("worstDifference", std::to_string(worst));
+}
+
+// The built-in fighter, every primitive of both meshes, at 10 times of every clip.
+TEST_F(SkinVerticesTest, FighterGpuEqualsCpuAtTenTimesOfEveryClip) {
+    const anim::Character c = anim::makeFighter();
+    const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                     VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+                                     VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
+    struct Part {
+        const anim::Primitive* primitive;
+        gpu::Buffer input, output;
+    };
+    std::vector<Part> parts;
+    for (const anim::Mesh& m : c.meshes)
+        for (const anim::Primitive& p : m.primitives) {
+            const auto vertices = anim::packVertices(p);
+            Part part{&p,
+                      gpu::createBuffer(ctx(), vertices.size() * sizeof(shared::SkinVertexIn),
+                                        usage, gpu::MemoryUsage::DeviceLocal, "bind pose"),
+                      gpu::createBuffer(ctx(), vertices.size() * sizeof(shared::SkinVertexOut),
+                                        usage, gpu::MemoryUsage::DeviceLocal, "skinned")};
+            gpu::uploadBuffer(ctx(), part.input, std::span<const shared::SkinVertexIn>(vertices));
+            parts.push_back(std::move(part));
+        }
+    const uint32_t jointCount = uint32_t(c.skins[0].joints.size());
+    gpu::Buffer palette =
+        gpu::createBuffer(ctx(), jointCount * sizeof(shared::SkinJoint),
+                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload, "palette");
+    anim::SkinVertices pass(ctx());
+    double worst = 0.0;
+    size_t compared = 0;
+    for (const anim::Clip& clip : c.clips)
+        for (int i = 0; i < 10; ++i) {
+            const float t = clip.duration * (float(i) + 0.5f) / 10.0f;
+            const anim::Pose pose = anim::samplePose(c, &clip, t);
+            const auto packed =
+                anim::packPalette(anim::dualQuatPalette(anim::jointMatrices(c, 0, pose)));
+            std::memcpy(palette.mapped, packed.data(), packed.size() * sizeof(shared::SkinJoint));
+            gpu::submitOneShot(ctx(), [&](VkCommandBuffer cmd) {
+                for (const Part& part : parts)
+                    pass.record(cmd, palette, jointCount, part.input, part.output,
+                                uint32_t(part.primitive->positions.size()));
+            });
+            for (const Part& part : parts) {
+                const auto gpuOut = gpu::readBufferAs<shared::SkinVertexOut>(ctx(), part.output);
+                const auto cpuOut = anim::skinPrimitive(c, *part.primitive, pose);
+                for (size_t v = 0; v < cpuOut.size(); ++v) {
+                    const double dp = glm::length(glm::dvec3(glm::vec3(gpuOut[v].position)) -
+                                                  glm::dvec3(cpuOut[v].position));
+                    const double dn = glm::length(glm::dvec3(glm::vec3(gpuOut[v].normal)) -
+                                                  glm::dvec3(cpuOut[v].normal));
+                    worst = std::max({worst, dp, dn});
+                    ASSERT_LE(dp, 1e-5) << clip.name << " t=" << t << " vertex " << v;
+                    ASSERT_LE(dn, 1e-5) << clip.name << " t=" << t << " normal " << v;
+                    ++compared;
+                }
+            }
+        }
+    RecordProperty("worstDifference", std::to_string(worst));
+    EXPECT_GT(compared, 0u);
 }
 
 TEST_F(SkinVerticesTest, OutOfRangeJointsAreDroppedNotRead) {
