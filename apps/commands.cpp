@@ -11,6 +11,8 @@ std::span<const Command> commands() {
         {"compare", "run a solver scenario on GPU and CPU reference, print the differences",
          &runCompare},
         {"bench", "benchmarks (bench solver: GPU milliseconds per stage and step)", &runBench},
+        {"inspect", "load a glTF character and summarise it (meshes, joints, clips, bounds)",
+         &runInspect},
     };
     return table;
 }
