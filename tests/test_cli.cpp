@@ -176,4 +176,41 @@ TEST(Cli, RenderWritesAPngWithValidationClean) {
     stbi_image_free(pixels);
 }
 
+// motionfx inspect on the third-party characters and on broken files.
+const std::string kSharedDir = std::string(MFX_SOURCE_DIR) + "/../shared";
+
+TEST(CliInspect, RiggedFigureHas19Joints) {
+    const RunResult r = runMotionfx("inspect \"" + kSharedDir + "/assets/RiggedFigure.gltf\"");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.err, "");
+    for (const char* line : {"joints       19 in 1 skins", "Proxy: 1 primitives, 370 vertices",
+                             "clips        1", "57 channels", "bounds"})
+        EXPECT_NE(r.out.find(line), std::string::npos) << line << " missing from:\n" << r.out;
+}
+
+TEST(CliInspect, BadFileIsOneLine) {
+    const std::string file = kSharedDir + "/gltf-bad/skin/ibm_invalid_count.gltf";
+    const RunResult r = runMotionfx("inspect \"" + file + "\"");
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+    EXPECT_EQ(r.err.rfind("motionfx: error: ", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find("ibm_invalid_count.gltf: skins[0]"), std::string::npos) << r.err;
+    EXPECT_EQ(r.out, "");
+}
+
+TEST(CliInspect, MissingFileIsOneLineNamingIt) {
+    const RunResult r = runMotionfx("inspect /nonexistent/dancer.glb");
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+    EXPECT_NE(r.err.find("/nonexistent/dancer.glb"), std::string::npos) << r.err;
+}
+
+TEST(CliInspect, NoFileIsABadUsage) {
+    const RunResult r = runMotionfx("inspect");
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+    const RunResult two = runMotionfx("inspect a.gltf b.gltf");
+    EXPECT_EQ(two.exitCode, 2);
+}
+
 } // namespace
