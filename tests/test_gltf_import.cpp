@@ -544,6 +544,21 @@ TEST(GltfImportHandMade, TruncatedGlbIsRefusedAtEveryLength) {
     }
 }
 
+TEST(GltfImportHandMade, DeeplyNestedJsonIsRefused) {
+    const std::string nesting(100000, '[');
+    const std::string text = R"({"asset": {"version": "2.0"}, "extras": )" + nesting +
+                             std::string(nesting.size(), ']') + "}";
+    const mfx::Result<Character> result = importGltf(writeBytes("deep.gltf", text));
+    ASSERT_FALSE(result.ok());
+    EXPECT_CONTAINS(result.error().message, "deep.gltf: the JSON nests deeper than");
+}
+
+TEST(GltfImportHandMade, DirectoryIsRefused) {
+    const mfx::Result<Character> result = importGltf(MFX_TEST_OUTPUT_DIR);
+    ASSERT_FALSE(result.ok());
+    EXPECT_CONTAINS(result.error().message, "not a regular file");
+}
+
 TEST(GltfImportHandMade, MissingFileNamesIt) {
     const mfx::Result<Character> result = importGltf(outputPath("no_such_file.gltf"));
     ASSERT_FALSE(result.ok());

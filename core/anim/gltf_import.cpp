@@ -369,10 +369,19 @@ Status checkAnimationShape(const Json& animation, const std::string& where) {
     });
 }
 
+// Far deeper than any glTF document needs (the schema itself nests about eight levels).
+constexpr int kMaxJsonDepth = 64;
+
 Status checkJsonShape(std::span<const unsigned char> text, bool glb) {
     Json root;
+    int depth = 0;
+    // tinygltf converts `extras` recursively: deep nesting would overflow its stack.
+    const auto measureDepth = [&depth](int level, Json::parse_event_t, Json&) {
+        depth = std::max(depth, level);
+        return true;
+    };
     try {
-        root = Json::parse(text.begin(), text.end());
+        root = Json::parse(text.begin(), text.end(), measureDepth);
     } catch (const Json::exception& e) {
         // e.what() starts with "[json.exception.parse_error.101] "; the rest is the reason.
         std::string reason = e.what();
@@ -385,6 +394,8 @@ Status checkJsonShape(std::span<const unsigned char> text, bool glb) {
                                           : "neither a GLB file (no 'glTF' magic) nor glTF JSON (" +
                                                 firstLine(reason) + ")"};
     }
+    if (depth > kMaxJsonDepth)
+        return Error{"the JSON nests deeper than " + std::to_string(kMaxJsonDepth) + " levels"};
     if (!root.is_object()) return Error{"the JSON is not an object"};
     if (Status s = requireAll(root, {{"asset", Kind::Object}}, "glTF"); !s)
         return Error{"asset: missing or not an object"};
