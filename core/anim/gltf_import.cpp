@@ -372,16 +372,38 @@ Status checkAnimationShape(const Json& animation, const std::string& where) {
 // Far deeper than any glTF document needs (the schema itself nests about eight levels).
 constexpr int kMaxJsonDepth = 64;
 
-Status checkJsonShape(std::span<const unsigned char> text, bool glb) {
-    Json root;
+// The deepest nesting of arrays and objects in JSON text (brackets inside strings do not count).
+int nestingDepth(std::span<const unsigned char> text) {
     int depth = 0;
+    int deepest = 0;
+    bool inString = false;
+    bool escaped = false;
+    for (unsigned char c : text) {
+        if (inString) {
+            if (escaped)
+                escaped = false;
+            else if (c == '\\')
+                escaped = true;
+            else if (c == '"')
+                inString = false;
+        } else if (c == '"') {
+            inString = true;
+        } else if (c == '[' || c == '{') {
+            deepest = std::max(deepest, ++depth);
+        } else if (c == ']' || c == '}') {
+            --depth;
+        }
+    }
+    return deepest;
+}
+
+Status checkJsonShape(std::span<const unsigned char> text, bool glb) {
     // tinygltf converts `extras` recursively: deep nesting would overflow its stack.
-    const auto measureDepth = [&depth](int level, Json::parse_event_t, Json&) {
-        depth = std::max(depth, level);
-        return true;
-    };
+    if (nestingDepth(text) > kMaxJsonDepth)
+        return Error{"the JSON nests deeper than " + std::to_string(kMaxJsonDepth) + " levels"};
+    Json root;
     try {
-        root = Json::parse(text.begin(), text.end(), measureDepth);
+        root = Json::parse(text.begin(), text.end());
     } catch (const Json::exception& e) {
         // e.what() starts with "[json.exception.parse_error.101] "; the rest is the reason.
         std::string reason = e.what();
@@ -394,8 +416,6 @@ Status checkJsonShape(std::span<const unsigned char> text, bool glb) {
                                           : "neither a GLB file (no 'glTF' magic) nor glTF JSON (" +
                                                 firstLine(reason) + ")"};
     }
-    if (depth > kMaxJsonDepth)
-        return Error{"the JSON nests deeper than " + std::to_string(kMaxJsonDepth) + " levels"};
     if (!root.is_object()) return Error{"the JSON is not an object"};
     if (Status s = requireAll(root, {{"asset", Kind::Object}}, "glTF"); !s)
         return Error{"asset: missing or not an object"};
