@@ -31,6 +31,23 @@ const Clip* Character::findClip(std::string_view clipName) const {
     return nullptr;
 }
 
+std::vector<glm::vec3> smoothNormals(const std::vector<glm::vec3>& positions,
+                                     const std::vector<uint32_t>& indices, glm::vec3 fallback) {
+    std::vector<glm::vec3> normals(positions.size(), glm::vec3(0.0f));
+    for (size_t i = 0; i + 2 < indices.size(); i += 3) {
+        const uint32_t a = indices[i], b = indices[i + 1], c = indices[i + 2];
+        const glm::vec3 n = glm::cross(positions[b] - positions[a], positions[c] - positions[a]);
+        normals[a] += n;
+        normals[b] += n;
+        normals[c] += n;
+    }
+    for (glm::vec3& n : normals) {
+        const float length = glm::length(n);
+        n = length > 0.0f && std::isfinite(length) ? n / length : fallback;
+    }
+    return normals;
+}
+
 namespace {
 
 bool finite(const glm::vec4& v) {

@@ -95,6 +95,11 @@ struct Character {
     const Clip* findClip(std::string_view clipName) const;
 };
 
+// Smooth vertex normals of a triangle list: each vertex's triangles' cross products summed (so
+// larger faces weigh more), normalised; `fallback` for a vertex on no triangle of any area.
+std::vector<glm::vec3> smoothNormals(const std::vector<glm::vec3>& positions,
+                                     const std::vector<uint32_t>& indices, glm::vec3 fallback);
+
 // Checks the invariants above; the error names the element (e.g. "skins[0]: 3 inverse bind
 // matrices for 4 joints"). Producers call it before handing a character out.
 Status checkInvariants(const Character& character);

@@ -142,7 +142,7 @@ void addTube(Primitive& p, const TubeSpec& t) {
 // one normal, so no shading seam shows.
 std::vector<glm::vec3> weldedNormals(const std::vector<glm::vec3>& positions,
                                      const std::vector<uint32_t>& indices) {
-    std::vector<glm::vec3> normals = smoothNormals(positions, indices);
+    std::vector<glm::vec3> normals = smoothNormals(positions, indices, glm::vec3(0, 1, 0));
     std::map<std::tuple<float, float, float>, glm::vec3> sum;
     for (size_t v = 0; v < positions.size(); ++v)
         sum[{positions[v].x, positions[v].y, positions[v].z}] += normals[v];
@@ -456,25 +456,6 @@ Clip spin() {
 }
 
 } // namespace
-
-std::vector<glm::vec3> smoothNormals(const std::vector<glm::vec3>& positions,
-                                     const std::vector<uint32_t>& indices) {
-    std::vector<glm::vec3> normals(positions.size(), glm::vec3(0.0f));
-    for (size_t i = 0; i + 2 < indices.size(); i += 3) {
-        const glm::vec3& a = positions[indices[i]];
-        const glm::vec3& b = positions[indices[i + 1]];
-        const glm::vec3& c = positions[indices[i + 2]];
-        const glm::vec3 n = glm::cross(b - a, c - a); // length = twice the area: area-weighted
-        normals[indices[i]] += n;
-        normals[indices[i + 1]] += n;
-        normals[indices[i + 2]] += n;
-    }
-    for (glm::vec3& n : normals) {
-        const float length = glm::length(n);
-        n = length > 0.0f && std::isfinite(length) ? n / length : glm::vec3(0.0f, 1.0f, 0.0f);
-    }
-    return normals;
-}
 
 Character makeFighter() {
     Character c;

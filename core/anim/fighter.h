@@ -11,8 +11,4 @@ namespace mfx::anim {
 
 Character makeFighter();
 
-// Smooth (area-weighted) vertex normals of a triangle list; a vertex on no triangle gets +y.
-std::vector<glm::vec3> smoothNormals(const std::vector<glm::vec3>& positions,
-                                     const std::vector<uint32_t>& indices);
-
 } // namespace mfx::anim

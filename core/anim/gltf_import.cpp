@@ -929,22 +929,6 @@ Status readSkins(const tinygltf::Model& model, const NodeOrder& order, Character
 
 // --- Meshes ------------------------------------------------------------------------------------
 
-// Smooth normals: each vertex gets the sum of its triangles' cross products, whose lengths are
-// twice the triangles' areas, so larger faces weigh more.
-std::vector<glm::vec3> smoothNormals(const Primitive& primitive) {
-    std::vector<glm::vec3> sums(primitive.positions.size(), glm::vec3(0.0f));
-    for (size_t i = 0; i + 2 < primitive.indices.size(); i += 3) {
-        const uint32_t a = primitive.indices[i], b = primitive.indices[i + 1],
-                       c = primitive.indices[i + 2];
-        const glm::vec3 n = glm::cross(primitive.positions[b] - primitive.positions[a],
-                                       primitive.positions[c] - primitive.positions[a]);
-        sums[a] += n;
-        sums[b] += n;
-        sums[c] += n;
-    }
-    return sums;
-}
-
 // Unit normals everywhere: the file's where it has usable ones, else the smooth normal, else +z
 // for a vertex on no triangle of any area.
 void completeNormals(Primitive& primitive) {
@@ -957,10 +941,9 @@ void completeNormals(Primitive& primitive) {
             n /= length;
             continue;
         }
-        if (smooth.empty()) smooth = smoothNormals(primitive);
-        const float smoothLength = glm::length(smooth[v]);
-        n = smoothLength > 0.0f && std::isfinite(smoothLength) ? smooth[v] / smoothLength
-                                                               : glm::vec3(0.0f, 0.0f, 1.0f);
+        if (smooth.empty())
+            smooth = smoothNormals(primitive.positions, primitive.indices, glm::vec3(0, 0, 1));
+        n = smooth[v];
     }
 }
 
