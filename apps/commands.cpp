@@ -13,6 +13,8 @@ std::span<const Command> commands() {
         {"bench", "benchmarks (bench solver: GPU milliseconds per stage and step)", &runBench},
         {"inspect", "load a glTF character and summarise it (meshes, joints, clips, bounds)",
          &runInspect},
+        {"export-fighter", "write the built-in fighter as glTF 2.0 (.glb or .gltf)",
+         &runExportFighter},
     };
     return table;
 }

@@ -29,6 +29,7 @@ int runRender(std::span<const std::string> args);
 int runCompare(std::span<const std::string> args);
 int runBench(std::span<const std::string> args);
 int runInspect(std::span<const std::string> args);
+int runExportFighter(std::span<const std::string> args);
 
 // Options every GPU subcommand takes.
 std::vector<cli::OptionSpec> deviceOptions();

@@ -213,4 +213,35 @@ TEST(CliInspect, NoFileIsABadUsage) {
     EXPECT_EQ(two.exitCode, 2);
 }
 
+// motionfx export-fighter: the file it writes is one inspect reads back.
+TEST(CliExportFighter, WritesAGlbThatInspectReads) {
+    const std::string file = std::string(MFX_TEST_OUTPUT_DIR) + "/cli/fighter.glb";
+    std::filesystem::remove(file);
+    const RunResult r = runMotionfx("export-fighter \"" + file + "\"");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.err, "");
+    EXPECT_NE(r.out.find("2 meshes, 21 joints, 5 clips"), std::string::npos) << r.out;
+    const RunResult inspected = runMotionfx("inspect \"" + file + "\"");
+    ASSERT_EQ(inspected.exitCode, 0) << inspected.err;
+    for (const char* line : {"joints       21 in 1 skins", "sword: ", "roundhouse_kick: 0.9 s"})
+        EXPECT_NE(inspected.out.find(line), std::string::npos) << line << " missing from:\n"
+                                                               << inspected.out;
+}
+
+TEST(CliExportFighter, WrongExtensionIsABadUsage) {
+    const RunResult r = runMotionfx("export-fighter fighter.obj");
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+    EXPECT_NE(r.err.find("fighter.obj"), std::string::npos) << r.err;
+    const RunResult none = runMotionfx("export-fighter");
+    EXPECT_EQ(none.exitCode, 2);
+}
+
+TEST(CliExportFighter, UnwritablePathIsOneLineNamingIt) {
+    const RunResult r = runMotionfx("export-fighter /nonexistent/dir/fighter.glb");
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+    EXPECT_NE(r.err.find("/nonexistent/dir/fighter.glb"), std::string::npos) << r.err;
+}
+
 } // namespace
