@@ -6,6 +6,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "shared/skinning.h"
+#include "dual_quat.glsl"
 
 layout(local_size_x = MFX_SKIN_GROUP_SIZE) in;
 
@@ -22,52 +23,22 @@ layout(push_constant) uniform Constants {
     SkinConstants constants;
 };
 
-// Quaternions as (x, y, z, w).
-vec4 quatMul(vec4 a, vec4 b) {
-    return vec4(a.w * b.xyz + b.w * a.xyz + cross(a.xyz, b.xyz), a.w * b.w - dot(a.xyz, b.xyz));
-}
-vec3 rotate(vec4 q, vec3 v) {
-    vec3 uv = cross(q.xyz, v);
-    vec3 uuv = cross(q.xyz, uv);
-    return v + ((uv * q.w) + uuv) * 2.0;
-}
-
 void main() {
     uint i = gl_GlobalInvocationID.x;
     if (i >= constants.vertexCount) return;
     SkinVertexIn v = vertices[i];
     // Influences naming a joint outside the palette are dropped (a GPU buffer is not checked).
+    SkinJoint joints[4];
     vec4 weights = v.weights;
-    for (int k = 0; k < 4; ++k)
-        if (v.joints[k] >= constants.jointCount) weights[k] = 0.0;
-    int first = 0;
-    while (first < 3 && !(weights[first] > 0.0))
-        ++first;
-    if (!(weights[first] > 0.0)) { // no influence: the vertex stays where it is
-        skinned[i] = SkinVertexOut(vec4(v.position.xyz, 1.0), vec4(normalize(v.normal.xyz), 0.0));
-        return;
-    }
-    vec4 reference = palette[v.joints[first]].real;
-    vec4 real = vec4(0.0);
-    vec4 dual = vec4(0.0);
-    vec3 scale = vec3(0.0);
-    float total = 0.0;
     for (int k = 0; k < 4; ++k) {
-        if (!(weights[k] > 0.0)) continue;
-        SkinJoint joint = palette[v.joints[k]];
-        float w = dot(joint.real, reference) < 0.0 ? -weights[k] : weights[k];
-        real += w * joint.real;
-        dual += w * joint.dual;
-        scale += weights[k] * joint.scale.xyz;
-        total += weights[k];
+        if (v.joints[k] < constants.jointCount) {
+            joints[k] = palette[v.joints[k]];
+        } else {
+            joints[k] = identityTransform();
+            weights[k] = 0.0;
+        }
     }
-    scale /= total; // weights that do not sum to 1 still blend the scale as an average
-    float len = length(real);
-    real /= len;
-    dual /= len;
-    vec4 conjugate = vec4(-real.xyz, real.w);
-    vec3 translation = 2.0 * quatMul(dual, conjugate).xyz;
-    vec3 position = rotate(real, scale * v.position.xyz) + translation;
-    vec3 normal = normalize(rotate(real, v.normal.xyz / scale));
-    skinned[i] = SkinVertexOut(vec4(position, 1.0), vec4(normal, 0.0));
+    SkinJoint t = blendJoints(joints, weights);
+    skinned[i] = SkinVertexOut(vec4(transformPoint(t, v.position.xyz), 1.0),
+                               vec4(transformNormal(t, v.normal.xyz), 0.0));
 }

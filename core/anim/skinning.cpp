@@ -12,12 +12,12 @@ std::vector<DualQuatJoint> dualQuatPalette(const std::vector<glm::mat4>& jointMa
     return palette;
 }
 
-SkinnedVertex skinDualQuat(const std::vector<DualQuatJoint>& palette, glm::vec3 position,
-                           glm::vec3 normal, glm::uvec4 joints, glm::vec4 weights) {
+DualQuatJoint blendJoints(const std::vector<DualQuatJoint>& palette, glm::uvec4 joints,
+                          glm::vec4 weights) {
     int first = 0;
     while (first < 3 && !(weights[first] > 0.0f))
         ++first;
-    if (!(weights[first] > 0.0f)) return {position, glm::normalize(normal)}; // no influence
+    if (!(weights[first] > 0.0f)) return {}; // no influence: the identity
     const math::DualQuat& reference = palette[joints[first]].rigid;
     math::DualQuat blended{glm::quat(0.0f, 0.0f, 0.0f, 0.0f), glm::quat(0.0f, 0.0f, 0.0f, 0.0f)};
     glm::vec3 scale(0.0f);
@@ -30,11 +30,19 @@ SkinnedVertex skinDualQuat(const std::vector<DualQuatJoint>& palette, glm::vec3 
         total += weights[k];
     }
     scale /= total; // weights that do not sum to 1 still blend the scale as an average
-    blended = blended.normalized();
+    return {blended.normalized(), scale};
+}
+
+SkinnedVertex applyTransform(const DualQuatJoint& transform, glm::vec3 position, glm::vec3 normal) {
     SkinnedVertex out;
-    out.position = blended.transformPoint(scale * position);
-    out.normal = glm::normalize(blended.transformVector(normal / scale));
+    out.position = transform.rigid.transformPoint(transform.scale * position);
+    out.normal = glm::normalize(transform.rigid.transformVector(normal / transform.scale));
     return out;
+}
+
+SkinnedVertex skinDualQuat(const std::vector<DualQuatJoint>& palette, glm::vec3 position,
+                           glm::vec3 normal, glm::uvec4 joints, glm::vec4 weights) {
+    return applyTransform(blendJoints(palette, joints, weights), position, normal);
 }
 
 SkinnedVertex skinLinear(const std::vector<glm::mat4>& jointMatrices, glm::vec3 position,

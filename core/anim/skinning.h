@@ -25,9 +25,17 @@ struct SkinnedVertex {
     glm::vec3 normal{0.0f, 0.0f, 1.0f};
 };
 
-// Blends the influences' dual quaternions by weight, each first aligned with the first influence
-// of non-zero weight (the sign rule), and their scales linearly; the vertex is scaled (the normal
-// by 1/S), then moved by the normalised blend. A vertex with no positive weight stays as it is.
+// The transform of one vertex: the influences' dual quaternions blended by weight, each first
+// aligned with the first influence of positive weight (the sign rule), normalised; their scales
+// blended linearly. No positive weight gives the identity. (A per-vertex transform has a joint's
+// form.) GPU twin: blendJoints in shaders/dual_quat.glsl.
+DualQuatJoint blendJoints(const std::vector<DualQuatJoint>& palette, glm::uvec4 joints,
+                          glm::vec4 weights);
+
+// A bind-pose vertex moved by a transform: scaled (the normal by 1/S), rotated, translated.
+SkinnedVertex applyTransform(const DualQuatJoint& transform, glm::vec3 position, glm::vec3 normal);
+
+// blendJoints then applyTransform: a vertex with no positive weight stays as it is.
 SkinnedVertex skinDualQuat(const std::vector<DualQuatJoint>& palette, glm::vec3 position,
                            glm::vec3 normal, glm::uvec4 joints, glm::vec4 weights);
 

@@ -1,0 +1,97 @@
+// Twin of shaders/trajectory_segment.glsl; keep the order of operations the same.
+#include "core/trajectory/build_segment.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace mfx::trajectory {
+
+Status checkParameters(const SegmentParameters& p) {
+    if (p.subSamples < 1 || p.subSamples > MFX_TRAJECTORY_MAX_SUBSAMPLES)
+        return Error{"sub_samples " + std::to_string(p.subSamples) + " is outside 1.." +
+                     std::to_string(MFX_TRAJECTORY_MAX_SUBSAMPLES)};
+    if (!std::isfinite(p.impulseScale))
+        return Error{"impulse coefficient k must be a finite number"};
+    if (!(p.alphaStart >= 0.0f && p.alphaStart <= 1.0f))
+        return Error{"alpha at tau = 0 must be in [0, 1]"};
+    if (!(p.alphaEnd >= 0.0f && p.alphaEnd <= 1.0f))
+        return Error{"alpha at tau = 1 must be in [0, 1]"};
+    if (!(p.alphaPower > 0.0f && std::isfinite(p.alphaPower)))
+        return Error{"attenuation power must be a finite number > 0"};
+    return Ok{};
+}
+
+float attenuation(float tau, const SegmentParameters& p) {
+    const float shaped = tau > 0.0f ? std::pow(tau, p.alphaPower) : 0.0f;
+    return p.alphaStart + (p.alphaEnd - p.alphaStart) * shaped;
+}
+
+anim::DualQuatJoint interpolateTransform(const anim::DualQuatJoint& a, const anim::DualQuatJoint& b,
+                                         float tau) {
+    const float s = glm::dot(a.rigid.real, b.rigid.real) < 0.0f ? -tau : tau;
+    const glm::quat real = (1.0f - tau) * a.rigid.real + s * b.rigid.real;
+    const glm::quat dual = (1.0f - tau) * a.rigid.dual + s * b.rigid.dual;
+    const glm::vec3 scale = (1.0f - tau) * a.scale + tau * b.scale;
+    const float length = glm::length(real);
+    return {{real / length, dual / length}, scale};
+}
+
+std::vector<anim::DualQuatJoint> vertexTransforms(const Source& source,
+                                                  const std::vector<anim::DualQuatJoint>& palette) {
+    std::vector<anim::DualQuatJoint> out;
+    out.reserve(source.vertices.size());
+    for (const shared::SkinVertexIn& v : source.vertices) {
+        glm::vec4 weights = v.weights;
+        for (int k = 0; k < 4; ++k)
+            if (v.joints[k] >= palette.size()) weights[k] = 0.0f; // as the shader drops them
+        glm::uvec4 joints = v.joints;
+        for (int k = 0; k < 4; ++k)
+            if (joints[k] >= palette.size()) joints[k] = 0;
+        out.push_back(anim::blendJoints(palette, joints, weights));
+    }
+    return out;
+}
+
+std::vector<shared::TrajectoryVertex> buildSegment(const Source& source,
+                                                   const std::vector<anim::DualQuatJoint>& now,
+                                                   const std::vector<anim::DualQuatJoint>& previous,
+                                                   float time, float dt,
+                                                   const SegmentParameters& parameters) {
+    const uint32_t s =
+        std::clamp(parameters.subSamples, 1u, uint32_t(MFX_TRAJECTORY_MAX_SUBSAMPLES));
+    std::vector<shared::TrajectoryVertex> out(source.vertices.size() * (s + 1));
+    std::vector<glm::vec3> positions(s + 1), normals(s + 1);
+    const float perStep = dt > 0.0f ? float(s) / dt : 0.0f;
+    for (size_t v = 0; v < source.vertices.size(); ++v) {
+        const shared::SkinVertexIn& in = source.vertices[v];
+        for (uint32_t i = 0; i <= s; ++i) {
+            const float tau = float(i) / float(s);
+            const anim::SkinnedVertex moved =
+                anim::applyTransform(interpolateTransform(now[v], previous[v], tau),
+                                     glm::vec3(in.position), glm::vec3(in.normal));
+            positions[i] = moved.position;
+            normals[i] = moved.normal;
+        }
+        for (uint32_t i = 0; i <= s; ++i) {
+            const float tau = float(i) / float(s);
+            glm::vec3 velocity;
+            if (i == 0)
+                velocity = (positions[0] - positions[1]) * perStep;
+            else if (i == s)
+                velocity = (positions[s - 1] - positions[s]) * perStep;
+            else
+                velocity = 0.5f * ((positions[i - 1] - positions[i]) * perStep +
+                                   (positions[i] - positions[i + 1]) * perStep);
+            shared::TrajectoryVertex& o = out[v * (s + 1) + i];
+            o.position = glm::vec4(positions[i], tau);
+            o.normal = glm::vec4(normals[i], time - tau * dt);
+            const glm::vec4& colour = source.colours[v];
+            o.color = glm::vec4(glm::vec3(colour), colour.a * attenuation(tau, parameters));
+            o.velocity = glm::vec4(velocity * parameters.impulseScale, time);
+        }
+    }
+    return out;
+}
+
+} // namespace mfx::trajectory

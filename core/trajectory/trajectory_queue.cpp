@@ -1,0 +1,290 @@
+#include "core/trajectory/trajectory_queue.h"
+
+#include "core/anim/skin_vertices.h"
+#include "core/gpu/context.h"
+#include "shaders/embedded.h"
+
+#include <algorithm>
+#include <cstring>
+#include <string>
+
+namespace mfx::trajectory {
+
+namespace {
+
+constexpr VkDeviceSize kUpdateChunk = 65536; // vkCmdUpdateBuffer's limit per call
+
+// Copies `bytes` into `buffer` inside the command buffer (no host synchronisation needed).
+void updateBuffer(VkCommandBuffer cmd, const gpu::Buffer& buffer, const void* bytes,
+                  VkDeviceSize size) {
+    const auto* data = static_cast<const unsigned char*>(bytes);
+    for (VkDeviceSize offset = 0; offset < size; offset += kUpdateChunk)
+        vkCmdUpdateBuffer(cmd, buffer.get(), offset, std::min(kUpdateChunk, size - offset),
+                          data + offset);
+}
+
+std::vector<uint32_t> segmentIndices(Kind kind, const Source& source, uint32_t subSamples) {
+    const uint32_t per = subSamples + 1;
+    std::vector<uint32_t> out;
+    if (kind == Kind::Lines) {
+        for (uint32_t v = 0; v < source.vertices.size(); ++v)
+            for (uint32_t i = 0; i < subSamples; ++i)
+                out.insert(out.end(), {v * per + i, v * per + i + 1});
+    } else if (kind == Kind::Volumes) {
+        for (size_t t = 0; t + 2 < source.triangles.size(); t += 3)
+            for (int e = 0; e < 3; ++e) {
+                const uint32_t m = source.triangles[t + size_t(e)];
+                const uint32_t n = source.triangles[t + size_t((e + 1) % 3)];
+                for (uint32_t i = 0; i < subSamples; ++i) {
+                    const uint32_t ni = n * per + i, mi = m * per + i;
+                    out.insert(out.end(), {ni, mi, ni + 1, mi + 1, ni + 1, mi});
+                }
+            }
+    }
+    return out;
+}
+
+} // namespace
+
+const char* kindName(Kind kind) {
+    switch (kind) {
+    case Kind::Particles:
+        return "particles";
+    case Kind::Lines:
+        return "lines";
+    case Kind::Volumes:
+        return "volumes";
+    }
+    return "lines";
+}
+
+const char* methodName(Method method) {
+    return method == Method::Split ? "split" : "unsplit";
+}
+
+Result<std::unique_ptr<Queue>> Queue::create(const gpu::Context& ctx, Source source,
+                                             const QueueOptions& options) {
+    if (Status valid = checkParameters(options.segment); !valid) return valid.error();
+    if (options.maxLifetime < 1 || options.maxLifetime > 4096)
+        return Error{"maximum lifetime " + std::to_string(options.maxLifetime) +
+                     " is outside 1..4096 frames"};
+    if (options.lifetime < 1 || options.lifetime > options.maxLifetime)
+        return Error{"lifetime " + std::to_string(options.lifetime) + " is outside 1.." +
+                     std::to_string(options.maxLifetime) + " frames (the maximum lifetime)"};
+    if (source.vertices.empty()) return Error{"the trajectory source has no vertex"};
+    if (options.kind == Kind::Volumes && source.triangles.empty())
+        return Error{"motion volumes need triangles, and the selection holds none"};
+
+    std::unique_ptr<Queue> q(new Queue(ctx));
+    q->options_ = options;
+    q->sourceVertices_ = uint32_t(source.vertices.size());
+    q->jointCount_ = uint32_t(std::max<size_t>(source.palette.size(), 1));
+    q->subSamples_ = options.segment.subSamples;
+    const VkDeviceSize segmentBytes =
+        VkDeviceSize(q->verticesPerSegment()) * sizeof(shared::TrajectoryVertex);
+    const VkDeviceSize ringBytes = segmentBytes * options.maxLifetime;
+    const VkDeviceSize limit = ctx.limits().maxStorageBufferRange;
+    if (ringBytes > limit || uint64_t(q->verticesPerSegment()) * options.maxLifetime > INT32_MAX)
+        return Error{"a ring of " + std::to_string(options.maxLifetime) + " segments of " +
+                     std::to_string(q->verticesPerSegment()) + " vertices needs " +
+                     std::to_string(ringBytes >> 20) + " MiB, more than the device's storage " +
+                     "buffer range (" + std::to_string(limit >> 20) +
+                     " MiB); use fewer sub-samples, a shorter lifetime or fewer vertices"};
+
+    const VkBufferUsageFlags storage =
+        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+    q->sources_ = gpu::createBuffer(ctx, source.vertices.size() * sizeof(shared::SkinVertexIn),
+                                    storage, gpu::MemoryUsage::DeviceLocal, "trajectory sources");
+    gpu::uploadBuffer(ctx, q->sources_, std::span<const shared::SkinVertexIn>(source.vertices));
+    q->colours_ = gpu::createBuffer(ctx, source.colours.size() * sizeof(glm::vec4), storage,
+                                    gpu::MemoryUsage::DeviceLocal, "trajectory colours");
+    gpu::uploadBuffer(ctx, q->colours_, std::span<const glm::vec4>(source.colours));
+    q->transforms_ =
+        gpu::createBuffer(ctx, 2 * source.vertices.size() * sizeof(shared::SkinJoint), storage,
+                          gpu::MemoryUsage::DeviceLocal, "trajectory transforms");
+    const VkDeviceSize palettes = options.method == Method::Split ? 1 : options.maxLifetime + 1;
+    q->palette_ = gpu::createBuffer(ctx, palettes * q->jointCount_ * sizeof(shared::SkinJoint),
+                                    storage, gpu::MemoryUsage::DeviceLocal, "trajectory palettes");
+    q->times_ = gpu::createBuffer(ctx, (options.maxLifetime + 1) * sizeof(float), storage,
+                                  gpu::MemoryUsage::DeviceLocal, "trajectory times");
+    q->ring_ = gpu::createBuffer(ctx, ringBytes,
+                                 storage | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT |
+                                     VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                 gpu::MemoryUsage::DeviceLocal, "trajectory ring");
+    const std::vector<uint32_t> indices = segmentIndices(options.kind, source, q->subSamples_);
+    q->indexCount_ = uint32_t(indices.size());
+    if (!indices.empty()) {
+        q->indices_ =
+            gpu::createBuffer(ctx, indices.size() * sizeof(uint32_t),
+                              VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                              gpu::MemoryUsage::DeviceLocal, "trajectory indices");
+        gpu::uploadBuffer(ctx, q->indices_, std::span<const uint32_t>(indices));
+    }
+
+    gpu::ComputeProgramDesc desc;
+    const bool split = options.method == Method::Split;
+    desc.name = split ? "build_segment" : "build_trail";
+    desc.spirv = split ? shaders::build_segment_comp : shaders::build_trail_comp;
+    for (uint32_t b = 0; b < 5; ++b)
+        desc.bindings.push_back(
+            {b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT});
+    desc.pushConstantSize = sizeof(shared::TrajectoryConstants);
+    desc.maxSets = 1;
+    q->program_ = gpu::createComputeProgram(ctx, desc);
+    q->set_ = q->program_.createSet(ctx, {gpu::bindBuffer(0, q->palette_),
+                                          gpu::bindBuffer(1, q->sources_),
+                                          gpu::bindBuffer(2, q->colours_),
+                                          gpu::bindBuffer(3, split ? q->transforms_ : q->times_),
+                                          gpu::bindBuffer(4, q->ring_)});
+    q->timer_ = gpu::GpuTimer(ctx, 1);
+    return q;
+}
+
+Status Queue::setLifetime(uint32_t lifetime) {
+    if (lifetime < 1 || lifetime > options_.maxLifetime)
+        return Error{"lifetime " + std::to_string(lifetime) + " is outside 1.." +
+                     std::to_string(options_.maxLifetime) + " frames (the maximum lifetime)"};
+    options_.lifetime = lifetime;
+    if (frames_ > 0)
+        oldestLive_ = std::max(oldestLive_, frames_ - std::min<uint64_t>(frames_, lifetime));
+    return Ok{};
+}
+
+shared::TrajectoryConstants Queue::constants() const {
+    shared::TrajectoryConstants c{};
+    c.vertexCount = sourceVertices_;
+    c.jointCount = jointCount_;
+    c.subSamples = subSamples_;
+    c.impulseScale = options_.segment.impulseScale;
+    c.alphaStart = options_.segment.alphaStart;
+    c.alphaEnd = options_.segment.alphaEnd;
+    c.alphaPower = options_.segment.alphaPower;
+    return c;
+}
+
+void Queue::record(VkCommandBuffer cmd, const std::vector<anim::DualQuatJoint>& palette,
+                   float time) {
+    std::vector<shared::SkinJoint> packed = anim::packPalette(palette);
+    packed.resize(jointCount_,
+                  shared::SkinJoint{glm::vec4(0, 0, 0, 1), glm::vec4(0.0f), glm::vec4(1, 1, 1, 0)});
+    timer_.reset(cmd);
+    timer_.begin(cmd, options_.method == Method::Split ? "build_segment" : "build_trail");
+    historyTimes_.push_front(time);
+    if (historyTimes_.size() > options_.maxLifetime + 1) historyTimes_.pop_back();
+    if (options_.method == Method::Split) {
+        recordSplit(cmd, packed, time);
+    } else {
+        history_.push_front(std::move(packed));
+        if (history_.size() > options_.maxLifetime + 1) history_.pop_back();
+        recordUnsplit(cmd);
+    }
+    timer_.end(cmd);
+    gpu::memoryBarrier(
+        cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_VERTEX_INPUT_BIT |
+            VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT |
+            VK_ACCESS_2_TRANSFER_READ_BIT);
+    lastTime_ = time;
+    ++frames_;
+    oldestLive_ = std::max(oldestLive_, frames_ - std::min<uint64_t>(frames_, options_.lifetime));
+    stats_.liveSegments = uint32_t(frames_ - oldestLive_);
+}
+
+void Queue::recordSplit(VkCommandBuffer cmd, const std::vector<shared::SkinJoint>& packed,
+                        float time) {
+    // The previous pass may still read the palette and transforms this frame overwrites.
+    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                       VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    updateBuffer(cmd, palette_, packed.data(), packed.size() * sizeof(shared::SkinJoint));
+    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    shared::TrajectoryConstants c = constants();
+    const uint32_t slot = uint32_t(frames_ % options_.maxLifetime);
+    c.outputBase = slot * verticesPerSegment();
+    c.transformNow = uint32_t(frames_ % 2) * sourceVertices_;
+    c.transformPrevious = uint32_t((frames_ + 1) % 2) * sourceVertices_;
+    c.hasPrevious = frames_ > 0 ? 1u : 0u;
+    c.time = time;
+    c.dt = frames_ > 0 ? time - lastTime_ : 0.0f;
+    program_.bind(cmd, set_);
+    program_.push(cmd, c);
+    vkCmdDispatch(cmd, gpu::groupCount(sourceVertices_, MFX_TRAJECTORY_GROUP_SIZE), 1, 1);
+
+    stats_.invocations = sourceVertices_;
+    stats_.skinningEvaluations = sourceVertices_;
+    stats_.verticesGenerated = verticesPerSegment();
+    stats_.bytesWritten = uint64_t(verticesPerSegment()) * sizeof(shared::TrajectoryVertex) +
+                          uint64_t(sourceVertices_) * sizeof(shared::SkinJoint) +
+                          packed.size() * sizeof(shared::SkinJoint);
+}
+
+void Queue::recordUnsplit(VkCommandBuffer cmd) {
+    // Segments of frames oldest..newest after this one is added (the same rule as the split ring).
+    const uint64_t newest = frames_;
+    const uint64_t oldest =
+        std::max(oldestLive_, newest + 1 - std::min<uint64_t>(newest + 1, options_.lifetime));
+    const uint32_t segments = uint32_t(newest - oldest + 1);
+    // Palettes and times of frames newest, newest - 1, ..., newest - segments; frame -1 is frame 0.
+    std::vector<shared::SkinJoint> palettes;
+    std::vector<float> times;
+    for (uint32_t j = 0; j <= segments; ++j) {
+        const size_t k = std::min<size_t>(j, history_.size() - 1);
+        palettes.insert(palettes.end(), history_[k].begin(), history_[k].end());
+        times.push_back(historyTimes_[k]);
+    }
+    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                       VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    updateBuffer(cmd, palette_, palettes.data(), palettes.size() * sizeof(shared::SkinJoint));
+    updateBuffer(cmd, times_, times.data(), times.size() * sizeof(float));
+    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    shared::TrajectoryConstants c = constants();
+    c.segmentCount = segments;
+    program_.bind(cmd, set_);
+    program_.push(cmd, c);
+    vkCmdDispatch(cmd, gpu::groupCount(sourceVertices_, MFX_TRAJECTORY_GROUP_SIZE), segments, 1);
+
+    stats_.invocations = uint64_t(sourceVertices_) * segments;
+    stats_.skinningEvaluations = 2ull * sourceVertices_ * segments;
+    stats_.verticesGenerated = uint64_t(verticesPerSegment()) * segments;
+    stats_.bytesWritten = stats_.verticesGenerated * sizeof(shared::TrajectoryVertex) +
+                          palettes.size() * sizeof(shared::SkinJoint) +
+                          times.size() * sizeof(float);
+}
+
+std::vector<LiveSegment> Queue::liveSegments() const {
+    std::vector<LiveSegment> out;
+    if (frames_ == 0) return out;
+    for (uint64_t frame = frames_; frame-- > oldestLive_;) {
+        LiveSegment s;
+        s.frame = frame;
+        const uint64_t age = frames_ - 1 - frame;
+        if (options_.method == Method::Split) {
+            s.firstVertex = uint32_t(frame % options_.maxLifetime) * verticesPerSegment();
+        } else {
+            s.firstVertex = uint32_t(age) * verticesPerSegment();
+        }
+        s.birth = historyTimes_[size_t(age)]; // age < lifetime <= maxLifetime < its size
+        out.push_back(s);
+    }
+    return out;
+}
+
+double Queue::lastGpuMilliseconds() const {
+    const std::vector<gpu::PassTime> times = timer_.results();
+    return times.empty() ? 0.0 : times.front().milliseconds;
+}
+
+std::vector<shared::TrajectoryVertex> Queue::readSegment(const LiveSegment& segment) const {
+    const std::vector<std::byte> bytes = gpu::readBuffer(ctx_, ring_);
+    std::vector<shared::TrajectoryVertex> out(verticesPerSegment());
+    std::memcpy(out.data(),
+                bytes.data() + size_t(segment.firstVertex) * sizeof(shared::TrajectoryVertex),
+                out.size() * sizeof(shared::TrajectoryVertex));
+    return out;
+}
+
+} // namespace mfx::trajectory

@@ -1,0 +1,553 @@
+// Trajectory segments and their queue: the geometry of a segment (static, translation, the arc of
+// a rotation), the selection of source vertices, the GPU pass against its CPU twin, welding of
+// consecutive segments, and the ring's behaviour as segments are born and age out.
+#include "core/anim/fighter.h"
+#include "core/anim/sampling.h"
+#include "core/gpu/commands.h"
+#include "core/trajectory/build_segment.h"
+#include "core/trajectory/trajectory_queue.h"
+#include "core/trajectory/trajectory_source.h"
+#include "tests/gpu_test.h"
+
+#include <cmath>
+#include <cstring>
+#include <glm/gtc/quaternion.hpp>
+
+namespace mfx::test {
+namespace {
+
+using trajectory::SegmentParameters;
+using trajectory::Source;
+
+// A source of `count` vertices on a circle of radius `radius` in the xz plane around the origin,
+// each bound to palette entry 0 alone.
+Source ringSource(int count, float radius) {
+    Source s;
+    s.palette.push_back({-1, -1, -1});
+    for (int i = 0; i < count; ++i) {
+        const float a = 6.2831853f * float(i) / float(count);
+        shared::SkinVertexIn v{};
+        v.position = glm::vec4(radius * std::cos(a), 0.1f * float(i), radius * std::sin(a), 1.0f);
+        v.normal = glm::vec4(std::cos(a), 0.0f, std::sin(a), 0.0f);
+        v.joints = glm::uvec4(0);
+        v.weights = glm::vec4(1.0f, 0.0f, 0.0f, 0.0f);
+        s.vertices.push_back(v);
+        s.colours.push_back(glm::vec4(1.0f, 0.5f, 0.2f, 1.0f));
+    }
+    for (int i = 0; i + 2 < count; ++i)
+        s.triangles.insert(s.triangles.end(), {0u, uint32_t(i + 1), uint32_t(i + 2)});
+    return s;
+}
+
+anim::DualQuatJoint rigid(const glm::quat& rotation, const glm::vec3& translation) {
+    return {math::DualQuat::fromRigid(rotation, translation), glm::vec3(1.0f)};
+}
+
+std::vector<shared::TrajectoryVertex> cpuSegment(const Source& source,
+                                                 const anim::DualQuatJoint& now,
+                                                 const anim::DualQuatJoint& previous, float time,
+                                                 float dt, const SegmentParameters& parameters) {
+    return trajectory::buildSegment(source, trajectory::vertexTransforms(source, {now}),
+                                    trajectory::vertexTransforms(source, {previous}), time, dt,
+                                    parameters);
+}
+
+// --- The geometry of one segment (CPU twin)
+// --------------------------------------------------------
+
+TEST(TrajectorySegment, StaticPoseHasZeroExtent) {
+    const Source source = ringSource(12, 0.7f);
+    SegmentParameters parameters;
+    parameters.subSamples = 8;
+    const anim::DualQuatJoint pose = rigid(glm::angleAxis(0.4f, glm::vec3(0, 1, 0)), {1, 2, 3});
+    const auto segment = cpuSegment(source, pose, pose, 1.0f, 1.0f / 60.0f, parameters);
+    ASSERT_EQ(segment.size(), 12u * 9u);
+    for (size_t v = 0; v < 12; ++v)
+        for (size_t i = 0; i <= 8; ++i) {
+            const shared::TrajectoryVertex& s = segment[v * 9 + i];
+            EXPECT_EQ(glm::vec3(s.position), glm::vec3(segment[v * 9].position)) << v << "," << i;
+            EXPECT_EQ(glm::vec3(s.velocity), glm::vec3(0.0f)) << v << "," << i;
+        }
+}
+
+TEST(TrajectorySegment, PureTranslationIsStraightAndEvenlySpaced) {
+    const Source source = ringSource(12, 0.7f);
+    SegmentParameters parameters;
+    parameters.subSamples = 8;
+    const glm::quat r = glm::angleAxis(0.4f, glm::vec3(0, 1, 0));
+    const glm::vec3 move(0.3f, -0.1f, 0.2f);
+    const float dt = 1.0f / 60.0f;
+    const auto segment =
+        cpuSegment(source, rigid(r, move), rigid(r, glm::vec3(0.0f)), 1.0f, dt, parameters);
+    for (size_t v = 0; v < 12; ++v) {
+        const glm::vec3 start(segment[v * 9].position);
+        for (size_t i = 0; i <= 8; ++i) {
+            const glm::vec3 expected = start - move * (float(i) / 8.0f);
+            EXPECT_LE(glm::length(glm::vec3(segment[v * 9 + i].position) - expected), 1e-6f)
+                << v << "," << i;
+            // The velocity of a straight, uniform move: move / dt everywhere.
+            EXPECT_LE(glm::length(glm::vec3(segment[v * 9 + i].velocity) - move / dt),
+                      1e-3f * glm::length(move / dt))
+                << v << "," << i;
+        }
+    }
+}
+
+// A rigid rotation of 90 degrees about y between two frames: the sub-samples lie on the circle
+// the vertex really travels; interpolating the end positions linearly cuts the chord instead.
+TEST(TrajectorySegment, RotationFollowsTheArcWhereLinearInterpolationCutsTheChord) {
+    const float radius = 0.8f;
+    const Source source = ringSource(16, radius);
+    SegmentParameters parameters;
+    parameters.subSamples = 16;
+    const glm::vec3 up(0, 1, 0);
+    const auto now = rigid(glm::angleAxis(glm::radians(90.0f), up), glm::vec3(0.0f));
+    const auto previous = rigid(glm::quat(1, 0, 0, 0), glm::vec3(0.0f));
+    const auto segment = cpuSegment(source, now, previous, 1.0f, 1.0f / 30.0f, parameters);
+    double worstArc = 0.0, worstLinear = 0.0;
+    for (size_t v = 0; v < 16; ++v) {
+        const glm::vec3 a(segment[v * 17].position), b(segment[v * 17 + 16].position);
+        for (size_t i = 0; i <= 16; ++i) {
+            const glm::vec3 p(segment[v * 17 + i].position);
+            const double radial = std::abs(glm::length(glm::vec2(p.x, p.z)) - radius);
+            worstArc = std::max(worstArc, radial);
+            const float tau = float(i) / 16.0f;
+            const glm::vec3 lerped = (1.0f - tau) * a + tau * b;
+            worstLinear = std::max(
+                worstLinear, double(std::abs(glm::length(glm::vec2(lerped.x, lerped.z)) - radius)));
+            EXPECT_NEAR(p.y, a.y, 1e-6f); // stays in its plane
+        }
+    }
+    std::printf("90-degree turn, radius %.2f: dual quaternion sub-samples %.3g off the arc, linear "
+                "interpolation %.3g (%.0fx worse)\n",
+                double(radius), worstArc, worstLinear, worstLinear / std::max(worstArc, 1e-12));
+    EXPECT_LT(worstArc, 1e-4 * double(radius));
+    // The chord's midpoint is r cos(45 degrees) from the centre: 29% of the radius off.
+    EXPECT_GT(worstLinear, 0.25 * double(radius));
+    EXPECT_GT(worstLinear, 1000.0 * worstArc);
+}
+
+TEST(TrajectorySegment, AttenuationRunsFromStartToEnd) {
+    SegmentParameters p;
+    p.alphaStart = 0.9f;
+    p.alphaEnd = 0.1f;
+    p.alphaPower = 2.0f;
+    EXPECT_FLOAT_EQ(trajectory::attenuation(0.0f, p), 0.9f);
+    EXPECT_FLOAT_EQ(trajectory::attenuation(1.0f, p), 0.1f);
+    EXPECT_FLOAT_EQ(trajectory::attenuation(0.5f, p), 0.9f - 0.8f * 0.25f);
+}
+
+TEST(TrajectorySegment, BadParametersAreRefusedByName) {
+    SegmentParameters p;
+    p.subSamples = 17;
+    EXPECT_NE(trajectory::checkParameters(p).error().message.find("sub_samples 17"),
+              std::string::npos);
+    p = {};
+    p.subSamples = 0;
+    EXPECT_FALSE(trajectory::checkParameters(p).ok());
+    p = {};
+    p.impulseScale = std::nanf("");
+    EXPECT_FALSE(trajectory::checkParameters(p).ok());
+    p = {};
+    p.alphaPower = 0.0f;
+    EXPECT_FALSE(trajectory::checkParameters(p).ok());
+    p = {};
+    p.alphaEnd = 1.5f;
+    EXPECT_FALSE(trajectory::checkParameters(p).ok());
+}
+
+// --- Choosing the source vertices ----------------------------------------------------------------
+
+TEST(TrajectorySource, WholeFighterByDefault) {
+    const anim::Character fighter = anim::makeFighter();
+    const auto selected = trajectory::selectSource(fighter, {});
+    ASSERT_TRUE(selected.ok()) << selected.error().message;
+    size_t vertices = 0, indices = 0;
+    for (const anim::Mesh& m : fighter.meshes)
+        for (const anim::Primitive& p : m.primitives) {
+            vertices += p.positions.size();
+            indices += p.indices.size();
+        }
+    EXPECT_EQ(selected.value().vertices.size(), vertices);
+    EXPECT_EQ(selected.value().triangles.size(), indices);
+    EXPECT_EQ(selected.value().palette.size(), fighter.skins[0].joints.size());
+}
+
+TEST(TrajectorySource, BonesKeepOnlyTheirVertices) {
+    const anim::Character fighter = anim::makeFighter();
+    trajectory::Selection selection;
+    selection.meshes = {"body"};
+    selection.bones = {"foot_r", "toe_r"};
+    const auto selected = trajectory::selectSource(fighter, selection);
+    ASSERT_TRUE(selected.ok()) << selected.error().message;
+    const Source& s = selected.value();
+    EXPECT_GT(s.vertices.size(), 20u);
+    EXPECT_LT(s.vertices.size(), 1000u);
+    for (uint32_t index : s.triangles)
+        ASSERT_LT(index, s.vertices.size());
+    // Every kept vertex is weighted at least half to the right foot or toe.
+    const int foot = *fighter.findNode("foot_r"), toe = *fighter.findNode("toe_r");
+    for (const shared::SkinVertexIn& v : s.vertices) {
+        float w = 0.0f;
+        for (int k = 0; k < 4; ++k) {
+            const trajectory::PaletteEntry& e = s.palette[v.joints[k]];
+            const int node = fighter.skins[size_t(e.skin)].joints[size_t(e.joint)];
+            if (node == foot || node == toe) w += v.weights[k];
+        }
+        ASSERT_GE(w, 0.5f);
+    }
+}
+
+TEST(TrajectorySource, UnknownNamesAreListed) {
+    const anim::Character fighter = anim::makeFighter();
+    trajectory::Selection selection;
+    selection.bones = {"hand_r", "hand_X"};
+    const auto bone = trajectory::selectSource(fighter, selection);
+    ASSERT_FALSE(bone.ok());
+    EXPECT_NE(bone.error().message.find("bones[1]: no bone \"hand_X\"; bones are: hips, "),
+              std::string::npos)
+        << bone.error().message;
+    selection = {};
+    selection.meshes = {"cape"};
+    const auto mesh = trajectory::selectSource(fighter, selection);
+    ASSERT_FALSE(mesh.ok());
+    EXPECT_NE(mesh.error().message.find("meshes[0]: no mesh \"cape\"; meshes are: body, sword"),
+              std::string::npos)
+        << mesh.error().message;
+}
+
+// --- The GPU queue
+// ---------------------------------------------------------------------------------
+
+using TrajectoryGpu = GpuTest;
+
+std::unique_ptr<trajectory::Queue> makeQueue(gpu::Context& ctx, Source source,
+                                             trajectory::QueueOptions options) {
+    auto created = trajectory::Queue::create(ctx, std::move(source), options);
+    EXPECT_TRUE(created.ok()) << created.error().message;
+    return created ? std::move(created).value() : nullptr;
+}
+
+// The fighter's palette at `time` in `clip`.
+std::vector<anim::DualQuatJoint> fighterPalette(const anim::Character& fighter,
+                                                const Source& source, const anim::Clip& clip,
+                                                float time) {
+    return trajectory::sourcePalette(fighter, source,
+                                     anim::samplePose(fighter, &clip, time, anim::Wrap::Clamp));
+}
+
+TEST_F(TrajectoryGpu, SegmentEqualsTheCpuTwin) {
+    const anim::Character fighter = anim::makeFighter();
+    trajectory::Selection selection;
+    selection.bones = {"thigh_r", "shin_r", "foot_r", "toe_r"};
+    Source source = trajectory::selectSource(fighter, selection).value();
+    trajectory::QueueOptions options;
+    options.segment.subSamples = 6;
+    options.segment.impulseScale = 0.8f;
+    options.segment.alphaPower = 1.5f;
+    options.lifetime = 4;
+    options.maxLifetime = 4;
+    auto queue = makeQueue(ctx(), source, options);
+    ASSERT_TRUE(queue);
+    const anim::Clip& kick = *fighter.findClip("roundhouse_kick");
+    const float dt = 1.0f / 30.0f;
+    const float t0 = 0.40f, t1 = t0 + dt;
+    const auto p0 = fighterPalette(fighter, source, kick, t0);
+    const auto p1 = fighterPalette(fighter, source, kick, t1);
+    gpu::submitOneShot(ctx(), [&](VkCommandBuffer cmd) {
+        queue->record(cmd, p0, t0);
+        queue->record(cmd, p1, t1);
+    });
+    const auto live = queue->liveSegments();
+    ASSERT_EQ(live.size(), 2u);
+    const auto gpu = queue->readSegment(live[0]);
+    const auto cpu = trajectory::buildSegment(source, trajectory::vertexTransforms(source, p1),
+                                              trajectory::vertexTransforms(source, p0), t1, t1 - t0,
+                                              options.segment);
+    ASSERT_EQ(gpu.size(), cpu.size());
+    double worstPosition = 0, worstNormal = 0, worstVelocity = 0, worstAlpha = 0, fastest = 0;
+    for (size_t i = 0; i < cpu.size(); ++i) {
+        worstPosition =
+            std::max(worstPosition,
+                     double(glm::length(glm::vec3(gpu[i].position) - glm::vec3(cpu[i].position))));
+        worstNormal = std::max(
+            worstNormal, double(glm::length(glm::vec3(gpu[i].normal) - glm::vec3(cpu[i].normal))));
+        worstVelocity =
+            std::max(worstVelocity,
+                     double(glm::length(glm::vec3(gpu[i].velocity) - glm::vec3(cpu[i].velocity))));
+        fastest = std::max(fastest, double(glm::length(glm::vec3(cpu[i].velocity))));
+        worstAlpha = std::max(worstAlpha, double(std::abs(gpu[i].color.a - cpu[i].color.a)));
+        ASSERT_EQ(gpu[i].velocity.w, t1);
+        ASSERT_EQ(gpu[i].position.w, cpu[i].position.w);
+    }
+    std::printf("%zu trajectory vertices: GPU vs CPU position %.3g m, normal %.3g, velocity %.3g "
+                "m/s (fastest %.3g m/s), alpha %.3g\n",
+                cpu.size(), worstPosition, worstNormal, worstVelocity, fastest, worstAlpha);
+    EXPECT_GT(fastest, 1.0); // the kick moves: not a vacuous comparison
+    EXPECT_LE(worstPosition, 1e-5);
+    EXPECT_LE(worstNormal, 1e-5);
+    EXPECT_LE(worstAlpha, 1e-5);
+    // A velocity is a position difference times S / dt = 180: the positions' 1e-5 is allowed,
+    // scaled by that factor, relative to the fastest speed.
+    EXPECT_LE(worstVelocity, 1e-5 * fastest + 1e-5 * 180.0);
+}
+
+// Segment i's tau = 1 end is segment i-1's tau = 0 end, bit for bit, for every source vertex of
+// the whole fighter, across 100 frames of every clip.
+TEST_F(TrajectoryGpu, WeldingIsExactAcross100FramesOfEveryClip) {
+    const anim::Character fighter = anim::makeFighter();
+    Source source = trajectory::selectSource(fighter, {}).value();
+    const size_t sources = source.vertices.size();
+    trajectory::QueueOptions options;
+    options.segment.subSamples = 2;
+    options.lifetime = 100;
+    options.maxLifetime = 100;
+    for (const anim::Clip& clip : fighter.clips) {
+        auto queue = makeQueue(ctx(), source, options);
+        ASSERT_TRUE(queue);
+        const float dt = clip.duration / 100.0f; // the whole clip in 100 frames
+        gpu::submitOneShot(ctx(), [&](VkCommandBuffer cmd) {
+            for (int f = 0; f < 100; ++f) {
+                const float t = float(f) * dt;
+                queue->record(cmd, fighterPalette(fighter, source, clip, t), t);
+            }
+        });
+        const auto live = queue->liveSegments();
+        ASSERT_EQ(live.size(), 100u);
+        const std::vector<std::byte> ring = gpu::readBuffer(ctx(), queue->vertices());
+        auto sample = [&](const trajectory::LiveSegment& s, size_t v, size_t i) {
+            shared::TrajectoryVertex out;
+            std::memcpy(
+                &out, ring.data() + (s.firstVertex + v * 3 + i) * sizeof(shared::TrajectoryVertex),
+                sizeof(out));
+            return out;
+        };
+        size_t mismatches = 0;
+        double moved = 0.0;
+        for (size_t k = 0; k + 1 < live.size(); ++k) { // live[k] is newer than live[k + 1]
+            for (size_t v = 0; v < sources; ++v) {
+                const shared::TrajectoryVertex end = sample(live[k], v, 2);
+                const shared::TrajectoryVertex start = sample(live[k + 1], v, 0);
+                if (std::memcmp(&end.position, &start.position, 12) != 0 ||
+                    std::memcmp(&end.normal, &start.normal, 12) != 0)
+                    ++mismatches;
+                moved =
+                    std::max(moved, double(glm::length(glm::vec3(sample(live[k], v, 0).position) -
+                                                       glm::vec3(end.position))));
+            }
+        }
+        EXPECT_EQ(mismatches, 0u) << clip.name << ": " << sources * 99 << " welds";
+        EXPECT_GT(moved, 1e-4) << clip.name << " should move"; // idle moves ~1 mm a frame
+    }
+}
+
+// The births read back from every live slot are those of the frames the queue says are live,
+// newest first, and there are min(L, frames) of them.
+void expectRing(gpu::Context& ctx, const trajectory::Queue& queue,
+                const std::vector<float>& frameTimes, uint64_t expectedOldest) {
+    const auto live = queue.liveSegments();
+    const uint64_t frames = frameTimes.size();
+    ASSERT_EQ(live.size(), frames - expectedOldest);
+    const std::vector<std::byte> ring = gpu::readBuffer(ctx, queue.vertices());
+    for (size_t k = 0; k < live.size(); ++k) {
+        const uint64_t frame = frames - 1 - k;
+        EXPECT_EQ(live[k].frame, frame);
+        EXPECT_EQ(live[k].birth, frameTimes[frame]);
+        for (uint32_t i = 0; i < queue.verticesPerSegment(); ++i) {
+            shared::TrajectoryVertex v;
+            std::memcpy(&v,
+                        ring.data() +
+                            (size_t(live[k].firstVertex) + i) * sizeof(shared::TrajectoryVertex),
+                        sizeof(v));
+            ASSERT_EQ(v.velocity.w, frameTimes[frame]) << "slot of frame " << frame;
+        }
+    }
+}
+
+void runRing(gpu::Context& ctx, trajectory::Method method, uint32_t lifetime) {
+    SCOPED_TRACE(std::string(trajectory::methodName(method)) + " L=" + std::to_string(lifetime));
+    Source source = ringSource(5, 0.5f);
+    trajectory::QueueOptions options;
+    options.method = method;
+    options.segment.subSamples = 3;
+    options.lifetime = lifetime;
+    options.maxLifetime = 64;
+    auto queue = makeQueue(ctx, source, options);
+    ASSERT_TRUE(queue);
+    std::vector<float> times;
+    for (int f = 0; f < 70; ++f) {
+        const float t = 1.0f + 0.01f * float(f);
+        times.push_back(t);
+        gpu::submitOneShot(ctx, [&](VkCommandBuffer cmd) {
+            queue->record(cmd, {rigid(glm::angleAxis(t, glm::vec3(0, 1, 0)), glm::vec3(t))}, t);
+        });
+        if (f < 3 || f % 7 == 0 || f >= 66)
+            expectRing(ctx, *queue, times, times.size() - std::min<size_t>(times.size(), lifetime));
+    }
+}
+
+TEST_F(TrajectoryGpu, RingWithLifetime1) {
+    runRing(ctx(), trajectory::Method::Split, 1);
+}
+TEST_F(TrajectoryGpu, RingWithLifetime2) {
+    runRing(ctx(), trajectory::Method::Split, 2);
+}
+TEST_F(TrajectoryGpu, RingWithLifetime64) {
+    runRing(ctx(), trajectory::Method::Split, 64);
+}
+TEST_F(TrajectoryGpu, UnsplitTrailWithLifetime2And64) {
+    runRing(ctx(), trajectory::Method::Unsplit, 2);
+    runRing(ctx(), trajectory::Method::Unsplit, 64);
+}
+
+// L changes while running: a shrink drops the oldest segments at once, and they never come back;
+// growing lets the trail lengthen one segment per frame.
+TEST_F(TrajectoryGpu, LifetimeChangesWhileRunning) {
+    for (trajectory::Method method : {trajectory::Method::Split, trajectory::Method::Unsplit}) {
+        SCOPED_TRACE(trajectory::methodName(method));
+        trajectory::QueueOptions options;
+        options.method = method;
+        options.lifetime = 8;
+        options.maxLifetime = 16;
+        auto queue = makeQueue(ctx(), ringSource(4, 0.5f), options);
+        ASSERT_TRUE(queue);
+        std::vector<float> times;
+        auto frame = [&]() {
+            const float t = 2.0f + 0.02f * float(times.size());
+            times.push_back(t);
+            gpu::submitOneShot(ctx(), [&](VkCommandBuffer cmd) {
+                queue->record(cmd, {rigid(glm::angleAxis(t, glm::vec3(1, 0, 0)), glm::vec3(0))}, t);
+            });
+        };
+        for (int i = 0; i < 10; ++i)
+            frame();
+        expectRing(ctx(), *queue, times, 2); // frames 2..9
+        ASSERT_TRUE(queue->setLifetime(3).ok());
+        expectRing(ctx(), *queue, times, 7); // frames 7..9 at once
+        frame();
+        expectRing(ctx(), *queue, times, 8); // frames 8..10
+        ASSERT_TRUE(queue->setLifetime(16).ok());
+        expectRing(ctx(), *queue, times, 8); // nothing dropped comes back
+        for (int i = 0; i < 3; ++i)
+            frame();
+        expectRing(ctx(), *queue, times, 8); // frames 8..13: grows one per frame
+        for (int i = 0; i < 20; ++i)
+            frame();
+        expectRing(ctx(), *queue, times, times.size() - 16);
+        EXPECT_FALSE(queue->setLifetime(0).ok());
+        EXPECT_FALSE(queue->setLifetime(17).ok());
+    }
+}
+
+// Split: one skinning per source vertex and S + 1 vertices per invocation whatever L is.
+// Unsplit: skinning and vertices grow with L, but still S + 1 vertices per invocation (the
+// segments are spread over invocations, not looped in one).
+TEST_F(TrajectoryGpu, WritesPerInvocationDoNotDependOnLifetime) {
+    const uint32_t s = 4;
+    for (trajectory::Method method : {trajectory::Method::Split, trajectory::Method::Unsplit})
+        for (uint32_t lifetime : {1u, 2u, 16u, 64u}) {
+            trajectory::QueueOptions options;
+            options.method = method;
+            options.segment.subSamples = s;
+            options.lifetime = lifetime;
+            options.maxLifetime = 64;
+            Source source = ringSource(7, 0.5f);
+            auto queue = makeQueue(ctx(), source, options);
+            ASSERT_TRUE(queue);
+            gpu::submitOneShot(ctx(), [&](VkCommandBuffer cmd) {
+                for (uint32_t f = 0; f < lifetime + 2; ++f)
+                    queue->record(cmd, {rigid(glm::quat(1, 0, 0, 0), glm::vec3(float(f)))},
+                                  float(f) / 60.0f);
+            });
+            const trajectory::FrameStats& stats = queue->lastFrame();
+            EXPECT_EQ(stats.verticesGenerated, stats.invocations * (s + 1));
+            if (method == trajectory::Method::Split) {
+                EXPECT_EQ(stats.invocations, 7u);
+                EXPECT_EQ(stats.skinningEvaluations, 7u);
+            } else {
+                EXPECT_EQ(stats.invocations, 7u * lifetime);
+                EXPECT_EQ(stats.skinningEvaluations, 2u * 7u * lifetime);
+            }
+            EXPECT_EQ(stats.liveSegments, lifetime);
+        }
+}
+
+// The baseline rebuilds the same trail the split method keeps.
+TEST_F(TrajectoryGpu, UnsplitTrailEqualsTheSplitOne) {
+    const anim::Character fighter = anim::makeFighter();
+    trajectory::Selection selection;
+    selection.meshes = {"sword"};
+    Source source = trajectory::selectSource(fighter, selection).value();
+    const anim::Clip& slash = *fighter.findClip("sword_slash");
+    trajectory::QueueOptions options;
+    options.lifetime = 6;
+    options.maxLifetime = 8;
+    options.segment.subSamples = 4;
+    auto split = makeQueue(ctx(), source, options);
+    options.method = trajectory::Method::Unsplit;
+    auto unsplit = makeQueue(ctx(), source, options);
+    ASSERT_TRUE(split && unsplit);
+    gpu::submitOneShot(ctx(), [&](VkCommandBuffer cmd) {
+        for (int f = 0; f < 10; ++f) {
+            const float t = 0.2f + float(f) / 60.0f;
+            const auto palette = fighterPalette(fighter, source, slash, t);
+            split->record(cmd, palette, t);
+            unsplit->record(cmd, palette, t);
+        }
+    });
+    const auto a = split->liveSegments(), b = unsplit->liveSegments();
+    ASSERT_EQ(a.size(), 6u);
+    ASSERT_EQ(b.size(), 6u);
+    double worst = 0.0;
+    for (size_t k = 0; k < a.size(); ++k) {
+        EXPECT_EQ(a[k].frame, b[k].frame);
+        const auto sa = split->readSegment(a[k]), sb = unsplit->readSegment(b[k]);
+        for (size_t i = 0; i < sa.size(); ++i) {
+            worst = std::max(
+                worst, double(glm::length(glm::vec3(sa[i].position) - glm::vec3(sb[i].position))));
+            ASSERT_EQ(sa[i].velocity.w, sb[i].velocity.w);
+        }
+    }
+    EXPECT_LE(worst, 1e-6);
+}
+
+TEST_F(TrajectoryGpu, IndexBuffersConnectTheSamples) {
+    Source source = ringSource(6, 0.5f); // 4 triangles
+    trajectory::QueueOptions options;
+    options.segment.subSamples = 5;
+    options.maxLifetime = 4;
+    options.lifetime = 4;
+    options.kind = trajectory::Kind::Lines;
+    auto lines = makeQueue(ctx(), source, options);
+    options.kind = trajectory::Kind::Volumes;
+    auto volumes = makeQueue(ctx(), source, options);
+    options.kind = trajectory::Kind::Particles;
+    auto particles = makeQueue(ctx(), source, options);
+    ASSERT_TRUE(lines && volumes && particles);
+    EXPECT_EQ(lines->indicesPerSegment(), 6u * 5u * 2u);
+    EXPECT_EQ(volumes->indicesPerSegment(), 4u * 3u * 5u * 6u);
+    EXPECT_EQ(particles->indicesPerSegment(), 0u);
+    const auto indices = gpu::readBufferAs<uint32_t>(ctx(), volumes->indices());
+    for (uint32_t i : indices)
+        ASSERT_LT(i, volumes->verticesPerSegment());
+}
+
+TEST_F(TrajectoryGpu, BadOptionsAreRefused) {
+    trajectory::QueueOptions options;
+    options.lifetime = 65;
+    options.maxLifetime = 64;
+    auto tooLong = trajectory::Queue::create(ctx(), ringSource(3, 1.0f), options);
+    ASSERT_FALSE(tooLong.ok());
+    EXPECT_NE(tooLong.error().message.find("lifetime 65"), std::string::npos);
+    options = {};
+    options.segment.subSamples = 0;
+    EXPECT_FALSE(trajectory::Queue::create(ctx(), ringSource(3, 1.0f), options).ok());
+    options = {};
+    options.kind = trajectory::Kind::Volumes;
+    Source noTriangles = ringSource(3, 1.0f);
+    noTriangles.triangles.clear();
+    EXPECT_FALSE(trajectory::Queue::create(ctx(), noTriangles, options).ok());
+}
+
+} // namespace
+} // namespace mfx::test
