@@ -1,5 +1,7 @@
 // motionfx bench: benchmark programs that print tables (never pass/fail on time).
-//   motionfx bench solver   GPU milliseconds per solver stage and per step, by grid size.
+//   motionfx bench solver       GPU milliseconds per solver stage and per step, by grid size.
+//   motionfx bench trajectory   split trajectory against the unsplit baseline, by lifetime
+//                               (command_bench_trajectory.cpp).
 #include "apps/commands.h"
 
 #include "core/gpu/commands.h"
@@ -230,15 +232,18 @@ int runBenchSolver(std::span<const std::string> args) {
 } // namespace
 
 int runBench(std::span<const std::string> args) {
-    const std::string usage = "usage: motionfx bench solver [options]   (see --help of each)";
+    const std::string usage =
+        "usage: motionfx bench solver|trajectory [options]   (see --help of each)";
     if (args.empty() || args[0] == "--help") {
-        std::printf("%s\n\nbenchmarks:\n  solver     GPU milliseconds per solver stage and per "
-                    "step, by grid size\n",
+        std::printf("%s\n\nbenchmarks:\n  solver       GPU milliseconds per solver stage and per "
+                    "step, by grid size\n  trajectory   split trajectory against the unsplit "
+                    "baseline: skinning, vertices and GPU ms per frame, by lifetime\n",
                     usage.c_str());
         return args.empty() ? kExitUsage : kExitOk;
     }
     if (args[0] == "solver") return runBenchSolver(args.subspan(1));
-    printError("unknown benchmark '" + args[0] + "'; benchmarks are: solver");
+    if (args[0] == "trajectory") return runBenchTrajectory(args.subspan(1));
+    printError("unknown benchmark '" + args[0] + "'; benchmarks are: solver, trajectory");
     return kExitUsage;
 }
 

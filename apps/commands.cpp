@@ -10,7 +10,10 @@ std::span<const Command> commands() {
         {"render", "render a picture headless and write it as PNG", &runRender},
         {"compare", "run a solver scenario on GPU and CPU reference, print the differences",
          &runCompare},
-        {"bench", "benchmarks (bench solver: GPU milliseconds per stage and step)", &runBench},
+        {"bench",
+         "benchmarks (bench solver: GPU ms per stage and step; bench trajectory: split vs "
+         "unsplit trail by lifetime)",
+         &runBench},
         {"inspect", "load a glTF character and summarise it (meshes, joints, clips, bounds)",
          &runInspect},
         {"export-fighter", "write the built-in fighter as glTF 2.0 (.glb or .gltf)",

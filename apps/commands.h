@@ -28,6 +28,7 @@ int runInfo(std::span<const std::string> args);
 int runRender(std::span<const std::string> args);
 int runCompare(std::span<const std::string> args);
 int runBench(std::span<const std::string> args);
+int runBenchTrajectory(std::span<const std::string> args);
 int runInspect(std::span<const std::string> args);
 int runExportFighter(std::span<const std::string> args);
 

@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <fstream>
 #include <gtest/gtest.h>
+#include <map>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <stb_image.h>
 #include <string>
@@ -122,6 +124,47 @@ TEST(Cli, BenchSolverPrintsATableAndWritesJson) {
     for (const char* key : {"\"device\"", "\"results\"", "\"grid\"", "\"jacobi\": 3", "\"step_ms\"",
                             "\"stages\"", "\"workgroup\"", "\"solve_pressure\""})
         EXPECT_NE(text.find(key), std::string::npos) << key << " missing from " << text;
+}
+
+TEST(Cli, BenchTrajectoryPrintsATableWritesJsonAndAPlot) {
+    const std::string dir = std::string(MFX_TEST_OUTPUT_DIR) + "/cli";
+    const std::string json = dir + "/bench_trajectory.json", plot = dir + "/bench_trajectory.svg",
+                      stats = dir + "/bench_trajectory_stats.json";
+    for (const std::string& f : {json, plot, stats})
+        std::filesystem::remove(f);
+    const RunResult r = runMotionfx("bench trajectory --lifetimes 1,3 --frames 2 --sub-samples 2 "
+                                    "--json \"" +
+                                    json + "\" --plot \"" + plot + "\" --stats \"" + stats + "\"");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("skinning/frame"), std::string::npos) << r.out;
+    const nlohmann::json doc = nlohmann::json::parse(readFile(json));
+    EXPECT_TRUE(doc.contains("device"));
+    ASSERT_EQ(doc["rows"].size(), 4u);
+    std::map<std::string, double> skinning, vertices; // by "method L"
+    for (const nlohmann::json& row : doc["rows"]) {
+        for (const char* key :
+             {"method", "lifetime", "skinning_per_frame", "vertices_per_frame", "gpu_ms"})
+            ASSERT_TRUE(row.contains(key)) << key;
+        const std::string name =
+            row["method"].get<std::string>() + " " + std::to_string(row["lifetime"].get<int>());
+        skinning[name] = row["skinning_per_frame"].get<double>();
+        vertices[name] = row["vertices_per_frame"].get<double>();
+    }
+    // Split: skinning per frame does not depend on L; unsplit: it grows with L.
+    EXPECT_EQ(skinning["split 1"], skinning["split 3"]);
+    EXPECT_EQ(skinning["unsplit 3"], 3.0 * skinning["unsplit 1"]);
+    EXPECT_EQ(vertices["unsplit 3"], 3.0 * vertices["split 3"]);
+    EXPECT_NE(readFile(plot).find("<svg"), std::string::npos);
+    EXPECT_EQ(nlohmann::json::parse(readFile(stats)).size(), 8u); // 2 frames x 4 rows
+}
+
+TEST(Cli, BenchTrajectoryBadValuesAreOneLine) {
+    for (const char* args : {"--lifetimes 0", "--lifetimes 1,x", "--sub-samples 17", "--frames 0",
+                             "--clip moonwalk"}) {
+        const RunResult r = runMotionfx(std::string("bench trajectory ") + args);
+        EXPECT_EQ(r.exitCode, 2) << args;
+        EXPECT_EQ(lineCount(r.err), 1u) << args << ": " << r.err;
+    }
 }
 
 TEST(Cli, BenchSolverBadValuesAreOneLine) {
