@@ -7,6 +7,39 @@
 
 namespace mfx::trajectory {
 
+namespace {
+
+// The shader's arithmetic (shaders/dual_quat.glsl), spelled the same way: quaternions as
+// (x, y, z, w) vectors, rotation by two cross products.
+glm::vec4 asVec4(const glm::quat& q) {
+    return {q.x, q.y, q.z, q.w};
+}
+
+glm::vec4 quatMul(const glm::vec4& a, const glm::vec4& b) {
+    const glm::vec3 av(a), bv(b);
+    return glm::vec4(a.w * bv + b.w * av + glm::cross(av, bv), a.w * b.w - glm::dot(av, bv));
+}
+
+glm::vec3 quatRotate(const glm::vec4& q, const glm::vec3& v) {
+    const glm::vec3 u(q);
+    const glm::vec3 uv = glm::cross(u, v);
+    const glm::vec3 uuv = glm::cross(u, uv);
+    return v + ((uv * q.w) + uuv) * 2.0f;
+}
+
+glm::vec3 transformPoint(const anim::DualQuatJoint& t, const glm::vec3& p) {
+    const glm::vec4 real = asVec4(t.rigid.real);
+    const glm::vec4 conjugate(-real.x, -real.y, -real.z, real.w);
+    const glm::vec3 translation = 2.0f * glm::vec3(quatMul(asVec4(t.rigid.dual), conjugate));
+    return quatRotate(real, t.scale * p) + translation;
+}
+
+glm::vec3 transformNormal(const anim::DualQuatJoint& t, const glm::vec3& n) {
+    return glm::normalize(quatRotate(asVec4(t.rigid.real), n / t.scale));
+}
+
+} // namespace
+
 Status checkParameters(const SegmentParameters& p) {
     if (p.subSamples < 1 || p.subSamples > MFX_TRAJECTORY_MAX_SUBSAMPLES)
         return Error{"sub_samples " + std::to_string(p.subSamples) + " is outside 1.." +
@@ -67,11 +100,9 @@ std::vector<shared::TrajectoryVertex> buildSegment(const Source& source,
         const shared::SkinVertexIn& in = source.vertices[v];
         for (uint32_t i = 0; i <= s; ++i) {
             const float tau = float(i) / float(s);
-            const anim::SkinnedVertex moved =
-                anim::applyTransform(interpolateTransform(now[v], previous[v], tau),
-                                     glm::vec3(in.position), glm::vec3(in.normal));
-            positions[i] = moved.position;
-            normals[i] = moved.normal;
+            const anim::DualQuatJoint t = interpolateTransform(now[v], previous[v], tau);
+            positions[i] = transformPoint(t, glm::vec3(in.position));
+            normals[i] = transformNormal(t, glm::vec3(in.normal));
         }
         for (uint32_t i = 0; i <= s; ++i) {
             const float tau = float(i) / float(s);
