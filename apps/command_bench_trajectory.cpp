@@ -124,9 +124,16 @@ int runBenchTrajectory(std::span<const std::string> args) {
                 ctx.info().name.c_str(), ctx.info().driverInfo.c_str(), clipName.c_str(),
                 source.vertices.size(), subSamples.value(), frames.value());
 
+    std::vector<trajectory::Method> methods = {trajectory::Method::Split};
+    if (ctx.features().geometryShader && ctx.features().transformFeedback)
+        methods.push_back(trajectory::Method::StreamOutput);
+    else
+        std::printf("(no split-xfb rows: %s lacks geometry shaders or transform feedback)\n\n",
+                    ctx.info().name.c_str());
+    methods.push_back(trajectory::Method::Unsplit);
     std::vector<Row> rows;
     nlohmann::json frameLog = nlohmann::json::array();
-    for (trajectory::Method method : {trajectory::Method::Split, trajectory::Method::Unsplit})
+    for (trajectory::Method method : methods)
         for (uint32_t lifetime : lifetimes.value()) {
             trajectory::QueueOptions queueOptions;
             queueOptions.kind = trajectory::Kind::Lines;
@@ -176,7 +183,7 @@ int runBenchTrajectory(std::span<const std::string> args) {
             row.gpuMs = medianOf(gpu);
             row.wallMs = medianOf(wall);
             row.gsVertices = uint64_t(subSamples.value() + 1) *
-                             (method == trajectory::Method::Split ? 1 : lifetime);
+                             (method == trajectory::Method::Unsplit ? lifetime : 1);
             rows.push_back(row);
         }
 
@@ -201,12 +208,17 @@ int runBenchTrajectory(std::span<const std::string> args) {
     else
         std::printf("this device has no geometry shaders.\n");
     for (const uint32_t l : lifetimes.value()) {
-        const Row* split = nullptr;
-        const Row* unsplit = nullptr;
+        const Row* by[3] = {nullptr, nullptr, nullptr};
         for (const Row& r : rows)
-            if (r.lifetime == l) (r.method == trajectory::Method::Split ? split : unsplit) = &r;
-        if (split && unsplit && split->gpuMs > 0)
-            std::printf("L=%-4u unsplit/split GPU time %.2fx\n", l, unsplit->gpuMs / split->gpuMs);
+            if (r.lifetime == l) by[int(r.method)] = &r;
+        const Row* split = by[int(trajectory::Method::Split)];
+        if (!split || split->gpuMs <= 0) continue;
+        std::printf("L=%-4u GPU time relative to split:", l);
+        for (trajectory::Method m : {trajectory::Method::StreamOutput, trajectory::Method::Unsplit})
+            if (by[int(m)])
+                std::printf("  %s %.2fx", trajectory::methodName(m),
+                            by[int(m)]->gpuMs / split->gpuMs);
+        std::printf("\n");
     }
 
     // The plot: GPU ms and skinning evaluations per frame against L, both methods.

@@ -30,6 +30,7 @@ layout(push_constant) uniform Constants {
     TrajectoryConstants c;
 };
 
+#define MFX_TRAJECTORY_OUTPUT MFX_STORE_TRAJECTORY_VERTEX
 #include "trajectory_segment.glsl"
 
 #define PALETTE_AT(i) palette[i]

@@ -12,6 +12,17 @@
 #include "dual_quat.glsl"
 #include "shared/trajectory.h"
 
+// The compute passes' output: trajectory vertex `index` of the buffer `trajectory[]` the shader
+// declares, member by member (a whole-struct store into a buffer trips a glslang code generation
+// problem: mismatched struct types in OpStore).
+#define MFX_STORE_TRAJECTORY_VERTEX(index, p, n, col, vel)                                       \
+    {                                                                                             \
+        trajectory[index].position = p;                                                           \
+        trajectory[index].normal = n;                                                             \
+        trajectory[index].color = col;                                                            \
+        trajectory[index].velocity = vel;                                                         \
+    }
+
 float attenuation(float tau, TrajectoryConstants c) {
     float shaped = tau > 0.0 ? pow(tau, c.alphaPower) : 0.0;
     return c.alphaStart + (c.alphaEnd - c.alphaStart) * shaped;
@@ -40,12 +51,10 @@ void emitSegment(SkinJoint now, SkinJoint previous, SkinVertexIn v, vec4 colour,
         else
             velocity = 0.5 * ((positions[i - 1u] - positions[i]) * perStep +
                               (positions[i] - positions[i + 1u]) * perStep);
-        // Member by member: a whole-struct store into a buffer trips a glslang code generation
-        // problem (mismatched struct types in OpStore).
-        trajectory[base + i].position = vec4(positions[i], tau);
-        trajectory[base + i].normal = vec4(normals[i], birth - tau * dt);
-        trajectory[base + i].color = vec4(colour.rgb, colour.a * attenuation(tau, c));
-        trajectory[base + i].velocity = vec4(velocity * c.impulseScale, birth);
+        MFX_TRAJECTORY_OUTPUT(base + i, vec4(positions[i], tau),
+                              vec4(normals[i], birth - tau * dt),
+                              vec4(colour.rgb, colour.a * attenuation(tau, c)),
+                              vec4(velocity * c.impulseScale, birth));
     }
 }
 

@@ -548,6 +548,57 @@ TEST_F(TrajectoryGpu, UnsplitTrailEqualsTheSplitOne) {
     EXPECT_LE(worst, 1e-6);
 }
 
+// The paper's way (a geometry shader into transform feedback) writes the same segments as the
+// compute pass, and its ends weld too.
+TEST_F(TrajectoryGpu, StreamOutputWritesTheSameSegments) {
+    if (!ctx().features().geometryShader || !ctx().features().transformFeedback)
+        GTEST_SKIP() << ctx().info().name << " has no geometry shaders or transform feedback";
+    const anim::Character fighter = anim::makeFighter();
+    trajectory::Selection selection;
+    selection.bones = {"shin_r", "foot_r", "toe_r"};
+    Source source = trajectory::selectSource(fighter, selection).value();
+    const anim::Clip& kick = *fighter.findClip("roundhouse_kick");
+    trajectory::QueueOptions options;
+    options.lifetime = 5;
+    options.maxLifetime = 5;
+    options.segment.subSamples = 16; // the most a geometry invocation emits here
+    auto compute = makeQueue(ctx(), source, options);
+    options.method = trajectory::Method::StreamOutput;
+    auto xfb = makeQueue(ctx(), source, options);
+    ASSERT_TRUE(compute && xfb);
+    gpu::submitOneShot(ctx(), [&](VkCommandBuffer cmd) {
+        for (int f = 0; f < 7; ++f) {
+            const float t = 0.3f + float(f) / 60.0f;
+            const auto palette = fighterPalette(fighter, source, kick, t);
+            compute->record(cmd, palette, t);
+            xfb->record(cmd, palette, t);
+        }
+    });
+    const auto a = compute->liveSegments(), b = xfb->liveSegments();
+    ASSERT_EQ(a.size(), 5u);
+    ASSERT_EQ(b.size(), 5u);
+    double worst = 0.0;
+    std::vector<std::vector<shared::TrajectoryVertex>> segments;
+    for (size_t k = 0; k < a.size(); ++k) {
+        const auto sa = compute->readSegment(a[k]);
+        segments.push_back(xfb->readSegment(b[k]));
+        const auto& sb = segments.back();
+        for (size_t i = 0; i < sa.size(); ++i) {
+            worst = std::max(
+                worst, double(glm::length(glm::vec3(sa[i].position) - glm::vec3(sb[i].position))));
+            ASSERT_EQ(sa[i].velocity.w, sb[i].velocity.w) << "segment " << k << " vertex " << i;
+        }
+    }
+    EXPECT_LE(worst, 1e-6);
+    const uint32_t per = options.segment.subSamples + 1;
+    for (size_t k = 0; k + 1 < segments.size(); ++k)
+        for (size_t v = 0; v < source.vertices.size(); ++v)
+            ASSERT_EQ(std::memcmp(&segments[k][v * per + per - 1].position,
+                                  &segments[k + 1][v * per].position, 12),
+                      0)
+                << "weld between segments " << k << " and " << k + 1 << ", vertex " << v;
+}
+
 TEST_F(TrajectoryGpu, IndexBuffersConnectTheSamples) {
     Source source = ringSource(6, 0.5f); // 4 triangles
     trajectory::QueueOptions options;

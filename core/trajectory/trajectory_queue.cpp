@@ -14,12 +14,12 @@ namespace {
 
 constexpr VkDeviceSize kUpdateChunk = 65536; // vkCmdUpdateBuffer's limit per call
 
-// Copies `bytes` into `buffer` inside the command buffer (no host synchronisation needed).
+// Copies `bytes` into `buffer` at `at` inside the command buffer (no host synchronisation).
 void updateBuffer(VkCommandBuffer cmd, const gpu::Buffer& buffer, const void* bytes,
-                  VkDeviceSize size) {
+                  VkDeviceSize size, VkDeviceSize at = 0) {
     const auto* data = static_cast<const unsigned char*>(bytes);
     for (VkDeviceSize offset = 0; offset < size; offset += kUpdateChunk)
-        vkCmdUpdateBuffer(cmd, buffer.get(), offset, std::min(kUpdateChunk, size - offset),
+        vkCmdUpdateBuffer(cmd, buffer.get(), at + offset, std::min(kUpdateChunk, size - offset),
                           data + offset);
 }
 
@@ -59,7 +59,15 @@ const char* kindName(Kind kind) {
 }
 
 const char* methodName(Method method) {
-    return method == Method::Split ? "split" : "unsplit";
+    switch (method) {
+    case Method::Split:
+        return "split";
+    case Method::StreamOutput:
+        return "split-xfb";
+    case Method::Unsplit:
+        return "unsplit";
+    }
+    return "split";
 }
 
 Result<std::unique_ptr<Queue>> Queue::create(const gpu::Context& ctx, Source source,
@@ -74,6 +82,11 @@ Result<std::unique_ptr<Queue>> Queue::create(const gpu::Context& ctx, Source sou
     if (source.vertices.empty()) return Error{"the trajectory source has no vertex"};
     if (options.kind == Kind::Volumes && source.triangles.empty())
         return Error{"motion volumes need triangles, and the selection holds none"};
+    const bool xfb = options.method == Method::StreamOutput;
+    if (xfb && !(ctx.features().geometryShader && ctx.features().transformFeedback))
+        return Error{ctx.info().name +
+                     " lacks geometry shaders or transform feedback "
+                     "(VK_EXT_transform_feedback), which the stream-output method needs"};
 
     std::unique_ptr<Queue> q(new Queue(ctx));
     q->options_ = options;
@@ -102,14 +115,18 @@ Result<std::unique_ptr<Queue>> Queue::create(const gpu::Context& ctx, Source sou
     q->transforms_ =
         gpu::createBuffer(ctx, 2 * source.vertices.size() * sizeof(shared::SkinJoint), storage,
                           gpu::MemoryUsage::DeviceLocal, "trajectory transforms");
-    const VkDeviceSize palettes = options.method == Method::Split ? 1 : options.maxLifetime + 1;
+    const VkDeviceSize palettes = options.method == Method::Split ? 1
+                                  : options.method == Method::StreamOutput
+                                      ? 2
+                                      : options.maxLifetime + 1;
     q->palette_ = gpu::createBuffer(ctx, palettes * q->jointCount_ * sizeof(shared::SkinJoint),
                                     storage, gpu::MemoryUsage::DeviceLocal, "trajectory palettes");
     q->times_ = gpu::createBuffer(ctx, (options.maxLifetime + 1) * sizeof(float), storage,
                                   gpu::MemoryUsage::DeviceLocal, "trajectory times");
     q->ring_ = gpu::createBuffer(ctx, ringBytes,
                                  storage | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT |
-                                     VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                     VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                                     (xfb ? VK_BUFFER_USAGE_TRANSFORM_FEEDBACK_BUFFER_BIT_EXT : 0),
                                  gpu::MemoryUsage::DeviceLocal, "trajectory ring");
     const std::vector<uint32_t> indices = segmentIndices(options.kind, source, q->subSamples_);
     q->indexCount_ = uint32_t(indices.size());
@@ -121,21 +138,47 @@ Result<std::unique_ptr<Queue>> Queue::create(const gpu::Context& ctx, Source sou
         gpu::uploadBuffer(ctx, q->indices_, std::span<const uint32_t>(indices));
     }
 
-    gpu::ComputeProgramDesc desc;
-    const bool split = options.method == Method::Split;
-    desc.name = split ? "build_segment" : "build_trail";
-    desc.spirv = split ? shaders::build_segment_comp : shaders::build_trail_comp;
-    for (uint32_t b = 0; b < 5; ++b)
-        desc.bindings.push_back(
-            {b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT});
-    desc.pushConstantSize = sizeof(shared::TrajectoryConstants);
-    desc.maxSets = 1;
-    q->program_ = gpu::createComputeProgram(ctx, desc);
-    q->set_ = q->program_.createSet(ctx, {gpu::bindBuffer(0, q->palette_),
-                                          gpu::bindBuffer(1, q->sources_),
-                                          gpu::bindBuffer(2, q->colours_),
-                                          gpu::bindBuffer(3, split ? q->transforms_ : q->times_),
-                                          gpu::bindBuffer(4, q->ring_)});
+    if (xfb) {
+        gpu::GraphicsProgramDesc desc;
+        desc.name = "build_segment_xfb";
+        desc.vertex = shaders::build_segment_xfb_vert;
+        desc.geometry = shaders::build_segment_xfb_geom;
+        for (uint32_t b = 0; b < 3; ++b)
+            desc.bindings.push_back(
+                {b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_GEOMETRY_BIT});
+        desc.pushConstantSize = sizeof(shared::TrajectoryConstants);
+        desc.topology = VK_PRIMITIVE_TOPOLOGY_POINT_LIST;
+        desc.rasterizerDiscard = true;
+        desc.maxSets = 1;
+        q->program_ = gpu::createGraphicsProgram(ctx, desc);
+        q->set_ = q->program_.createSet(ctx, {gpu::bindBuffer(0, q->palette_),
+                                              gpu::bindBuffer(1, q->sources_),
+                                              gpu::bindBuffer(2, q->colours_)});
+        q->bindXfb_ = reinterpret_cast<PFN_vkCmdBindTransformFeedbackBuffersEXT>(
+            vkGetDeviceProcAddr(ctx.device(), "vkCmdBindTransformFeedbackBuffersEXT"));
+        q->beginXfb_ = reinterpret_cast<PFN_vkCmdBeginTransformFeedbackEXT>(
+            vkGetDeviceProcAddr(ctx.device(), "vkCmdBeginTransformFeedbackEXT"));
+        q->endXfb_ = reinterpret_cast<PFN_vkCmdEndTransformFeedbackEXT>(
+            vkGetDeviceProcAddr(ctx.device(), "vkCmdEndTransformFeedbackEXT"));
+        if (!q->bindXfb_ || !q->beginXfb_ || !q->endXfb_)
+            return Error{ctx.info().name + " does not expose the transform feedback commands"};
+    } else {
+        gpu::ComputeProgramDesc desc;
+        const bool split = options.method == Method::Split;
+        desc.name = split ? "build_segment" : "build_trail";
+        desc.spirv = split ? shaders::build_segment_comp : shaders::build_trail_comp;
+        for (uint32_t b = 0; b < 5; ++b)
+            desc.bindings.push_back(
+                {b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT});
+        desc.pushConstantSize = sizeof(shared::TrajectoryConstants);
+        desc.maxSets = 1;
+        q->program_ = gpu::createComputeProgram(ctx, desc);
+        q->set_ = q->program_.createSet(
+            ctx,
+            {gpu::bindBuffer(0, q->palette_), gpu::bindBuffer(1, q->sources_),
+             gpu::bindBuffer(2, q->colours_),
+             gpu::bindBuffer(3, split ? q->transforms_ : q->times_), gpu::bindBuffer(4, q->ring_)});
+    }
     q->timer_ = gpu::GpuTimer(ctx, 1);
     return q;
 }
@@ -168,11 +211,13 @@ void Queue::record(VkCommandBuffer cmd, const std::vector<anim::DualQuatJoint>& 
     packed.resize(jointCount_,
                   shared::SkinJoint{glm::vec4(0, 0, 0, 1), glm::vec4(0.0f), glm::vec4(1, 1, 1, 0)});
     timer_.reset(cmd);
-    timer_.begin(cmd, options_.method == Method::Split ? "build_segment" : "build_trail");
+    timer_.begin(cmd, methodName(options_.method));
     historyTimes_.push_front(time);
     if (historyTimes_.size() > options_.maxLifetime + 1) historyTimes_.pop_back();
     if (options_.method == Method::Split) {
         recordSplit(cmd, packed, time);
+    } else if (options_.method == Method::StreamOutput) {
+        recordStreamOutput(cmd, packed, time);
     } else {
         history_.push_front(std::move(packed));
         if (history_.size() > options_.maxLifetime + 1) history_.pop_back();
@@ -180,7 +225,9 @@ void Queue::record(VkCommandBuffer cmd, const std::vector<anim::DualQuatJoint>& 
     }
     timer_.end(cmd);
     gpu::memoryBarrier(
-        cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+        cmd,
+        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFORM_FEEDBACK_BIT_EXT,
+        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFORM_FEEDBACK_WRITE_BIT_EXT,
         VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_VERTEX_INPUT_BIT |
             VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
         VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT |
@@ -218,6 +265,61 @@ void Queue::recordSplit(VkCommandBuffer cmd, const std::vector<shared::SkinJoint
     stats_.bytesWritten = uint64_t(verticesPerSegment()) * sizeof(shared::TrajectoryVertex) +
                           uint64_t(sourceVertices_) * sizeof(shared::SkinJoint) +
                           packed.size() * sizeof(shared::SkinJoint);
+}
+
+void Queue::recordStreamOutput(VkCommandBuffer cmd, const std::vector<shared::SkinJoint>& packed,
+                               float time) {
+    // This frame's palette goes into one half of the buffer; the other half keeps the previous.
+    const VkDeviceSize paletteBytes = packed.size() * sizeof(shared::SkinJoint);
+    const uint32_t now = uint32_t(frames_ % 2);
+    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_GEOMETRY_SHADER_BIT,
+                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                       VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    updateBuffer(cmd, palette_, packed.data(), paletteBytes, now * paletteBytes);
+    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_GEOMETRY_SHADER_BIT,
+                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    // The previous frame's draws into the ring may still be in flight.
+    gpu::memoryBarrier(
+        cmd,
+        VK_PIPELINE_STAGE_2_VERTEX_INPUT_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |
+            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+        VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
+            VK_ACCESS_2_TRANSFER_READ_BIT,
+        VK_PIPELINE_STAGE_2_TRANSFORM_FEEDBACK_BIT_EXT,
+        VK_ACCESS_2_TRANSFORM_FEEDBACK_WRITE_BIT_EXT);
+    shared::TrajectoryConstants c = constants();
+    c.transformNow = now * jointCount_;
+    c.transformPrevious = frames_ > 0 ? (1 - now) * jointCount_ : c.transformNow;
+    c.hasPrevious = frames_ > 0 ? 1u : 0u;
+    c.time = time;
+    c.dt = frames_ > 0 ? time - lastTime_ : 0.0f;
+
+    VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    rendering.renderArea = {{0, 0}, {1, 1}};
+    rendering.layerCount = 1;
+    vkCmdBeginRendering(cmd, &rendering);
+    const VkViewport viewport{0.0f, 0.0f, 1.0f, 1.0f, 0.0f, 1.0f};
+    const VkRect2D scissor{{0, 0}, {1, 1}};
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    vkCmdSetScissor(cmd, 0, 1, &scissor);
+    program_.bind(cmd, set_);
+    program_.push(cmd, c);
+    const VkBuffer ring = ring_.get();
+    const VkDeviceSize offset = VkDeviceSize(frames_ % options_.maxLifetime) *
+                                verticesPerSegment() * sizeof(shared::TrajectoryVertex);
+    const VkDeviceSize size = VkDeviceSize(verticesPerSegment()) * sizeof(shared::TrajectoryVertex);
+    bindXfb_(cmd, 0, 1, &ring, &offset, &size);
+    beginXfb_(cmd, 0, 0, nullptr, nullptr);
+    vkCmdDraw(cmd, sourceVertices_, 1, 0, 0);
+    endXfb_(cmd, 0, 0, nullptr, nullptr);
+    vkCmdEndRendering(cmd);
+
+    stats_.invocations = sourceVertices_;
+    stats_.skinningEvaluations = 2ull * sourceVertices_;
+    stats_.verticesGenerated = verticesPerSegment();
+    stats_.bytesWritten =
+        uint64_t(verticesPerSegment()) * sizeof(shared::TrajectoryVertex) + paletteBytes;
 }
 
 void Queue::recordUnsplit(VkCommandBuffer cmd) {
@@ -262,7 +364,7 @@ std::vector<LiveSegment> Queue::liveSegments() const {
         LiveSegment s;
         s.frame = frame;
         const uint64_t age = frames_ - 1 - frame;
-        if (options_.method == Method::Split) {
+        if (options_.method != Method::Unsplit) {
             s.firstVertex = uint32_t(frame % options_.maxLifetime) * verticesPerSegment();
         } else {
             s.firstVertex = uint32_t(age) * verticesPerSegment();

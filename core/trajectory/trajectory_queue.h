@@ -15,7 +15,9 @@
 //     wall (Algorithm 3), indexing the same samples.
 //
 // The unsplit baseline (method Unsplit, for measurement only) rebuilds every live segment every
-// frame from the palettes of the last L + 1 frames (shaders/build_trail.comp).
+// frame from the palettes of the last L + 1 frames (shaders/build_trail.comp). Method StreamOutput
+// builds the split segment with a geometry shader and transform feedback
+// (shaders/build_segment_xfb.*), also for measurement.
 #pragma once
 
 #include "core/gpu/program.h"
@@ -32,7 +34,10 @@
 namespace mfx::trajectory {
 
 enum class Kind { Particles, Lines, Volumes };
-enum class Method { Split, Unsplit };
+// Split: one segment per frame by the compute pass (the queue's method). StreamOutput: the same
+// segment by a geometry shader into transform feedback, as the paper did it, for measurement (needs
+// geometry shaders and VK_EXT_transform_feedback). Unsplit: the baseline.
+enum class Method { Split, StreamOutput, Unsplit };
 
 const char* kindName(Kind kind);
 const char* methodName(Method method);
@@ -95,6 +100,8 @@ private:
     Queue(const gpu::Context& ctx) : ctx_(ctx) {}
     void recordSplit(VkCommandBuffer cmd, const std::vector<shared::SkinJoint>& packed, float time);
     void recordUnsplit(VkCommandBuffer cmd);
+    void recordStreamOutput(VkCommandBuffer cmd, const std::vector<shared::SkinJoint>& packed,
+                            float time);
     shared::TrajectoryConstants constants() const;
 
     const gpu::Context& ctx_;
@@ -107,6 +114,9 @@ private:
     gpu::Program program_;
     VkDescriptorSet set_ = VK_NULL_HANDLE;
     gpu::GpuTimer timer_;
+    PFN_vkCmdBindTransformFeedbackBuffersEXT bindXfb_ = nullptr;
+    PFN_vkCmdBeginTransformFeedbackEXT beginXfb_ = nullptr;
+    PFN_vkCmdEndTransformFeedbackEXT endXfb_ = nullptr;
     uint64_t frames_ = 0;     // segments recorded so far
     uint64_t oldestLive_ = 0; // the oldest frame whose segment is still live
     float lastTime_ = 0.0f;
