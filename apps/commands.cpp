@@ -16,6 +16,8 @@ std::span<const Command> commands() {
          &runBench},
         {"inspect", "load a glTF character and summarise it (meshes, joints, clips, bounds)",
          &runInspect},
+        {"scene", "check a scene file and print what it asks for (effects, bones, vertices)",
+         &runScene},
         {"export-fighter", "write the built-in fighter as glTF 2.0 (.glb or .gltf)",
          &runExportFighter},
     };

@@ -31,6 +31,7 @@ int runBench(std::span<const std::string> args);
 int runBenchTrajectory(std::span<const std::string> args);
 int runInspect(std::span<const std::string> args);
 int runExportFighter(std::span<const std::string> args);
+int runScene(std::span<const std::string> args);
 
 // Options every GPU subcommand takes.
 std::vector<cli::OptionSpec> deviceOptions();

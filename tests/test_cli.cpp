@@ -294,4 +294,31 @@ TEST(CliExportFighter, UnwritablePathIsOneLineNamingIt) {
     EXPECT_NE(r.err.find("/nonexistent/dir/fighter.glb"), std::string::npos) << r.err;
 }
 
+// motionfx scene: the default scene, a good file and a bad one.
+TEST(CliScene, DefaultSceneIsSummarised) {
+    const RunResult r = runMotionfx("scene");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    for (const char* line :
+         {"clip roundhouse_kick", "27 frames", "kick lines", "motion_blur", "foot smoke"})
+        EXPECT_NE(r.out.find(line), std::string::npos) << line << " missing from:\n" << r.out;
+}
+
+TEST(CliScene, UnknownBoneIsOneLineNamingTheKey) {
+    const std::string file = std::string(MFX_TEST_OUTPUT_DIR) + "/cli/bad_bone.json";
+    std::ofstream(file) << R"({"effects": [{"type": "smoke", "bones": ["hand_X"]}]})";
+    const RunResult r = runMotionfx("scene \"" + file + "\"");
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+    EXPECT_NE(r.err.find("bad_bone.json: effects[0].bones[0]: no bone \"hand_X\""),
+              std::string::npos)
+        << r.err;
+}
+
+TEST(CliScene, MissingFileIsOneLine) {
+    const RunResult r = runMotionfx("scene /nonexistent/kick.json");
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+    EXPECT_NE(r.err.find("/nonexistent/kick.json"), std::string::npos) << r.err;
+}
+
 } // namespace

@@ -1,0 +1,65 @@
+// motionfx scene: what a scene file asks for (character, clip, frames, and each effect with the
+// vertices its bones and meshes select), or the one-line reason it is refused.
+#include "apps/commands.h"
+
+#include "core/scene/scene.h"
+#include "core/trajectory/trajectory_source.h"
+
+#include <cstdio>
+
+namespace mfx::app {
+
+int runScene(std::span<const std::string> args) {
+    cli::ParsedArgs parsed;
+    int exitCode = kExitOk;
+    if (!parseOrExit(args, {}, 1,
+                     "usage: motionfx scene [FILE]\n\nChecks a scene file (JSON; see README.md "
+                     "\"Scene files\") and prints what it asks for: the character and clip, the "
+                     "frames, and each effect with its window and the vertices its bones and "
+                     "meshes select. Without FILE, the built-in default scene.",
+                     parsed, exitCode))
+        return exitCode;
+    Result<scene::Scene> loaded = parsed.positional.empty()
+                                      ? Result<scene::Scene>(scene::defaultScene())
+                                      : scene::loadScene(parsed.positional[0]);
+    if (!loaded) {
+        printError(loaded.error().message);
+        return kExitFailure;
+    }
+    const scene::Scene& s = loaded.value();
+    Result<anim::Character> character = scene::loadCharacter(s);
+    if (!character) {
+        printError(character.error().message);
+        return kExitFailure;
+    }
+    const anim::Character& c = character.value();
+    const anim::Clip& clip = scene::sceneClip(s, c);
+    std::printf("scene        %s\n", s.file.c_str());
+    std::printf("character    %s, clip %s (%.3g s), from %.3g s at speed %.3g%s\n",
+                s.character.source.c_str(), clip.name.c_str(), double(clip.duration),
+                double(s.character.start), double(s.character.speed),
+                s.character.loop ? ", looping" : "");
+    std::printf("output       %ux%u, %.3g fps, %u frames (%.3g s)\n", s.output.width,
+                s.output.height, double(s.output.fps), scene::frameCount(s, c),
+                double(scene::frameCount(s, c)) / double(s.output.fps));
+    std::printf("effects      %zu\n", s.effects.size());
+    for (const scene::EffectSpec& e : s.effects) {
+        trajectory::Selection selection;
+        selection.meshes = e.meshes;
+        selection.bones = e.bones;
+        selection.minBoneWeight = e.minBoneWeight;
+        const Result<trajectory::Source> source = trajectory::selectSource(c, selection);
+        std::string window = "from " + std::to_string(e.start).substr(0, 5) + " s";
+        if (e.end) window += " to " + std::to_string(*e.end).substr(0, 5) + " s";
+        std::printf("  %-18s %-16s %s, ", e.name.c_str(), scene::effectTypeName(e.type),
+                    window.c_str());
+        if (source)
+            std::printf("%zu vertices, %zu triangles selected\n", source.value().vertices.size(),
+                        source.value().triangles.size() / 3);
+        else
+            std::printf("%s\n", source.error().message.c_str());
+    }
+    return kExitOk;
+}
+
+} // namespace mfx::app

@@ -1,0 +1,129 @@
+// The scene file: which character moves how, what the camera and lights are, what is rendered,
+// and which effects are bound to which bones and meshes, when. JSON, every key optional but
+// "effects"; unknown keys, wrong types, out-of-range values and unknown names are refused with one
+// error naming the key path (e.g. `effects[2].bones[0]: no bone "hand_X"; bones are: ...`).
+// README.md "Scene files" documents every key with a complete example; defaults are below.
+#pragma once
+
+#include "core/anim/character.h"
+#include "core/result.h"
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace mfx::scene {
+
+struct CharacterSpec {
+    std::string source = "fighter"; // "fighter" (built in) or a .gltf/.glb path
+    std::string clip;               // empty: roundhouse_kick for the fighter, else the first
+    float start = 0.0f;             // clip seconds where playback starts
+    std::optional<float> end;       // clip seconds where it ends (default: the clip's end)
+    float speed = 1.0f;             // playback speed
+    bool loop = false;              // past `end`, wrap to `start` (else hold the last pose)
+    glm::vec3 position{0.0f};       // world placement
+    float yawDegrees = 0.0f;        // rotation about +y
+};
+
+struct CameraSpec {
+    glm::vec3 position{2.6f, 1.5f, 3.4f};
+    glm::vec3 target{0.0f, 0.95f, 0.0f};
+    float fovDegrees = 40.0f; // vertical
+    float nearPlane = 0.05f;
+    float farPlane = 50.0f;
+};
+
+struct LightSpec {
+    glm::vec3 direction{-0.4f, -1.0f, -0.35f}; // the way the light travels
+    glm::vec3 colour{1.0f, 0.97f, 0.9f};
+    float intensity = 1.0f;
+    bool shadow = true;
+};
+
+struct StageSpec {
+    bool floor = true;
+    bool backdrop = true;
+    glm::vec3 floorColour{0.32f, 0.30f, 0.36f};
+    glm::vec3 backdropColour{0.12f, 0.13f, 0.2f};
+};
+
+struct OutputSpec {
+    uint32_t width = 1280;
+    uint32_t height = 720;
+    float fps = 30.0f;
+    std::optional<uint32_t> frames; // default: the playback range at fps
+};
+
+enum class EffectType { SpeedLines, MotionBlur, MotionParticles, Smoke };
+enum class Emission { Vertices, Surface };
+
+struct EffectSpec {
+    EffectType type = EffectType::SpeedLines;
+    std::string name;                // default: type and index, e.g. "speed_lines#0"
+    std::vector<std::string> bones;  // empty: the whole character
+    std::vector<std::string> meshes; // empty: every mesh
+    float minBoneWeight = 0.5f;
+    float start = 0.0f;       // the window, in scene seconds
+    std::optional<float> end; // default: the end of the scene
+    // Trajectory (speed lines, blur volumes, particles; smoke reads its segments too).
+    uint32_t subSamples = 4;
+    uint32_t lifetime = 12; // frames
+    uint32_t stride = 1;    // every n-th source vertex (speed lines look best sparse)
+    glm::vec4 colour{1.0f}; // RGBA; the mesh colour when "colour" is absent (blur)
+    bool useMeshColour = true;
+    float alphaStart = 1.0f;
+    float alphaEnd = 0.0f;
+    float alphaPower = 1.0f;
+    float width = 0.012f; // speed-line ribbon width (world units)
+    float size = 0.02f;   // particle size (world units)
+    // Smoke.
+    std::array<uint32_t, 3> grid{48, 48, 48};
+    float cellSize = 0.05f;
+    uint32_t jacobi = 20;
+    float fade = 0.6f; // pigment decay per second
+    float buoyancy = 0.0f;
+    float vorticity = 0.0f;
+    float impulseScale = 1.0f; // k
+    float radius = 0.06f;      // splat radius (world units)
+    float strength = 1.0f;     // pigment per second at full alpha
+    Emission emission = Emission::Vertices;
+    float surfaceStep = 0.02f; // UV-space step of surface emission
+    uint32_t maxEmitters = 256;
+    float sleepThreshold = 1e-4f; // below this pigment and speed, the solver sleeps
+};
+
+struct Scene {
+    std::string file; // where it came from ("(built-in default)" for the default scene)
+    CharacterSpec character;
+    CameraSpec camera;
+    std::vector<LightSpec> lights{LightSpec{}};
+    StageSpec stage;
+    OutputSpec output;
+    std::vector<EffectSpec> effects;
+};
+
+const char* effectTypeName(EffectType type);
+
+// Parses and checks a scene's JSON text; `where` names it in errors (a file name).
+Result<Scene> parseScene(const std::string& text, const std::string& where);
+// Reads and parses a scene file.
+Result<Scene> loadScene(const std::filesystem::path& file);
+// The built-in default: the fighter's roundhouse kick with speed-lines, a blur volume on the
+// kicking leg and smoke from the kicking foot.
+Scene defaultScene();
+
+// Loads the scene's character (the built-in fighter or a glTF file relative to the scene file's
+// folder) and checks the clip and every effect's bone and mesh names against it.
+Result<anim::Character> loadCharacter(const Scene& scene);
+Status checkNames(const Scene& scene, const anim::Character& character);
+
+// Seconds of scene time the output covers, and the clip time at a scene time.
+float sceneDuration(const Scene& scene, const anim::Character& character);
+uint32_t frameCount(const Scene& scene, const anim::Character& character);
+float clipTimeAt(const Scene& scene, const anim::Character& character, float sceneTime);
+const anim::Clip& sceneClip(const Scene& scene, const anim::Character& character);
+
+} // namespace mfx::scene
