@@ -509,6 +509,53 @@ TEST_F(TrajectoryGpu, WritesPerInvocationDoNotDependOnLifetime) {
         }
 }
 
+// Frames outside an effect's window write no segment: the trail ages out as usual, and the first
+// segment after the gap starts afresh instead of reaching back across it.
+TEST_F(TrajectoryGpu, SkippedFramesAgeOutAndTheTrailRestarts) {
+    trajectory::QueueOptions options;
+    options.lifetime = 4;
+    options.maxLifetime = 4;
+    options.segment.subSamples = 2;
+    auto queue = makeQueue(ctx(), ringSource(3, 0.5f), options);
+    ASSERT_TRUE(queue);
+    auto frame = [&](int f, bool write) {
+        const float t = 0.1f * float(f);
+        if (!write) {
+            queue->skip(t);
+            return;
+        }
+        gpu::submitOneShot(ctx(), [&](VkCommandBuffer cmd) {
+            queue->record(cmd, {rigid(glm::quat(1, 0, 0, 0), glm::vec3(float(f), 0, 0))}, t);
+        });
+    };
+    for (int f = 0; f < 3; ++f)
+        frame(f, true);
+    EXPECT_EQ(queue->liveSegments().size(), 3u);
+    frame(3, false);
+    frame(4, false);
+    auto live = queue->liveSegments(); // frames 1 and 2 of 1..4
+    ASSERT_EQ(live.size(), 2u);
+    EXPECT_EQ(live[0].frame, 2u);
+    EXPECT_EQ(queue->lastFrame().liveSegments, 2u);
+    frame(5, true);
+    live = queue->liveSegments(); // frames 2 and 5 of 2..5
+    ASSERT_EQ(live.size(), 2u);
+    EXPECT_EQ(live[0].frame, 5u);
+    EXPECT_EQ(live[1].frame, 2u);
+    const auto restarted = queue->readSegment(live[0]);
+    for (const shared::TrajectoryVertex& v : restarted) {
+        EXPECT_EQ(glm::vec3(v.velocity),
+                  glm::vec3(0.0f)); // no extent: not reaching back to frame 2
+        EXPECT_EQ(v.velocity.w, 0.5f);
+    }
+    frame(6, true);
+    const auto next = queue->readSegment(queue->liveSegments()[0]);
+    EXPECT_NEAR(next[0].velocity.x, 1.0f / 0.1f, 1e-3f); // one unit per 0.1 s
+    for (int f = 7; f < 11; ++f)
+        frame(f, false);
+    EXPECT_TRUE(queue->liveSegments().empty());
+}
+
 // The baseline rebuilds the same trail the split method keeps.
 TEST_F(TrajectoryGpu, UnsplitTrailEqualsTheSplitOne) {
     const anim::Character fighter = anim::makeFighter();

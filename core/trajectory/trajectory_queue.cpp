@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <stdexcept>
 #include <string>
 
 namespace mfx::trajectory {
@@ -213,7 +214,11 @@ void Queue::record(VkCommandBuffer cmd, const std::vector<anim::DualQuatJoint>& 
     timer_.reset(cmd);
     timer_.begin(cmd, methodName(options_.method));
     historyTimes_.push_front(time);
-    if (historyTimes_.size() > options_.maxLifetime + 1) historyTimes_.pop_back();
+    historyWritten_.push_front(true);
+    if (historyTimes_.size() > options_.maxLifetime + 1) {
+        historyTimes_.pop_back();
+        historyWritten_.pop_back();
+    }
     if (options_.method == Method::Split) {
         recordSplit(cmd, packed, time);
     } else if (options_.method == Method::StreamOutput) {
@@ -235,7 +240,9 @@ void Queue::record(VkCommandBuffer cmd, const std::vector<anim::DualQuatJoint>& 
     lastTime_ = time;
     ++frames_;
     oldestLive_ = std::max(oldestLive_, frames_ - std::min<uint64_t>(frames_, options_.lifetime));
-    stats_.liveSegments = uint32_t(frames_ - oldestLive_);
+    stats_.liveSegments = 0;
+    for (uint64_t age = 0; age < frames_ - oldestLive_; ++age)
+        stats_.liveSegments += historyWritten_[size_t(age)] ? 1 : 0;
 }
 
 void Queue::recordSplit(VkCommandBuffer cmd, const std::vector<shared::SkinJoint>& packed,
@@ -252,9 +259,9 @@ void Queue::recordSplit(VkCommandBuffer cmd, const std::vector<shared::SkinJoint
     c.outputBase = slot * verticesPerSegment();
     c.transformNow = uint32_t(frames_ % 2) * sourceVertices_;
     c.transformPrevious = uint32_t((frames_ + 1) % 2) * sourceVertices_;
-    c.hasPrevious = frames_ > 0 ? 1u : 0u;
+    c.hasPrevious = previousWritten() ? 1u : 0u;
     c.time = time;
-    c.dt = frames_ > 0 ? time - lastTime_ : 0.0f;
+    c.dt = previousWritten() ? time - lastTime_ : 0.0f;
     program_.bind(cmd, set_);
     program_.push(cmd, c);
     vkCmdDispatch(cmd, gpu::groupCount(sourceVertices_, MFX_TRAJECTORY_GROUP_SIZE), 1, 1);
@@ -290,10 +297,10 @@ void Queue::recordStreamOutput(VkCommandBuffer cmd, const std::vector<shared::Sk
         VK_ACCESS_2_TRANSFORM_FEEDBACK_WRITE_BIT_EXT);
     shared::TrajectoryConstants c = constants();
     c.transformNow = now * jointCount_;
-    c.transformPrevious = frames_ > 0 ? (1 - now) * jointCount_ : c.transformNow;
-    c.hasPrevious = frames_ > 0 ? 1u : 0u;
+    c.transformPrevious = previousWritten() ? (1 - now) * jointCount_ : c.transformNow;
+    c.hasPrevious = previousWritten() ? 1u : 0u;
     c.time = time;
-    c.dt = frames_ > 0 ? time - lastTime_ : 0.0f;
+    c.dt = previousWritten() ? time - lastTime_ : 0.0f;
 
     VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
     rendering.renderArea = {{0, 0}, {1, 1}};
@@ -357,6 +364,27 @@ void Queue::recordUnsplit(VkCommandBuffer cmd) {
                           times.size() * sizeof(float);
 }
 
+void Queue::skip(float time) {
+    if (options_.method == Method::Unsplit)
+        throw std::logic_error("trajectory::Queue::skip: the unsplit baseline records every frame");
+    historyTimes_.push_front(time);
+    historyWritten_.push_front(false);
+    if (historyTimes_.size() > options_.maxLifetime + 1) {
+        historyTimes_.pop_back();
+        historyWritten_.pop_back();
+    }
+    ++frames_;
+    oldestLive_ = std::max(oldestLive_, frames_ - std::min<uint64_t>(frames_, options_.lifetime));
+    stats_ = FrameStats{};
+    for (uint64_t age = 0; age < frames_ - oldestLive_; ++age)
+        stats_.liveSegments += historyWritten_[size_t(age)] ? 1 : 0;
+}
+
+bool Queue::previousWritten() const {
+    // Called while recording frame frames_, after its own entry was pushed.
+    return frames_ > 0 && historyWritten_.size() > 1 && historyWritten_[1];
+}
+
 std::vector<LiveSegment> Queue::liveSegments() const {
     std::vector<LiveSegment> out;
     if (frames_ == 0) return out;
@@ -364,6 +392,7 @@ std::vector<LiveSegment> Queue::liveSegments() const {
         LiveSegment s;
         s.frame = frame;
         const uint64_t age = frames_ - 1 - frame;
+        if (!historyWritten_[size_t(age)]) continue;
         if (options_.method != Method::Unsplit) {
             s.firstVertex = uint32_t(frame % options_.maxLifetime) * verticesPerSegment();
         } else {

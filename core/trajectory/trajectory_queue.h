@@ -81,6 +81,12 @@ public:
     // barrier makes the ring visible to vertex input, compute and transfer reads.
     void record(VkCommandBuffer cmd, const std::vector<anim::DualQuatJoint>& palette, float time);
 
+    // A frame passes without a new segment (the effect is outside its time window): the oldest
+    // live segment ages out as usual, and the next recorded segment starts afresh (no extent)
+    // rather than reaching back across the gap. Split and StreamOutput only (the unsplit baseline
+    // rebuilds the trail from every frame's palette; it throws std::logic_error).
+    void skip(float time);
+
     // The live segments, newest first.
     std::vector<LiveSegment> liveSegments() const;
     uint32_t verticesPerSegment() const { return sourceVertices_ * (subSamples_ + 1); }
@@ -103,6 +109,7 @@ private:
     void recordStreamOutput(VkCommandBuffer cmd, const std::vector<shared::SkinJoint>& packed,
                             float time);
     shared::TrajectoryConstants constants() const;
+    bool previousWritten() const;
 
     const gpu::Context& ctx_;
     QueueOptions options_;
@@ -122,6 +129,7 @@ private:
     float lastTime_ = 0.0f;
     // The times of the last maxLifetime + 1 frames, newest first, and (unsplit) their palettes.
     std::deque<float> historyTimes_;
+    std::deque<bool> historyWritten_; // whether each of those frames wrote a segment
     std::deque<std::vector<shared::SkinJoint>> history_;
     FrameStats stats_;
 };
