@@ -14,6 +14,11 @@ namespace {
 constexpr VkImageUsageFlags kFieldUsage =
     VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
 constexpr uint32_t kSetsPerProgram = 16;
+// Cells per solve_pressure invocation: 4 along x (fixed by the shader, and the cells per element
+// of the packed buffers) by kPressureRows along y by kPressureLayers along z.
+constexpr uint32_t kPressureBrickX = 4;
+constexpr uint32_t kPressureRows = 4;
+constexpr uint32_t kPressureLayers = 4;
 
 gpu::BindingDesc uniformBinding(uint32_t binding) {
     return {binding, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT};
@@ -23,16 +28,18 @@ gpu::BindingDesc bufferBinding(uint32_t binding) {
 }
 
 // A compute program whose binding 0 is the parameters uniform and bindings 1..images are storage
-// images (with binding `bufferAt`, if any, a storage buffer instead).
+// images (with binding `bufferAt`, if any, and those in `bufferMask` storage buffers instead);
+// `extra` gives specialization constants from id 11 on.
 gpu::Program makeProgram(const gpu::Context& ctx, const SolverOptions& options, const char* name,
                          std::span<const uint32_t> spirv, uint32_t target, uint32_t bindingCount,
-                         uint32_t bufferAt = 0) {
+                         uint32_t bufferAt = 0, std::span<const uint32_t> extra = {},
+                         uint32_t bufferMask = 0) {
     gpu::ComputeProgramDesc desc;
     desc.name = name;
     desc.spirv = spirv;
     desc.bindings.push_back(uniformBinding(0));
     for (uint32_t b = 1; b < bindingCount; ++b)
-        desc.bindings.push_back(b == bufferAt
+        desc.bindings.push_back(b == bufferAt || (bufferMask >> b & 1u) != 0
                                     ? bufferBinding(b)
                                     : gpu::BindingDesc{b, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
                                                        VK_SHADER_STAGE_COMPUTE_BIT});
@@ -45,6 +52,7 @@ gpu::Program makeProgram(const gpu::Context& ctx, const SolverOptions& options, 
     desc.specialization.push_back(uint32_t(options.integrator));
     for (uint32_t size : options.workgroup) // ids 8-10: the workgroup shape
         desc.specialization.push_back(size);
+    desc.specialization.insert(desc.specialization.end(), extra.begin(), extra.end()); // ids 11-
     return gpu::createComputeProgram(ctx, desc);
 }
 
@@ -91,6 +99,17 @@ SmokeSolver::SmokeSolver(const gpu::Context& ctx, const SolverOptions& options)
         pressure_[i] = makeImage(cells_, VK_FORMAT_R32_SFLOAT, "pressure");
     }
     divergence_ = makeImage(cells_, VK_FORMAT_R32_SFLOAT, "divergence");
+    // Four x-consecutive cells per vec4 (shaders/solve_pressure.comp). A grid too large for one
+    // storage buffer solves on the r32f images alone (placeholders fill the unused bindings).
+    VkDeviceSize packedBytes = VkDeviceSize((cells_.x + kPressureBrickX - 1) / kPressureBrickX) *
+                               cells_.y * cells_.z * 4 * sizeof(float);
+    packedSolve_ = packedBytes <= ctx.limits().maxStorageBufferRange;
+    if (!packedSolve_) packedBytes = 4 * sizeof(float);
+    for (gpu::Buffer& buffer : packedPressure_)
+        buffer = gpu::createBuffer(ctx, packedBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                   gpu::MemoryUsage::DeviceLocal, "packed pressure");
+    packedDivergence_ = gpu::createBuffer(ctx, packedBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                          gpu::MemoryUsage::DeviceLocal, "packed divergence");
     vorticity_ = makeImage(cells_, VK_FORMAT_R32G32B32A32_SFLOAT, "vorticity");
 
     // Everything starts at rest, in GENERAL layout for the whole of its life.
@@ -160,9 +179,14 @@ gpu::Program& SmokeSolver::program(Stage stage, int part, uint32_t target) {
         slot =
             makeProgram(ctx_, options_, "compute_divergence", compute_divergence_comp, target, 5);
         break;
-    case Stage::SolvePressure:
-        slot = makeProgram(ctx_, options_, "solve_pressure", solve_pressure_comp, target, 4);
+    case Stage::SolvePressure: {
+        // Constant ids 11-13: which side is packed (part), the layers and rows of a brick;
+        // bindings 4-7 are storage buffers.
+        const uint32_t brick[] = {uint32_t(part), kPressureLayers, kPressureRows};
+        slot = makeProgram(ctx_, options_, "solve_pressure", solve_pressure_comp, target, 8, 0,
+                           brick, 0xf0u);
         break;
+    }
     case Stage::Project:
         slot = makeProgram(ctx_, options_, "project", project_comp, target, 5);
         break;
@@ -432,17 +456,35 @@ void SmokeSolver::solvePressure(VkCommandBuffer cmd) {
                              1, &range);
         barrier(cmd);
     }
-    gpu::Program& prog = program(Stage::SolvePressure);
-    for (uint32_t iteration = 0; iteration < options_.jacobiIterations; ++iteration) {
+    // Bricks of 4 x kPressureRows x kPressureLayers cells. Between the first and the last sweep
+    // pressure and divergence live packed (shaders/solve_pressure.comp): the first sweep reads
+    // the live r32f image, the last writes the other one.
+    const uint32_t sweeps = options_.jacobiIterations;
+    const glm::uvec3 bricks((cells_.x + kPressureBrickX - 1) / kPressureBrickX,
+                            (cells_.y + kPressureRows - 1) / kPressureRows,
+                            (cells_.z + kPressureLayers - 1) / kPressureLayers);
+    int packedIn = 0;
+    for (uint32_t sweep = 0; sweep < sweeps; ++sweep) {
+        const bool first = sweep == 0, last = sweep + 1 == sweeps;
+        const uint32_t mode = packedSolve_ ? (first ? 0u : 1u) | (last ? 0u : 2u) : 0u;
+        gpu::Program& prog = program(Stage::SolvePressure, int(mode));
         const int in = currentPressure_, out = 1 - currentPressure_;
-        VkDescriptorSet s = set(prog, {in, out, 0}, [&](auto& w) {
+        const int packedOut = 1 - packedIn;
+        VkDescriptorSet s = set(prog, {in, packedIn, 0}, [&](auto& w) {
             w.push_back(storage(1, divergence_));
             w.push_back(storage(2, pressure_[in]));
             w.push_back(storage(3, pressure_[out]));
+            w.push_back(gpu::bindBuffer(4, packedDivergence_));
+            w.push_back(gpu::bindBuffer(5, packedPressure_[packedIn]));
+            w.push_back(gpu::bindBuffer(6, packedPressure_[packedOut]));
+            w.push_back(gpu::bindBuffer(7, packedPressure_[packedIn]));
         });
-        dispatch(cmd, prog, s, cells_);
+        dispatch(cmd, prog, s, bricks);
         barrier(cmd);
-        currentPressure_ = out;
+        if (mode & 2u)
+            packedIn = packedOut;
+        else
+            currentPressure_ = out; // this sweep wrote the other r32f image
     }
 }
 

@@ -102,6 +102,11 @@ private:
     std::array<gpu::Image, 2> pressure_;
     gpu::Image divergence_;
     gpu::Image vorticity_;
+    // The pressure solve's working copies, four cells per vec4 (shaders/solve_pressure.comp):
+    // pressure (ping-pong) and divergence; packedSolve_ is false for a grid too large for them.
+    std::array<gpu::Buffer, 2> packedPressure_;
+    gpu::Buffer packedDivergence_;
+    bool packedSolve_ = true;
     int currentVelocity_ = 0;
     int currentPigment_ = 0;
     int currentPressure_ = 0;
