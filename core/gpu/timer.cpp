@@ -37,7 +37,7 @@ void GpuTimer::begin(VkCommandBuffer cmd, std::string_view passName) {
         throw std::logic_error("GpuTimer: more than " + std::to_string(maxPasses_) + " passes");
     open_ = true;
     const uint32_t index = static_cast<uint32_t>(names_.size());
-    names_.emplace_back(passName);
+    names_.push_back(prefix_ + std::string(passName));
     if (pool_)
         vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, pool_.get(), 2 * index);
 }

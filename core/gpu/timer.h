@@ -30,6 +30,10 @@ public:
     void begin(VkCommandBuffer cmd, std::string_view passName);
     void end(VkCommandBuffer cmd);
 
+    // Put in front of the names of the passes begun from now on (e.g. "smoke0/"), so a component
+    // that names its own passes can be told apart from another of its kind.
+    void setPrefix(std::string prefix) { prefix_ = std::move(prefix); }
+
     // Durations of the passes recorded since reset(); waits until they are available.
     std::vector<PassTime> results() const;
     bool enabled() const { return static_cast<bool>(pool_); }
@@ -40,6 +44,7 @@ private:
     uint64_t validMask_ = ~0ull;
     uint32_t maxPasses_ = 0;
     std::vector<std::string> names_;
+    std::string prefix_;
     bool open_ = false;
 };
 

@@ -109,7 +109,8 @@ Result<Source> selectSource(const anim::Character& character, const Selection& s
 }
 
 std::vector<anim::DualQuatJoint> sourcePalette(const anim::Character& character,
-                                               const Source& source, const anim::Pose& pose) {
+                                               const Source& source, const anim::Pose& pose,
+                                               const glm::mat4& placement) {
     std::map<int, std::vector<glm::mat4>> skinMatrices;
     std::vector<glm::mat4> matrices;
     matrices.reserve(source.palette.size());
@@ -125,7 +126,7 @@ std::vector<anim::DualQuatJoint> sourcePalette(const anim::Character& character,
         } else if (entry.node >= 0) {
             m = pose.world[size_t(entry.node)];
         }
-        matrices.push_back(m);
+        matrices.push_back(placement * m);
     }
     return anim::dualQuatPalette(matrices);
 }

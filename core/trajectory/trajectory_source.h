@@ -43,8 +43,10 @@ struct Source {
 // selection that leaves no vertex are errors naming what is wrong and what there is.
 Result<Source> selectSource(const anim::Character& character, const Selection& selection);
 
-// The combined palette in `pose`, one dual quaternion joint per PaletteEntry.
+// The combined palette in `pose`, one dual quaternion joint per PaletteEntry, with the whole
+// character placed in the world by `placement`.
 std::vector<anim::DualQuatJoint> sourcePalette(const anim::Character& character,
-                                               const Source& source, const anim::Pose& pose);
+                                               const Source& source, const anim::Pose& pose,
+                                               const glm::mat4& placement = glm::mat4(1.0f));
 
 } // namespace mfx::trajectory
