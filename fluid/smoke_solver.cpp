@@ -5,6 +5,7 @@
 #include "shaders/embedded.h"
 #include "shaders/shared/fluid.h"
 
+#include <algorithm>
 #include <cstring>
 
 namespace mfx::fluid {
@@ -282,6 +283,7 @@ void SmokeSolver::dispatch(VkCommandBuffer cmd, gpu::Program& program, VkDescrip
     program.bind(cmd, set);
     const shared::FluidDispatch dispatch{0, origin.x, origin.y, origin.z};
     program.push(cmd, dispatch);
+    ++dispatches_;
     const std::array<uint32_t, 3>& group = options_.workgroup;
     vkCmdDispatch(cmd, gpu::groupCount(extent.x, group[0]), gpu::groupCount(extent.y, group[1]),
                   gpu::groupCount(extent.z, group[2]));
@@ -548,9 +550,64 @@ void SmokeSolver::recordStageOnly(VkCommandBuffer cmd, Stage stage, gpu::GpuTime
 
 void SmokeSolver::recordStep(VkCommandBuffer cmd, gpu::GpuTimer* timer) {
     writeParameters(); // once: every sub-step and stage reads the same uniform
+    lastStepDispatches_.clear();
     for (uint32_t substep = 0; substep < options_.substeps; ++substep)
-        for (Stage stage : kStepOrder)
+        for (Stage stage : kStepOrder) {
+            const uint32_t before = dispatches_;
             recordStageOnly(cmd, stage, timer);
+            const std::string name = stageName(stage);
+            auto it = std::find_if(lastStepDispatches_.begin(), lastStepDispatches_.end(),
+                                   [&](const auto& entry) { return entry.first == name; });
+            if (it == lastStepDispatches_.end())
+                lastStepDispatches_.emplace_back(name, dispatches_ - before);
+            else
+                it->second += dispatches_ - before;
+        }
+}
+
+uint64_t SmokeSolver::memoryBytes() const {
+    uint64_t bytes = 0;
+    auto image = [&](const gpu::Image& i) {
+        if (i)
+            bytes += uint64_t(i.extent.width) * i.extent.height * i.extent.depth *
+                     gpu::formatTexelSize(i.format);
+    };
+    for (const auto& set : velocity_)
+        for (const gpu::Image& i : set)
+            image(i);
+    for (const gpu::Image& i : pigment_)
+        image(i);
+    for (const gpu::Image& i : pressure_)
+        image(i);
+    image(divergence_);
+    image(vorticity_);
+    for (const gpu::Buffer& b : packedPressure_)
+        bytes += b.size;
+    bytes += packedDivergence_.size + parameters_.size + ownEmitters_.size;
+    return bytes;
+}
+
+void SmokeSolver::recordMeasureActivity(VkCommandBuffer cmd, const gpu::Buffer& out) {
+    if (!activityProgram_.pipeline())
+        activityProgram_ = makeProgram(ctx_, options_, "measure_activity",
+                                       shaders::measure_activity_comp, 0, 6, 5);
+    vkCmdFillBuffer(cmd, out.get(), 0, 2 * sizeof(uint32_t), 0);
+    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    const auto key = std::make_tuple(currentVelocity_, currentPigment_, out.get());
+    auto it = activitySets_.find(key);
+    if (it == activitySets_.end()) {
+        std::vector<gpu::DescriptorWrite> writes{gpu::bindBuffer(0, parameters_)};
+        addVelocity(writes, currentVelocity_, 1);
+        writes.push_back(storage(4, pigment_[currentPigment_]));
+        writes.push_back(gpu::bindBuffer(5, out));
+        it = activitySets_.emplace(key, activityProgram_.createSet(ctx_, writes)).first;
+    }
+    dispatch(cmd, activityProgram_, it->second, cells_);
+    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                       VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+                       VK_ACCESS_2_HOST_READ_BIT);
 }
 
 void SmokeSolver::step() {

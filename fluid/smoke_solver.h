@@ -62,6 +62,18 @@ public:
     void step();
     void runStage(Stage stage);
 
+    // The compute dispatches of each stage in the last recordStep(), in step order (a stage that
+    // runs twice, apply_boundaries, is summed), and GPU memory of the fields and buffers.
+    const std::vector<std::pair<std::string, uint32_t>>& lastStepDispatches() const {
+        return lastStepDispatches_;
+    }
+    uint64_t memoryBytes() const;
+
+    // Records measure_activity: the largest pigment alpha and the largest cell-centre speed of
+    // the current fields into `out` (two floats as uint bits, cleared first), for deciding whether
+    // the smoke has settled. `out` needs STORAGE_BUFFER and TRANSFER_DST usage.
+    void recordMeasureActivity(VkCommandBuffer cmd, const gpu::Buffer& out);
+
     // Upper bound of timer passes one recordStep() makes.
     uint32_t passesPerStep() const { return uint32_t(kStepOrder.size()) * options_.substeps; }
 
@@ -124,6 +136,10 @@ private:
     gpu::Program& program(Stage stage, int part = 0, uint32_t target = 0);
     std::map<std::tuple<int, int, uint32_t>, gpu::Program> programs_; // node addresses are stable
     std::map<std::tuple<const gpu::Program*, int, int, int>, VkDescriptorSet> sets_;
+    gpu::Program activityProgram_;
+    std::map<std::tuple<int, int, VkBuffer>, VkDescriptorSet> activitySets_;
+    mutable uint32_t dispatches_ = 0; // vkCmdDispatch calls recorded so far
+    std::vector<std::pair<std::string, uint32_t>> lastStepDispatches_;
 };
 
 } // namespace mfx::fluid

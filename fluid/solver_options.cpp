@@ -23,6 +23,7 @@ Status validateOptions(const SolverOptions& o, uint32_t maxDimension, uint32_t m
     if (!finite(o.dt) || o.dt < 0.0f) return bad("dt must be a finite number >= 0");
     if (o.substeps < 1 || o.substeps > 64) return bad("substeps must be between 1 and 64");
     if (!finite(o.fade) || o.fade < 0.0f) return bad("fade must be a finite number >= 0");
+    if (!finite(o.drag) || o.drag < 0.0f) return bad("drag must be a finite number >= 0");
     if (!finite(o.buoyancy)) return bad("buoyancy must be finite");
     if (!finite(o.vorticity) || o.vorticity < 0.0f)
         return bad("vorticity must be a finite number >= 0");
@@ -71,7 +72,7 @@ shared::FluidParameters makeParameters(const SolverOptions& o, uint32_t emitterC
     shared::FluidParameters p{};
     p.size = glm::uvec4(o.grid.cellsX, o.grid.cellsY, o.grid.cellsZ, emitterCount);
     const float dt = o.substepDt();
-    p.cell = glm::vec4(o.grid.cellSize, 1.0f / o.grid.cellSize, dt, 0.0f);
+    p.cell = glm::vec4(o.grid.cellSize, 1.0f / o.grid.cellSize, dt, o.drag);
     p.rates = glm::vec4(o.fade, o.buoyancy, o.vorticity,
                         o.viscosity * dt / (o.grid.cellSize * o.grid.cellSize));
     p.boundaryLow =

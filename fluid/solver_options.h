@@ -42,6 +42,7 @@ struct SolverOptions {
     uint32_t substeps = 1;   // each step runs every stage this many times with dt/substeps
     Integrator integrator = Integrator::Euler;
     float fade = 0.0f;                 // pigment decay rate per second: pigment *= exp(-fade*dt)
+    float drag = 0.0f;                 // velocity decay rate per second: u *= exp(-drag*dt)
     float buoyancy = 0.0f;             // upward acceleration per unit pigment alpha (0 = off)
     float vorticity = 0.0f;            // vorticity confinement strength epsilon (0 = off)
     float viscosity = 0.0f;            // kinematic viscosity nu, world units^2 per second (0 = off)

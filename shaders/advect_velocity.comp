@@ -1,5 +1,6 @@
 // advectVelocity: semi-Lagrangian advection of each MAC face component (docs/fluid.md; Stam 1999,
-// eq. 7). Twin: fluid/reference/advect_velocity.cpp. One dispatch per component.
+// eq. 7), then the per-second drag, u *= exp(-drag * dt). Twin: fluid/reference/advect_velocity.cpp.
+// One dispatch per component.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "fluid_common.glsl"
@@ -23,7 +24,8 @@ void main() {
     ivec3 q = ivec3(gl_GlobalInvocationID);
     if (any(greaterThanEqual(q, faceCount(c)))) return;
     float value = 0.0;
-    if (!wallNormalFace(c, q)) value = sampleVelocity(c, backTrace(facePosition(c, q)));
+    if (!wallNormalFace(c, q))
+        value = sampleVelocity(c, backTrace(facePosition(c, q))) * exp(-params.cell.w * timeStep());
     if (c == 0)
         imageStore(outX, q, vec4(value));
     else if (c == 1)

@@ -17,6 +17,7 @@ inline fluid::SolverOptions mixedBoundaryOptions(fluid::GridShape grid = {12, 10
     o.dt = 0.05f;
     o.integrator = fluid::Integrator::RK2;
     o.fade = 0.5f;
+    o.drag = 0.7f;
     o.buoyancy = 1.5f;
     o.vorticity = 0.4f;
     o.viscosity = 0.02f;

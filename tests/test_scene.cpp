@@ -49,7 +49,7 @@ TEST(SceneFile, EveryKeyIsRead) {
              "min_bone_weight": 0.3, "start": 0.2, "end": 0.9, "sub_samples": 3, "lifetime": 4,
              "stride": 2, "colour": [0.2, 0.4, 0.6, 0.8], "alpha_start": 0.9, "alpha_end": 0.1,
              "alpha_power": 2, "grid": [32, 24, 16], "cell_size": 0.04, "jacobi": 30,
-             "fade": 1.5, "buoyancy": 0.5, "vorticity": 2, "impulse_k": 0.7, "radius": 0.1,
+             "fade": 1.5, "drag": 2, "buoyancy": 0.5, "vorticity": 2, "impulse_k": 0.7, "radius": 0.1,
              "strength": 3, "emission": "surface", "surface_step": 0.01, "max_emitters": 100,
              "sleep_threshold": 0.001},
             {"type": "speed_lines", "width": 0.02},
@@ -68,6 +68,7 @@ TEST(SceneFile, EveryKeyIsRead) {
     EXPECT_EQ(smoke.grid, (std::array<uint32_t, 3>{32, 24, 16}));
     EXPECT_EQ(smoke.emission, scene::Emission::Surface);
     EXPECT_EQ(smoke.maxEmitters, 100u);
+    EXPECT_FLOAT_EQ(smoke.drag, 2.0f);
     EXPECT_FLOAT_EQ(smoke.colour.a, 0.8f);
     EXPECT_FLOAT_EQ(s.effects[1].width, 0.02f);
     EXPECT_FLOAT_EQ(s.effects[2].size, 0.03f);

@@ -83,7 +83,9 @@ struct EffectSpec {
     std::array<uint32_t, 3> grid{48, 48, 48};
     float cellSize = 0.05f;
     uint32_t jacobi = 20;
-    float fade = 0.6f; // pigment decay per second
+    float fade = 0.6f;            // pigment decay per second
+    float drag = 1.0f;            // velocity decay per second
+    float stepsPerSecond = 60.0f; // solver steps per second at least (whole steps per frame)
     float buoyancy = 0.0f;
     float vorticity = 0.0f;
     float impulseScale = 1.0f; // k

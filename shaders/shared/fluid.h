@@ -32,7 +32,8 @@ MFX_SHARED_BEGIN
 // Uniform buffer (std140), written once per sub-step.
 struct FluidParameters {
     uvec4 size;           // cells nx, ny, nz; w: number of emitters
-    vec4 cell;            // x: cell size h, y: 1/h, z: dt of the sub-step, w: unused
+    vec4 cell;            // x: cell size h, y: 1/h, z: dt of the sub-step, w: velocity drag per
+                          // second
     vec4 rates;           // x: pigment fade per second, y: buoyancy, z: vorticity confinement
                           // strength, w: viscosity coefficient nu*dt/h^2
     uvec4 boundaryLow;    // boundary kind of the -x, -y, -z faces; w: integrator

@@ -1,0 +1,124 @@
+// A scene's motion and smoke, frame by frame, on the GPU: only what the scene's effects call for.
+//
+//   * every effect gets a trajectory queue over the vertices its bones and meshes select
+//     (speed-lines: lines, blur: volumes, particles: points, smoke: the newest segment only);
+//     outside its time window an effect writes no segment and its trail ages out;
+//   * smoke effects with the same grid settings share one solver; no smoke effect, no grid: no
+//     fluid memory and no fluid dispatch;
+//   * a grid steps at a fixed rate (steps_per_second, rounded up to whole steps per frame), and
+//     its smoke effects build their segments at that rate, so 30 and 60 frames per second
+//     simulate the same smoke;
+//   * each step every live smoke effect's newest segment becomes emitters on the GPU
+//     (segment_emitters: impulse velocity, colour as pigment, strength by attenuation), in the
+//     grid's own frame; the grid is placed around the effects' vertices over their windows, with
+//     its floor on the stage floor;
+//   * a grid none of whose effects is live keeps stepping while its smoke settles and measures
+//     its largest pigment alpha and speed each frame; once both are below the effects' sleep
+//     threshold (speed: threshold x cell size / dt) it sleeps: zero dispatches until an effect is
+//     live again.
+// Statistics per frame: every pass that ran, with its dispatches and GPU milliseconds, and the
+// fluid memory.
+#pragma once
+
+#include "core/gpu/resources.h"
+#include "core/gpu/timer.h"
+#include "core/scene/scene.h"
+#include "core/trajectory/trajectory_queue.h"
+#include "fluid/segment_emitters.h"
+#include "fluid/smoke_solver.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace mfx::fluid {
+
+struct PassRecord {
+    std::string name;
+    uint32_t dispatches = 0;
+    double gpuMs = 0.0;
+};
+
+struct GridFrameState {
+    std::string name;
+    bool awake = false;        // stepped this frame
+    uint32_t emitters = 0;     // splatted this frame
+    bool measured = false;     // measured its activity (no effect live)
+    float largestAlpha = 0.0f; // when measured
+    float largestSpeed = 0.0f; // when measured, world units per second
+};
+
+struct SimulationFrameStats {
+    uint32_t frame = 0;
+    float time = 0.0f;
+    std::vector<PassRecord> passes; // in recording order, one per name
+    uint64_t fluidBytes = 0;        // GPU memory of every smoke grid
+    uint32_t awakeGrids = 0;        // grids that stepped this frame
+    std::vector<GridFrameState> grids;
+    uint32_t dispatches() const;
+    uint32_t fluidDispatches() const; // of passes whose name starts with "smoke"
+};
+
+class SceneSimulation {
+public:
+    struct TrajectoryEffect {
+        const scene::EffectSpec* spec = nullptr;
+        trajectory::Source source;
+        std::unique_ptr<trajectory::Queue> queue;
+        bool live = false; // wrote a segment this frame
+    };
+    struct SmokeGrid {
+        std::string name; // "smoke<i>" (the pass names start with it)
+        std::unique_ptr<SmokeSolver> solver;
+        glm::vec3 origin{0.0f};      // world position of the grid's low corner
+        std::vector<size_t> effects; // indices into trajectories()
+        gpu::Buffer emitters;
+        gpu::Buffer activity; // two floats as uint bits: largest pigment alpha, largest speed
+        bool awake = false;
+        bool measured = false; // measured its activity this frame
+        float sleepThreshold = 1e-4f;
+        uint32_t stepsPerFrame = 1;
+        uint32_t emittersThisFrame = 0;
+    };
+
+    static Result<std::unique_ptr<SceneSimulation>>
+    create(const gpu::Context& ctx, const scene::Scene& scene, const anim::Character& character);
+
+    const scene::Scene& scene() const { return scene_; }
+    uint32_t frameCount() const { return frames_; }
+    float frameTime(uint32_t frame) const { return float(frame) / scene_.output.fps; }
+
+    // Records frame `frame`; frames are recorded in order, each after the previous one finished.
+    void recordFrame(VkCommandBuffer cmd, uint32_t frame);
+    // After the frame's submission has finished: its statistics (and the sleep decisions).
+    SimulationFrameStats finishFrame();
+    // recordFrame, submit, wait, finishFrame.
+    SimulationFrameStats runFrame(uint32_t frame);
+
+    const std::vector<TrajectoryEffect>& trajectories() const { return trajectories_; }
+    const std::vector<SmokeGrid>& smokeGrids() const { return grids_; }
+    uint64_t fluidBytes() const;
+
+private:
+    SceneSimulation(const gpu::Context& ctx, scene::Scene scene, const anim::Character& character)
+        : ctx_(ctx), scene_(std::move(scene)), character_(character) {}
+    glm::mat4 placement() const;
+    anim::Pose poseAt(float time) const;
+    void addPass(const std::string& name, uint32_t dispatches);
+    void recordSmoke(VkCommandBuffer cmd, SmokeGrid& grid, uint32_t frame);
+    bool effectLive(const scene::EffectSpec& e, float time) const;
+    Status placeGrid(SmokeGrid& grid);
+
+    const gpu::Context& ctx_;
+    scene::Scene scene_;
+    const anim::Character& character_;
+    uint32_t frames_ = 0;
+    std::vector<TrajectoryEffect> trajectories_;
+    std::vector<SmokeGrid> grids_;
+    std::unique_ptr<SegmentEmitters> coupling_;
+    gpu::GpuTimer timer_;
+    std::vector<PassRecord> recorded_; // names and dispatches of this frame's passes
+    uint32_t currentFrame_ = 0;
+};
+
+} // namespace mfx::fluid
