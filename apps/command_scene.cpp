@@ -3,6 +3,7 @@
 #include "apps/commands.h"
 
 #include "core/scene/scene.h"
+#include "core/trajectory/surface_source.h"
 #include "core/trajectory/trajectory_source.h"
 
 #include <cstdio>
@@ -48,16 +49,33 @@ int runScene(std::span<const std::string> args) {
         selection.meshes = e.meshes;
         selection.bones = e.bones;
         selection.minBoneWeight = e.minBoneWeight;
-        const Result<trajectory::Source> source = trajectory::selectSource(c, selection);
+        const bool surface =
+            e.type == scene::EffectType::Smoke && e.emission == scene::Emission::Surface;
+        trajectory::SurfaceReport report;
+        const Result<trajectory::Source> source =
+            surface ? trajectory::selectSurfaceSource(c, selection, e.surfaceStep, &report)
+                    : trajectory::selectSource(c, selection);
         std::string window = "from " + std::to_string(e.start).substr(0, 5) + " s";
         if (e.end) window += " to " + std::to_string(*e.end).substr(0, 5) + " s";
         std::printf("  %-18s %-16s %s, ", e.name.c_str(), scene::effectTypeName(e.type),
                     window.c_str());
-        if (source)
+        if (!source) {
+            std::printf("%s\n", source.error().message.c_str());
+            continue;
+        }
+        if (!surface) {
             std::printf("%zu vertices, %zu triangles selected\n", source.value().vertices.size(),
                         source.value().triangles.size() / 3);
-        else
-            std::printf("%s\n", source.error().message.c_str());
+            continue;
+        }
+        std::printf("%zu surface points from %zu triangles (step %.3g)", report.samples,
+                    report.triangles, double(e.surfaceStep));
+        if (report.degenerateInUv + report.degenerateInModel + report.withoutUv > 0)
+            std::printf("; skipped %zu degenerate in UV, %zu without area, %zu without UVs",
+                        report.degenerateInUv, report.degenerateInModel, report.withoutUv);
+        for (const std::string& mesh : report.overlappingMeshes)
+            std::printf("; warning: mesh \"%s\" has overlapping UVs", mesh.c_str());
+        std::printf("\n");
     }
     return kExitOk;
 }

@@ -18,6 +18,9 @@ std::span<const Command> commands() {
          &runInspect},
         {"scene", "check a scene file and print what it asks for (effects, bones, vertices)",
          &runScene},
+        {"simulate",
+         "run a scene's trajectories and smoke on the GPU without drawing; per-frame --stats",
+         &runSimulate},
         {"export-fighter", "write the built-in fighter as glTF 2.0 (.glb or .gltf)",
          &runExportFighter},
     };

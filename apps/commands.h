@@ -32,6 +32,7 @@ int runBenchTrajectory(std::span<const std::string> args);
 int runInspect(std::span<const std::string> args);
 int runExportFighter(std::span<const std::string> args);
 int runScene(std::span<const std::string> args);
+int runSimulate(std::span<const std::string> args);
 
 // Options every GPU subcommand takes.
 std::vector<cli::OptionSpec> deviceOptions();

@@ -4,6 +4,7 @@
 #include "core/gpu/commands.h"
 #include "core/gpu/context.h"
 #include "core/trajectory/build_segment.h"
+#include "core/trajectory/surface_source.h"
 
 #include <algorithm>
 #include <cmath>
@@ -39,6 +40,7 @@ trajectory::Source strided(const trajectory::Source& source, uint32_t stride) {
     for (size_t v = 0; v < source.vertices.size(); v += stride) {
         out.vertices.push_back(source.vertices[v]);
         out.colours.push_back(source.colours[v]);
+        if (v < source.uvs.size()) out.uvs.push_back(source.uvs[v]);
     }
     return out;
 }
@@ -79,11 +81,16 @@ Result<std::unique_ptr<SceneSimulation>> SceneSimulation::create(const gpu::Cont
         selection.meshes = e.meshes;
         selection.bones = e.bones;
         selection.minBoneWeight = e.minBoneWeight;
-        Result<trajectory::Source> selected = trajectory::selectSource(character, selection);
-        if (!selected) return Error{where + selected.error().message};
         TrajectoryEffect effect;
         effect.spec = &e;
-        effect.source = e.type == scene::EffectType::MotionBlur
+        const bool surface =
+            e.type == scene::EffectType::Smoke && e.emission == scene::Emission::Surface;
+        Result<trajectory::Source> selected =
+            surface ? trajectory::selectSurfaceSource(character, selection, e.surfaceStep,
+                                                      &effect.surface)
+                    : trajectory::selectSource(character, selection);
+        if (!selected) return Error{where + selected.error().message};
+        effect.source = e.type == scene::EffectType::MotionBlur || surface
                             ? std::move(selected).value()
                             : strided(selected.value(), e.stride);
         if (!e.useMeshColour)

@@ -23,6 +23,7 @@
 #include "core/gpu/resources.h"
 #include "core/gpu/timer.h"
 #include "core/scene/scene.h"
+#include "core/trajectory/surface_source.h"
 #include "core/trajectory/trajectory_queue.h"
 #include "fluid/segment_emitters.h"
 #include "fluid/smoke_solver.h"
@@ -65,7 +66,8 @@ public:
         const scene::EffectSpec* spec = nullptr;
         trajectory::Source source;
         std::unique_ptr<trajectory::Queue> queue;
-        bool live = false; // wrote a segment this frame
+        bool live = false;                 // wrote a segment this frame
+        trajectory::SurfaceReport surface; // for smoke emitted from the surface
     };
     struct SmokeGrid {
         std::string name; // "smoke<i>" (the pass names start with it)

@@ -208,6 +208,30 @@ TEST_F(SceneSimulationTest, OneMovingVertexPushesTheRightCellsLikeTheReference) 
     EXPECT_GT(coloured, 0u);
 }
 
+// Smoke emitted from points spread over the surface instead of the vertices.
+TEST_F(SceneSimulationTest, SurfaceEmissionFeedsTheGrid) {
+    const scene::Scene s = parseScene(R"({
+        "output": {"frames": 4},
+        "effects": [{"type": "smoke", "bones": ["foot_r", "toe_r"], "emission": "surface",
+                     "surface_step": 0.01, "grid": [12, 12, 12], "cell_size": 0.15,
+                     "max_emitters": 64}]})");
+    const anim::Character fighter = anim::makeFighter();
+    auto sim = simulate(ctx(), s, fighter);
+    ASSERT_TRUE(sim);
+    const auto& effect = sim->trajectories()[0];
+    EXPECT_EQ(effect.source.vertices.size(), effect.surface.samples);
+    EXPECT_GT(effect.surface.samples, 300u); // at 1 cm, more points than the foot has vertices
+    uint32_t emitters = 0;
+    for (uint32_t f = 0; f < 4; ++f)
+        emitters += sim->runFrame(f).grids[0].emitters;
+    EXPECT_GT(emitters, 0u);
+    const fluid::FieldState state = sim->smokeGrids()[0].solver->state();
+    double pigment = 0.0;
+    for (size_t c = 0; c < state.pigment.size() / 4; ++c)
+        pigment += double(state.pigment[c * 4 + 3]);
+    EXPECT_GT(pigment, 0.01);
+}
+
 struct Totals {
     double pigment = 0.0;
     glm::dvec3 momentum{0.0};

@@ -93,6 +93,7 @@ Result<Source> selectSource(const anim::Character& character, const Selection& s
                 remap[v] = int64_t(source.vertices.size());
                 source.vertices.push_back(in);
                 source.colours.push_back(p.baseColor);
+                source.uvs.push_back(p.uvs.empty() ? glm::vec2(std::nanf("")) : p.uvs[v]);
             }
             for (size_t t = 0; t + 2 < p.indices.size(); t += 3) {
                 const int64_t a = remap[p.indices[t]], b = remap[p.indices[t + 1]],

@@ -35,6 +35,7 @@ struct PaletteEntry {
 struct Source {
     std::vector<shared::SkinVertexIn> vertices; // joints index the combined palette
     std::vector<glm::vec4> colours;             // the primitive's base colour, per vertex
+    std::vector<glm::vec2> uvs;                 // per vertex; NaN where the primitive has none
     std::vector<uint32_t> triangles;            // triangles whose three vertices are selected
     std::vector<PaletteEntry> palette;
 };
