@@ -1,0 +1,140 @@
+#include "render/character_pass.h"
+
+#include "core/anim/skinning.h"
+#include "core/gpu/context.h"
+#include "render/render_target.h"
+#include "shaders/embedded.h"
+
+#include <cstring>
+
+namespace mfx::render {
+
+namespace {
+
+constexpr VkBufferUsageFlags kStorage =
+    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+
+} // namespace
+
+CharacterPass::CharacterPass(const gpu::Context& ctx, const anim::Character& character,
+                             const scene::Scene& scene)
+    : ctx_(ctx), character_(character), scene_(scene), skinning_(ctx) {
+    gpu::GraphicsProgramDesc desc;
+    desc.name = "character";
+    desc.vertex = shaders::character_vert;
+    desc.fragment = shaders::character_frag;
+    desc.bindings = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
+                      VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT}};
+    desc.pushConstantSize = sizeof(shared::SceneObject);
+    desc.vertexStride = sizeof(shared::SkinVertexOut);
+    desc.attributes = {{0, VK_FORMAT_R32G32B32A32_SFLOAT, 0},
+                       {1, VK_FORMAT_R32G32B32A32_SFLOAT, 16}};
+    desc.colorFormats = {kColorFormat};
+    desc.depthFormat = kDepthFormat;
+    desc.depthTest = true;
+    desc.depthWrite = true;
+    program_ = gpu::createGraphicsProgram(ctx, desc);
+    frame_ = gpu::createBuffer(ctx, sizeof(shared::SceneFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                               gpu::MemoryUsage::Upload, "scene frame");
+    set_ = program_.createSet(ctx, {gpu::bindBuffer(0, frame_)});
+
+    for (const anim::Mesh& mesh : character.meshes)
+        for (const anim::Primitive& p : mesh.primitives) {
+            if (p.positions.empty() || p.indices.empty()) continue;
+            Part part;
+            part.primitive = &p;
+            part.vertexCount = uint32_t(p.positions.size());
+            part.indexCount = uint32_t(p.indices.size());
+            part.jointCount =
+                p.skin >= 0 ? uint32_t(character.skins[size_t(p.skin)].joints.size()) : 1;
+            const auto packed = anim::packVertices(p);
+            part.input = gpu::createBuffer(ctx, packed.size() * sizeof(shared::SkinVertexIn),
+                                           kStorage, gpu::MemoryUsage::DeviceLocal, "bind pose");
+            gpu::uploadBuffer(ctx, part.input, std::span<const shared::SkinVertexIn>(packed));
+            part.output = gpu::createBuffer(ctx, packed.size() * sizeof(shared::SkinVertexOut),
+                                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                                VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
+                                            gpu::MemoryUsage::DeviceLocal, "skinned");
+            part.indices = gpu::createBuffer(ctx, p.indices.size() * sizeof(uint32_t),
+                                             VK_BUFFER_USAGE_INDEX_BUFFER_BIT |
+                                                 VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                             gpu::MemoryUsage::DeviceLocal, "character indices");
+            gpu::uploadBuffer(ctx, part.indices, std::span<const uint32_t>(p.indices));
+            part.palette = gpu::createBuffer(ctx, part.jointCount * sizeof(shared::SkinJoint),
+                                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                             gpu::MemoryUsage::Upload, "character palette");
+            parts_.push_back(std::move(part));
+        }
+    if (scene.stage.floor)
+        addStageQuad(ctx, glm::vec3(0.0f), glm::vec3(0, 0, 40.0f), glm::vec3(40.0f, 0, 0),
+                     scene.stage.floorColour);
+    if (scene.stage.backdrop)
+        addStageQuad(ctx, glm::vec3(0.0f, 10.0f, -4.0f), glm::vec3(40.0f, 0, 0),
+                     glm::vec3(0, 10.0f, 0), scene.stage.backdropColour);
+}
+
+// A rectangle centre ± u ± v; its normal u × v.
+void CharacterPass::addStageQuad(const gpu::Context& ctx, glm::vec3 centre, glm::vec3 u,
+                                 glm::vec3 v, glm::vec3 colour) {
+    const glm::vec3 n = glm::normalize(glm::cross(u, v));
+    const shared::SkinVertexOut vertices[4] = {
+        {glm::vec4(centre - u - v, 1.0f), glm::vec4(n, 0.0f)},
+        {glm::vec4(centre + u - v, 1.0f), glm::vec4(n, 0.0f)},
+        {glm::vec4(centre + u + v, 1.0f), glm::vec4(n, 0.0f)},
+        {glm::vec4(centre - u + v, 1.0f), glm::vec4(n, 0.0f)}};
+    const uint32_t indices[6] = {0, 1, 2, 0, 2, 3};
+    StageMesh mesh;
+    mesh.vertices = gpu::createBuffer(
+        ctx, sizeof vertices, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+        gpu::MemoryUsage::DeviceLocal, "stage vertices");
+    gpu::uploadBuffer(ctx, mesh.vertices, std::span<const shared::SkinVertexOut>(vertices));
+    mesh.indices = gpu::createBuffer(
+        ctx, sizeof indices, VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+        gpu::MemoryUsage::DeviceLocal, "stage indices");
+    gpu::uploadBuffer(ctx, mesh.indices, std::span<const uint32_t>(indices));
+    mesh.indexCount = 6;
+    mesh.colour = colour;
+    stage_.push_back(std::move(mesh));
+}
+
+void CharacterPass::skin(VkCommandBuffer cmd, const anim::Pose& pose, const glm::mat4& placement) {
+    for (Part& part : parts_) {
+        const anim::Primitive& p = *part.primitive;
+        std::vector<glm::mat4> matrices;
+        if (p.skin >= 0) {
+            matrices = anim::jointMatrices(character_, p.skin, pose);
+        } else {
+            matrices = {p.node >= 0 ? pose.world[size_t(p.node)] : glm::mat4(1.0f)};
+        }
+        for (glm::mat4& m : matrices)
+            m = placement * m;
+        const auto packed = anim::packPalette(anim::dualQuatPalette(matrices));
+        std::memcpy(part.palette.mapped, packed.data(), packed.size() * sizeof(shared::SkinJoint));
+        skinning_.record(cmd, part.palette, part.jointCount, part.input, part.output,
+                         part.vertexCount);
+    }
+}
+
+void CharacterPass::draw(VkCommandBuffer cmd, const SceneCamera& camera) {
+    const shared::SceneFrame frame = sceneFrame(scene_, camera);
+    std::memcpy(frame_.mapped, &frame, sizeof frame);
+    program_.bind(cmd, set_);
+    const VkDeviceSize offset = 0;
+    auto drawMesh = [&](const gpu::Buffer& vertices, const gpu::Buffer& indices, uint32_t count,
+                        glm::vec3 colour) {
+        shared::SceneObject object{};
+        object.model = glm::mat4(1.0f);
+        object.baseColor = glm::vec4(colour, 1.0f);
+        program_.push(cmd, object);
+        VkBuffer vb = vertices.get();
+        vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
+        vkCmdBindIndexBuffer(cmd, indices.get(), 0, VK_INDEX_TYPE_UINT32);
+        vkCmdDrawIndexed(cmd, count, 1, 0, 0, 0);
+    };
+    for (const StageMesh& m : stage_)
+        drawMesh(m.vertices, m.indices, m.indexCount, m.colour);
+    for (const Part& part : parts_)
+        drawMesh(part.output, part.indices, part.indexCount, glm::vec3(part.primitive->baseColor));
+}
+
+} // namespace mfx::render

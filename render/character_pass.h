@@ -1,0 +1,56 @@
+// The scene pass: the character, skinned on the GPU every frame (anim::SkinVertices, dual
+// quaternion skinning from a palette per skin), and the stage (a floor and a backdrop), lit with
+// the scene's key light. Recording is in two parts: skin() before rendering begins (compute), then
+// draw() inside it.
+#pragma once
+
+#include "core/anim/character.h"
+#include "core/anim/sampling.h"
+#include "core/anim/skin_vertices.h"
+#include "core/gpu/program.h"
+#include "core/gpu/resources.h"
+#include "core/scene/scene.h"
+#include "render/scene_camera.h"
+
+#include <memory>
+#include <vector>
+
+namespace mfx::render {
+
+class CharacterPass {
+public:
+    CharacterPass(const gpu::Context& ctx, const anim::Character& character,
+                  const scene::Scene& scene);
+
+    // Records the skinning of every primitive in `pose`, the character placed by `placement`.
+    // The palettes are written now: the previous recording must have finished executing.
+    void skin(VkCommandBuffer cmd, const anim::Pose& pose, const glm::mat4& placement);
+    // Records the draws (inside rendering to a colour + depth target of kColorFormat/kDepthFormat).
+    void draw(VkCommandBuffer cmd, const SceneCamera& camera);
+
+private:
+    struct Part {
+        const anim::Primitive* primitive = nullptr;
+        gpu::Buffer input, output, indices, palette;
+        uint32_t vertexCount = 0, indexCount = 0, jointCount = 0;
+    };
+    struct StageMesh {
+        gpu::Buffer vertices, indices;
+        uint32_t indexCount = 0;
+        glm::vec3 colour{1.0f};
+    };
+    void addStageQuad(const gpu::Context& ctx, glm::vec3 centre, glm::vec3 u, glm::vec3 v,
+                      glm::vec3 colour);
+
+    const gpu::Context& ctx_;
+    const anim::Character& character_;
+    const scene::Scene& scene_;
+    anim::SkinVertices skinning_;
+    gpu::Program program_;
+    gpu::Buffer frame_;
+    VkDescriptorSet set_ = VK_NULL_HANDLE;
+    std::vector<Part> parts_;
+    std::vector<StageMesh> stage_;
+};
+
+} // namespace mfx::render

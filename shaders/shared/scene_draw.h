@@ -1,0 +1,36 @@
+// Structures of the scene pass (render/character_pass.h, shaders/character.vert/.frag), shared by
+// GLSL and C++.
+#ifndef MFX_SHARED_SCENE_DRAW_H
+#define MFX_SHARED_SCENE_DRAW_H
+
+#include "common.h"
+
+MFX_SHARED_BEGIN
+
+// Uniform buffer, std140: the camera and the key light of a frame.
+struct SceneFrame {
+    mat4 viewProjection;
+    vec4 cameraPosition; // xyz world
+    vec4 lightDirection; // xyz unit vector from the surface towards the light
+    vec4 lightColor;     // rgb linear radiance times intensity; w: ambient fraction
+    vec4 sky;            // rgb: ambient colour from above; w: specular strength
+    vec4 ground;         // rgb: ambient colour from below; w: specular exponent
+};
+
+// Push constants, one per draw.
+struct SceneObject {
+    mat4 model;     // identity for skinned geometry (already in world space)
+    vec4 baseColor; // linear RGB; a: 1
+};
+
+MFX_SHARED_END
+
+#ifdef __cplusplus
+MFX_CHECK_SIZE(SceneFrame, 144);
+MFX_CHECK_LAYOUT(SceneFrame, cameraPosition, 64);
+MFX_CHECK_LAYOUT(SceneFrame, lightColor, 96);
+MFX_CHECK_LAYOUT(SceneFrame, ground, 128);
+MFX_CHECK_SIZE(SceneObject, 80);
+#endif
+
+#endif

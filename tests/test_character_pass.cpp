@@ -1,0 +1,72 @@
+// The scene pass: the skinned fighter on its stage, seen by the scene's camera. Checks where the
+// character lands in the picture against its skinned vertices projected on the CPU, and writes the
+// picture for a look.
+#include "core/anim/fighter.h"
+#include "core/gpu/commands.h"
+#include "render/character_pass.h"
+#include "render/image_output.h"
+#include "render/render_target.h"
+#include "tests/gpu_test.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace mfx::test {
+namespace {
+
+using CharacterPassTest = GpuTest;
+
+TEST_F(CharacterPassTest, FighterLandsWhereItsVerticesProject) {
+    const anim::Character fighter = anim::makeFighter();
+    const scene::Scene s = scene::defaultScene();
+    const uint32_t width = 320, height = 180;
+    render::RenderTarget target = render::createRenderTarget(ctx(), width, height);
+    render::CharacterPass pass(ctx(), fighter, s);
+    const render::SceneCamera camera = render::makeCamera(s.camera, float(width) / float(height));
+    const anim::Pose pose =
+        anim::samplePose(fighter, fighter.findClip("roundhouse_kick"), 0.45f, anim::Wrap::Clamp);
+    gpu::submitOneShot(ctx(), [&](VkCommandBuffer cmd) {
+        pass.skin(cmd, pose, glm::mat4(1.0f));
+        render::beginRendering(cmd, target, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+        pass.draw(cmd, camera);
+        render::endRendering(cmd);
+    });
+    const std::vector<uint8_t> rgba = render::readColor(ctx(), target);
+    const std::vector<float> depth = render::readDepth(ctx(), target);
+    const std::string dir = std::string(MFX_TEST_OUTPUT_DIR) + "/character_pass";
+    ASSERT_TRUE(render::ensureOutputDirectory(dir).ok());
+    ASSERT_TRUE(render::writePng(dir + "/kick.png", width, height, rgba).ok());
+
+    // Every skinned vertex projected on the CPU (no depth test): the pixels the character can
+    // cover. The body's vertices in front of the stage must have drawn something nearer than the
+    // floor and backdrop there.
+    size_t inside = 0, nearer = 0;
+    for (const anim::Mesh& mesh : fighter.meshes)
+        for (const anim::Primitive& p : mesh.primitives) {
+            const auto skinned = anim::skinPrimitive(fighter, p, pose);
+            for (size_t v = 0; v < skinned.size(); v += 7) {
+                const glm::vec4 clip = camera.viewProjection * glm::vec4(skinned[v].position, 1.0f);
+                const glm::vec3 ndc = glm::vec3(clip) / clip.w;
+                const int x = int((ndc.x * 0.5f + 0.5f) * float(width));
+                const int y = int((0.5f - ndc.y * 0.5f) * float(height)); // top row first
+                if (x < 1 || y < 1 || x >= int(width) - 1 || y >= int(height) - 1) continue;
+                ++inside;
+                // The drawn depth there is at most this vertex's (something as near or nearer),
+                // within a pixel: a silhouette vertex may round to a pixel just off the surface.
+                float drawn = 1.0f;
+                for (int dy = -1; dy <= 1; ++dy)
+                    for (int dx = -1; dx <= 1; ++dx)
+                        drawn = std::min(drawn, depth[size_t(y + dy) * width + size_t(x + dx)]);
+                if (drawn <= ndc.z + 1e-4f) ++nearer;
+            }
+        }
+    EXPECT_GT(inside, 100u);
+    EXPECT_EQ(nearer, inside);
+    // The picture is not one colour: character, floor and backdrop differ.
+    size_t changes = 0;
+    for (size_t i = 4; i < rgba.size(); i += 4)
+        changes += rgba[i] != rgba[i - 4] ? 1 : 0;
+    EXPECT_GT(changes, 1000u);
+}
+
+} // namespace
+} // namespace mfx::test
