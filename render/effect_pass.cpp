@@ -1,0 +1,103 @@
+#include "render/effect_pass.h"
+
+#include "core/gpu/context.h"
+#include "render/render_target.h"
+#include "shaders/embedded.h"
+#include "shaders/shared/effect_draw.h"
+
+#include <cstring>
+
+namespace mfx::render {
+
+namespace {
+
+gpu::GraphicsProgramDesc effectDesc(const char* name, VkPrimitiveTopology topology) {
+    gpu::GraphicsProgramDesc desc;
+    desc.name = name;
+    desc.bindings = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_ALL_GRAPHICS}};
+    desc.pushConstantSize = sizeof(shared::EffectDraw);
+    desc.vertexStride = sizeof(shared::TrajectoryVertex);
+    desc.attributes = {{0, VK_FORMAT_R32G32B32A32_SFLOAT, 0},
+                       {1, VK_FORMAT_R32G32B32A32_SFLOAT, 16},
+                       {2, VK_FORMAT_R32G32B32A32_SFLOAT, 32}};
+    desc.topology = topology;
+    desc.colorFormats = {kColorFormat};
+    desc.depthFormat = kDepthFormat;
+    desc.depthTest = true;
+    desc.depthWrite = false;
+    desc.blend = gpu::BlendMode::PremultipliedAlpha;
+    return desc;
+}
+
+} // namespace
+
+EffectPass::EffectPass(const gpu::Context& ctx) : ctx_(ctx) {
+    gpu::GraphicsProgramDesc volume =
+        effectDesc("effect_volume", VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST);
+    volume.vertex = shaders::effect_volume_vert;
+    volume.fragment = shaders::effect_volume_frag;
+    volumes_ = gpu::createGraphicsProgram(ctx, volume);
+    gpu::GraphicsProgramDesc line = effectDesc("effect_lines", VK_PRIMITIVE_TOPOLOGY_LINE_LIST);
+    line.vertex = shaders::effect_lines_vert;
+    line.geometry = shaders::effect_lines_geom;
+    line.fragment = shaders::effect_lines_frag;
+    lines_ = gpu::createGraphicsProgram(ctx, line);
+    gpu::GraphicsProgramDesc particle =
+        effectDesc("effect_particles", VK_PRIMITIVE_TOPOLOGY_POINT_LIST);
+    particle.vertex = shaders::effect_particles_vert;
+    particle.geometry = shaders::effect_particles_geom;
+    particle.fragment = shaders::effect_particles_frag;
+    particles_ = gpu::createGraphicsProgram(ctx, particle);
+    frame_ = gpu::createBuffer(ctx, sizeof(shared::SceneFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                               gpu::MemoryUsage::Upload, "effect frame");
+    volumeSet_ = volumes_.createSet(ctx, {gpu::bindBuffer(0, frame_)});
+    lineSet_ = lines_.createSet(ctx, {gpu::bindBuffer(0, frame_)});
+    particleSet_ = particles_.createSet(ctx, {gpu::bindBuffer(0, frame_)});
+}
+
+uint32_t EffectPass::draw(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
+                          const SceneCamera& camera, float now) {
+    const shared::SceneFrame frame = sceneFrame(simulation.scene(), camera);
+    std::memcpy(frame_.mapped, &frame, sizeof frame);
+    uint32_t draws = 0;
+    // Volumes first, then lines, then particles: the thin effects stay on top of the blur.
+    for (scene::EffectType type : {scene::EffectType::MotionBlur, scene::EffectType::SpeedLines,
+                                   scene::EffectType::MotionParticles}) {
+        gpu::Program& program = type == scene::EffectType::MotionBlur   ? volumes_
+                                : type == scene::EffectType::SpeedLines ? lines_
+                                                                        : particles_;
+        VkDescriptorSet set = type == scene::EffectType::MotionBlur   ? volumeSet_
+                              : type == scene::EffectType::SpeedLines ? lineSet_
+                                                                      : particleSet_;
+        for (const fluid::SceneSimulation::TrajectoryEffect& effect : simulation.trajectories()) {
+            if (effect.spec->type != type) continue;
+            const trajectory::Queue& queue = *effect.queue;
+            const auto live = queue.liveSegments();
+            if (live.empty()) continue;
+            program.bind(cmd, set);
+            shared::EffectDraw d{};
+            d.timing = glm::vec4(now, float(effect.spec->lifetime) / simulation.scene().output.fps,
+                                 type == scene::EffectType::SpeedLines ? effect.spec->width
+                                                                       : effect.spec->size,
+                                 1.0f / simulation.scene().output.fps);
+            d.tint = glm::vec4(1.0f);
+            program.push(cmd, d);
+            const VkBuffer vertices = queue.vertices().get();
+            const VkDeviceSize offset = 0;
+            vkCmdBindVertexBuffers(cmd, 0, 1, &vertices, &offset);
+            if (queue.indicesPerSegment() > 0)
+                vkCmdBindIndexBuffer(cmd, queue.indices().get(), 0, VK_INDEX_TYPE_UINT32);
+            for (const trajectory::LiveSegment& segment : live) {
+                if (queue.indicesPerSegment() > 0)
+                    vkCmdDrawIndexed(cmd, queue.indicesPerSegment(), 1, 0,
+                                     int32_t(segment.firstVertex), 0);
+                else
+                    vkCmdDraw(cmd, queue.verticesPerSegment(), 1, segment.firstVertex, 0);
+                ++draws;
+            }
+        }
+    }
+    return draws;
+}
+
+} // namespace mfx::render

@@ -1,0 +1,34 @@
+// The effect passes: what the trajectory queues hold, drawn over the scene (inside the same
+// rendering, after the opaque scene pass; depth test on, no depth write, premultiplied alpha):
+//   * motion volumes (blur): the swept side walls, lit with their stored normals;
+//   * speed-lines: each line piece widened into a camera-facing ribbon (geometry stage), tapering
+//     along the segment and with age, with a white-hot core;
+//   * motion particles: round camera-facing sprites (geometry stage).
+// Every sample's alpha is its attenuation along the segment times 1 - age / lifetime.
+#pragma once
+
+#include "core/gpu/program.h"
+#include "core/gpu/resources.h"
+#include "fluid/scene_simulation.h"
+#include "render/scene_camera.h"
+
+namespace mfx::render {
+
+class EffectPass {
+public:
+    explicit EffectPass(const gpu::Context& ctx);
+
+    // Draws every drawn effect (speed-lines, blur, particles) of `simulation` at scene time
+    // `now`; returns the number of draws recorded.
+    uint32_t draw(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
+                  const SceneCamera& camera, float now);
+
+private:
+    const gpu::Context& ctx_;
+    gpu::Program volumes_, lines_, particles_;
+    gpu::Buffer frame_;
+    VkDescriptorSet volumeSet_ = VK_NULL_HANDLE, lineSet_ = VK_NULL_HANDLE,
+                    particleSet_ = VK_NULL_HANDLE;
+};
+
+} // namespace mfx::render

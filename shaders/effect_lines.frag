@@ -1,0 +1,16 @@
+// Speed-lines: a bright core fading to the ribbon's edges, added to the picture (premultiplied).
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "effect_common.glsl"
+
+layout(location = 0) in vec4 ribbonColour;
+layout(location = 1) in float across;
+
+layout(location = 0) out vec4 outColor;
+
+void main() {
+    float edge = 1.0 - across * across;
+    float a = ribbonColour.a * edge;
+    vec3 core = mix(ribbonColour.rgb, vec3(1.0), 0.5 * edge * edge); // a white-hot centre
+    outColor = vec4(core * a, a);
+}
