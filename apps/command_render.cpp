@@ -1,69 +1,176 @@
-// motionfx render: renders headless and writes PNG. For now the lit test scene.
+// motionfx render: a scene (or the built-in default) rendered headless, frame by frame, into
+// numbered PNGs (and an MP4 when ffmpeg is installed), with a progress bar and per-frame stats.
 #include "apps/commands.h"
+#include "apps/progress.h"
 
 #include "core/gpu/commands.h"
 #include "core/gpu/timer.h"
+#include "fluid/scene_simulation.h"
+#include "render/character_pass.h"
+#include "render/effect_pass.h"
 #include "render/image_output.h"
 #include "render/render_target.h"
-#include "render/test_scene_pass.h"
 
 #include <cstdio>
+#include <cstdlib>
+#include <nlohmann/json.hpp>
 
 namespace mfx::app {
 
+namespace {
+
+bool haveFfmpeg() {
+    return std::system("command -v ffmpeg >/dev/null 2>&1") == 0;
+}
+
+std::string frameName(uint32_t frame) {
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%04u.png", frame);
+    return name;
+}
+
+} // namespace
+
 int runRender(std::span<const std::string> args) {
     std::vector<cli::OptionSpec> options = deviceOptions();
-    options.push_back({"out", "DIR", "write the PNG into DIR (default: out)"});
-    options.push_back({"size", "WxH", "image size in pixels (default: 1280x720)"});
+    options.push_back({"out", "DIR", "write the frames into DIR (default: out)"});
+    options.push_back({"frames", "N", "render the first N frames (default: the scene's)"});
+    options.push_back({"size", "WxH", "image size in pixels (default: the scene's, 1280x720)"});
+    options.push_back({"stats", "FILE", "write per-frame statistics as JSON"});
     cli::ParsedArgs parsed;
     int exitCode = kExitOk;
-    if (!parseOrExit(args, options, 0,
-                     "usage: motionfx render [options]\n\nRenders the lit test scene headless "
-                     "and writes DIR/test_scene.png.",
+    if (!parseOrExit(args, options, 1,
+                     "usage: motionfx render [SCENE] [options]\n\nRenders a scene file (JSON; "
+                     "README.md \"Scene files\") or, without one, the built-in default scene "
+                     "headless into DIR/frame_0000.png, frame_0001.png, ... and, when ffmpeg is "
+                     "installed, DIR/scene.mp4.",
                      parsed, exitCode))
         return exitCode;
 
-    auto size = cli::parseSize(parsed.value("size", "1280x720"), 16384);
-    if (!size) {
-        printError(size.error().message);
-        return kExitUsage;
+    Result<scene::Scene> loaded = parsed.positional.empty()
+                                      ? Result<scene::Scene>(scene::defaultScene())
+                                      : scene::loadScene(parsed.positional[0]);
+    if (!loaded) {
+        printError(loaded.error().message);
+        return kExitFailure;
     }
-    const auto [width, height] = size.value();
+    scene::Scene s = std::move(loaded).value();
+    if (parsed.has("size")) {
+        auto size = cli::parseSize(parsed.value("size"), 16384);
+        if (!size) {
+            printError(size.error().message);
+            return kExitUsage;
+        }
+        s.output.width = size.value().first;
+        s.output.height = size.value().second;
+    }
+    if (parsed.has("frames")) {
+        auto frames = cli::parseUnsigned(parsed.value("frames"), 1, 100000, "--frames");
+        if (!frames) {
+            printError(frames.error().message);
+            return kExitUsage;
+        }
+        s.output.frames = frames.value();
+    }
     const std::string outDir = parsed.value("out", "out");
-    // Check the output before the (slower) GPU work, so a typo fails at once.
+    // Check the outputs before the (slower) GPU work, so a typo fails at once.
     if (Status dir = render::ensureOutputDirectory(outDir); !dir) {
         printError(dir.error().message);
+        return kExitFailure;
+    }
+    std::ofstream statsFile;
+    if (!openOutputFile(parsed.value("stats"), statsFile)) return kExitFailure;
+    Result<anim::Character> character = scene::loadCharacter(s);
+    if (!character) {
+        printError(character.error().message);
         return kExitFailure;
     }
 
     const std::unique_ptr<gpu::Context> context = createContext(parsed);
     if (!context) return kExitFailure;
     const gpu::Context& ctx = *context;
-    if (width > ctx.limits().maxImageDimension2D || height > ctx.limits().maxImageDimension2D) {
-        printError("size " + std::to_string(width) + "x" + std::to_string(height) + " exceeds " +
-                   ctx.info().name + "'s largest image, " +
-                   std::to_string(ctx.limits().maxImageDimension2D));
+    if (s.output.width > ctx.limits().maxImageDimension2D ||
+        s.output.height > ctx.limits().maxImageDimension2D) {
+        printError("size " + std::to_string(s.output.width) + "x" +
+                   std::to_string(s.output.height) + " exceeds " + ctx.info().name +
+                   "'s largest image, " + std::to_string(ctx.limits().maxImageDimension2D));
         return kExitUsage;
     }
-
-    render::RenderTarget target = render::createRenderTarget(ctx, width, height);
-    render::TestScenePass scene(ctx);
-    gpu::GpuTimer timer(ctx, 4);
-    gpu::submitOneShot(ctx, [&](VkCommandBuffer cmd) {
-        timer.reset(cmd);
-        gpu::ScopedPass pass(timer, cmd, "test_scene");
-        scene.record(cmd, target, render::TestSceneView::standard());
-    });
-    const std::vector<uint8_t> rgba = render::readColor(ctx, target);
-    const std::string path = outDir + "/test_scene.png";
-    if (Status written = render::writePng(path, width, height, rgba); !written) {
-        printError(written.error().message);
+    auto created = fluid::SceneSimulation::create(ctx, s, character.value());
+    if (!created) {
+        printError(created.error().message);
         return kExitFailure;
     }
-    std::printf("wrote %s (%ux%u) on %s", path.c_str(), width, height, ctx.info().name.c_str());
-    for (const gpu::PassTime& t : timer.results())
-        std::printf(", %s pass %.2f ms GPU", t.name.c_str(), t.milliseconds);
-    std::printf("\n");
+    fluid::SceneSimulation& sim = *created.value();
+    render::RenderTarget target = render::createRenderTarget(ctx, s.output.width, s.output.height);
+    render::CharacterPass scenePass(ctx, character.value(), sim.scene());
+    render::EffectPass effectPass(ctx);
+    const render::SceneCamera camera =
+        render::makeCamera(s.camera, float(s.output.width) / float(s.output.height));
+    gpu::GpuTimer timer(ctx, 4);
+
+    Progress progress("rendering", sim.frameCount());
+    nlohmann::json frames = nlohmann::json::array();
+    const glm::vec4 clear(0.02f, 0.02f, 0.03f, 1.0f);
+    for (uint32_t f = 0; f < sim.frameCount(); ++f) {
+        const float t = sim.frameTime(f);
+        const anim::Pose pose = sim.poseAt(t);
+        uint32_t draws = 0;
+        gpu::submitOneShot(ctx, [&](VkCommandBuffer cmd) {
+            sim.recordFrame(cmd, f);
+            timer.reset(cmd);
+            {
+                gpu::ScopedPass pass(timer, cmd, "render/skin_vertices");
+                scenePass.skin(cmd, pose, sim.placement());
+            }
+            gpu::ScopedPass pass(timer, cmd, "render/scene_and_effects");
+            render::beginRendering(cmd, target, clear);
+            scenePass.draw(cmd, camera);
+            draws = effectPass.draw(cmd, sim, camera, t);
+            render::endRendering(cmd);
+        });
+        fluid::SimulationFrameStats stats = sim.finishFrame();
+        for (const gpu::PassTime& p : timer.results())
+            stats.passes.push_back({p.name, 0, p.milliseconds});
+        const std::vector<uint8_t> rgba = render::readColor(ctx, target);
+        if (Status written = render::writePng(outDir + "/" + frameName(f), s.output.width,
+                                              s.output.height, rgba);
+            !written) {
+            printError(written.error().message);
+            return kExitFailure;
+        }
+        nlohmann::json record = statsJson(stats);
+        record["effect_draws"] = draws;
+        frames.push_back(record);
+        double gpu = 0.0;
+        for (const fluid::PassRecord& p : stats.passes)
+            gpu += p.gpuMs;
+        char note[64];
+        std::snprintf(note, sizeof note, "(%.1f ms GPU)", gpu);
+        progress.update(f + 1, note);
+    }
+    progress.finish();
+    std::string video;
+    if (haveFfmpeg()) {
+        const std::string command =
+            "ffmpeg -y -loglevel error -framerate " + std::to_string(s.output.fps) + " -i \"" +
+            outDir + "/frame_%04d.png\" -pix_fmt yuv420p \"" + outDir + "/scene.mp4\"";
+        video = std::system(command.c_str()) == 0 ? ", and " + outDir + "/scene.mp4"
+                                                  : " (ffmpeg failed: no MP4)";
+    } else {
+        video = " (ffmpeg is not installed: no MP4)";
+    }
+    std::printf("rendered %s on %s: %u frames of %ux%u in %s/frame_0000.png ... %s%s\n",
+                s.file.c_str(), ctx.info().name.c_str(), sim.frameCount(), s.output.width,
+                s.output.height, outDir.c_str(), frameName(sim.frameCount() - 1).c_str(),
+                video.c_str());
+    if (statsFile.is_open())
+        statsFile << nlohmann::json{{"device", ctx.info().name},
+                                    {"scene", s.file},
+                                    {"fps", s.output.fps},
+                                    {"frames", frames}}
+                         .dump(1)
+                  << "\n";
     return finishValidation(ctx, kExitOk);
 }
 

@@ -7,7 +7,8 @@ namespace mfx::app {
 std::span<const Command> commands() {
     static const Command table[] = {
         {"info", "print the chosen Vulkan device and its capabilities", &runInfo},
-        {"render", "render a picture headless and write it as PNG", &runRender},
+        {"render", "render a scene (default: the built-in one) into PNG frames (and MP4)",
+         &runRender},
         {"compare", "run a solver scenario on GPU and CPU reference, print the differences",
          &runCompare},
         {"bench",

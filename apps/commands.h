@@ -4,6 +4,9 @@
 
 #include "apps/cli.h"
 #include "core/gpu/context.h"
+#include "fluid/scene_simulation.h"
+
+#include <nlohmann/json.hpp>
 
 #include <fstream>
 #include <memory>
@@ -43,6 +46,9 @@ std::unique_ptr<gpu::Context> createContext(const cli::ParsedArgs& args);
 
 // Opens `path` for writing when it is not empty; false (after printing why) when it cannot be.
 bool openOutputFile(const std::string& path, std::ofstream& file);
+
+// One frame's simulation statistics as JSON ({"frame", "time", "passes", "fluid_bytes", ...}).
+nlohmann::json statsJson(const fluid::SimulationFrameStats& stats);
 
 // Prints "motionfx: error: <message>" to stderr.
 void printError(const std::string& message);

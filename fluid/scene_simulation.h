@@ -97,6 +97,10 @@ public:
     // recordFrame, submit, wait, finishFrame.
     SimulationFrameStats runFrame(uint32_t frame);
 
+    // Where the character stands, and its pose at a scene time (for drawing it).
+    glm::mat4 placement() const;
+    anim::Pose poseAt(float time) const;
+
     const std::vector<TrajectoryEffect>& trajectories() const { return trajectories_; }
     const std::vector<SmokeGrid>& smokeGrids() const { return grids_; }
     uint64_t fluidBytes() const;
@@ -104,8 +108,6 @@ public:
 private:
     SceneSimulation(const gpu::Context& ctx, scene::Scene scene, const anim::Character& character)
         : ctx_(ctx), scene_(std::move(scene)), character_(character) {}
-    glm::mat4 placement() const;
-    anim::Pose poseAt(float time) const;
     void addPass(const std::string& name, uint32_t dispatches);
     void recordSmoke(VkCommandBuffer cmd, SmokeGrid& grid, uint32_t frame);
     bool effectLive(const scene::EffectSpec& e, float time) const;

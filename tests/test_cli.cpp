@@ -212,18 +212,47 @@ TEST(Cli, EveryCommandHasHelp) {
     EXPECT_NE(top.out.find("render"), std::string::npos);
 }
 
-TEST(Cli, RenderWritesAPngWithValidationClean) {
+// The default scene's first frames, with validation on; and a speed-lines scene to the end.
+TEST(Cli, RenderWritesNumberedFramesWithValidationClean) {
     const std::string dir = std::string(MFX_TEST_OUTPUT_DIR) + "/cli_render";
     std::filesystem::remove_all(dir);
-    const RunResult r = runMotionfx("render --size 64x36 --validate --out " + dir);
+    const std::string stats = dir + "_stats.json";
+    const RunResult r =
+        runMotionfx("render --size 64x36 --frames 2 --validate --out " + dir + " --stats " + stats);
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    EXPECT_EQ(r.err, "") << "validation or other messages";
-    int w = 0, h = 0, channels = 0;
-    stbi_uc* pixels = stbi_load((dir + "/test_scene.png").c_str(), &w, &h, &channels, 4);
-    ASSERT_NE(pixels, nullptr) << "no PNG at " << dir << "/test_scene.png";
-    EXPECT_EQ(w, 64);
-    EXPECT_EQ(h, 36);
-    stbi_image_free(pixels);
+    EXPECT_EQ(r.err.find("error"), std::string::npos) << r.err;
+    EXPECT_NE(r.out.find("rendered (built-in default scene)"), std::string::npos) << r.out;
+    for (const char* frame : {"/frame_0000.png", "/frame_0001.png"}) {
+        int w = 0, h = 0, channels = 0;
+        stbi_uc* pixels = stbi_load((dir + frame).c_str(), &w, &h, &channels, 4);
+        ASSERT_NE(pixels, nullptr) << "no PNG at " << dir << frame;
+        EXPECT_EQ(w, 64);
+        EXPECT_EQ(h, 36);
+        stbi_image_free(pixels);
+    }
+    const nlohmann::json doc = nlohmann::json::parse(readFile(stats));
+    ASSERT_EQ(doc["frames"].size(), 2u);
+    EXPECT_GT(doc["frames"][1]["fluid_bytes"].get<double>(), 0.0); // the default has smoke
+    EXPECT_TRUE(doc["frames"][1]["passes"].is_array());
+}
+
+TEST(Cli, RenderOfASpeedLinesSceneRunsToItsEnd) {
+    const std::string dir = std::string(MFX_TEST_OUTPUT_DIR) + "/cli_render_lines";
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    const std::string scene = dir + "/lines.json";
+    std::ofstream(scene) << R"({"output": {"width": 96, "height": 54},
+                                "effects": [{"type": "speed_lines"}]})";
+    const RunResult r = runMotionfx("render \"" + scene + "\" --out " + dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(std::filesystem::exists(dir + "/frame_0026.png")); // 0.9 s at 30 fps
+    EXPECT_FALSE(std::filesystem::exists(dir + "/frame_0027.png"));
+}
+
+TEST(Cli, RenderOfABadSceneIsOneLine) {
+    const RunResult r = runMotionfx("render /nonexistent/scene.json");
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_EQ(lineCount(r.err), 1u) << r.err;
 }
 
 // motionfx inspect on the third-party characters and on broken files.

@@ -439,8 +439,9 @@ Scene defaultScene() {
     lines.name = "kick lines";
     lines.meshes = {"body"};
     lines.bones = {"shin_r", "foot_r", "toe_r"};
-    lines.stride = 3;
-    lines.lifetime = 10;
+    lines.stride = 10;
+    lines.lifetime = 12;
+    lines.width = 0.02f;
     lines.colour = {1.0f, 0.85f, 0.3f, 1.0f};
     lines.useMeshColour = false;
     EffectSpec blur;
