@@ -17,7 +17,7 @@ constexpr VkBufferUsageFlags kStorage =
 } // namespace
 
 CharacterPass::CharacterPass(const gpu::Context& ctx, const anim::Character& character,
-                             const scene::Scene& scene)
+                             const scene::Scene& scene, VkSampleCountFlagBits samples)
     : ctx_(ctx), character_(character), scene_(scene), skinning_(ctx) {
     gpu::GraphicsProgramDesc desc;
     desc.name = "character";
@@ -33,6 +33,7 @@ CharacterPass::CharacterPass(const gpu::Context& ctx, const anim::Character& cha
     desc.depthFormat = kDepthFormat;
     desc.depthTest = true;
     desc.depthWrite = true;
+    desc.samples = samples;
     program_ = gpu::createGraphicsProgram(ctx, desc);
     frame_ = gpu::createBuffer(ctx, sizeof(shared::SceneFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                gpu::MemoryUsage::Upload, "scene frame");

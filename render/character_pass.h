@@ -20,7 +20,7 @@ namespace mfx::render {
 class CharacterPass {
 public:
     CharacterPass(const gpu::Context& ctx, const anim::Character& character,
-                  const scene::Scene& scene);
+                  const scene::Scene& scene, VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT);
 
     // Records the skinning of every primitive in `pose`, the character placed by `placement`.
     // The palettes are written now: the previous recording must have finished executing.

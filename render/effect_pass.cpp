@@ -11,7 +11,8 @@ namespace mfx::render {
 
 namespace {
 
-gpu::GraphicsProgramDesc effectDesc(const char* name, VkPrimitiveTopology topology) {
+gpu::GraphicsProgramDesc effectDesc(const char* name, VkPrimitiveTopology topology,
+                                    VkSampleCountFlagBits samples) {
     gpu::GraphicsProgramDesc desc;
     desc.name = name;
     desc.bindings = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_ALL_GRAPHICS}};
@@ -26,24 +27,26 @@ gpu::GraphicsProgramDesc effectDesc(const char* name, VkPrimitiveTopology topolo
     desc.depthTest = true;
     desc.depthWrite = false;
     desc.blend = gpu::BlendMode::PremultipliedAlpha;
+    desc.samples = samples;
     return desc;
 }
 
 } // namespace
 
-EffectPass::EffectPass(const gpu::Context& ctx) : ctx_(ctx) {
+EffectPass::EffectPass(const gpu::Context& ctx, VkSampleCountFlagBits samples) : ctx_(ctx) {
     gpu::GraphicsProgramDesc volume =
-        effectDesc("effect_volume", VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST);
+        effectDesc("effect_volume", VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, samples);
     volume.vertex = shaders::effect_volume_vert;
     volume.fragment = shaders::effect_volume_frag;
     volumes_ = gpu::createGraphicsProgram(ctx, volume);
-    gpu::GraphicsProgramDesc line = effectDesc("effect_lines", VK_PRIMITIVE_TOPOLOGY_LINE_LIST);
+    gpu::GraphicsProgramDesc line =
+        effectDesc("effect_lines", VK_PRIMITIVE_TOPOLOGY_LINE_LIST, samples);
     line.vertex = shaders::effect_lines_vert;
     line.geometry = shaders::effect_lines_geom;
     line.fragment = shaders::effect_lines_frag;
     lines_ = gpu::createGraphicsProgram(ctx, line);
     gpu::GraphicsProgramDesc particle =
-        effectDesc("effect_particles", VK_PRIMITIVE_TOPOLOGY_POINT_LIST);
+        effectDesc("effect_particles", VK_PRIMITIVE_TOPOLOGY_POINT_LIST, samples);
     particle.vertex = shaders::effect_particles_vert;
     particle.geometry = shaders::effect_particles_geom;
     particle.fragment = shaders::effect_particles_frag;

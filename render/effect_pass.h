@@ -16,7 +16,8 @@ namespace mfx::render {
 
 class EffectPass {
 public:
-    explicit EffectPass(const gpu::Context& ctx);
+    explicit EffectPass(const gpu::Context& ctx,
+                        VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT);
 
     // Draws every drawn effect (speed-lines, blur, particles) of `simulation` at scene time
     // `now`; returns the number of draws recorded.

@@ -1,13 +1,39 @@
 #include "render/render_target.h"
 
+#include "core/gpu/context.h"
+
 #include <cstring>
 
 namespace mfx::render {
 
-RenderTarget createRenderTarget(const gpu::Context& ctx, uint32_t width, uint32_t height) {
+VkSampleCountFlagBits supportedSamples(const gpu::Context& ctx, VkSampleCountFlagBits wanted) {
+    const VkSampleCountFlags both =
+        ctx.limits().framebufferColorSampleCounts & ctx.limits().framebufferDepthSampleCounts;
+    for (uint32_t s = wanted; s > 1; s >>= 1)
+        if (both & s) return VkSampleCountFlagBits(s);
+    return VK_SAMPLE_COUNT_1_BIT;
+}
+
+RenderTarget createRenderTarget(const gpu::Context& ctx, uint32_t width, uint32_t height,
+                                VkSampleCountFlagBits samples) {
     RenderTarget target;
     target.width = width;
     target.height = height;
+    target.samples = samples;
+    if (samples != VK_SAMPLE_COUNT_1_BIT) {
+        gpu::ImageDesc color;
+        color.extent = {width, height, 1};
+        color.format = kColorFormat;
+        color.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
+        color.samples = samples;
+        color.debugName = "render target colour (MSAA)";
+        target.msaaColor = gpu::createImage(ctx, color);
+        gpu::ImageDesc depth = color;
+        depth.format = kDepthFormat;
+        depth.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
+        depth.debugName = "render target depth (MSAA)";
+        target.msaaDepth = gpu::createImage(ctx, depth);
+    }
     gpu::ImageDesc color;
     color.extent = {width, height, 1};
     color.format = kColorFormat;
@@ -26,30 +52,52 @@ RenderTarget createRenderTarget(const gpu::Context& ctx, uint32_t width, uint32_
 }
 
 void beginRendering(VkCommandBuffer cmd, RenderTarget& target, const glm::vec4& clearColor) {
-    gpu::imageBarrier(cmd, target.color, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                      VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT,
-                      VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                      VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT |
-                          VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT);
-    gpu::imageBarrier(cmd, target.depth, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-                      VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT,
-                      VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT |
-                          VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
-                          VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
+    const bool msaa = target.samples != VK_SAMPLE_COUNT_1_BIT;
+    auto colorBarrier = [&](gpu::Image& image) {
+        gpu::imageBarrier(cmd, image, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                          VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT,
+                          VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                          VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT |
+                              VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT);
+    };
+    auto depthBarrier = [&](gpu::Image& image) {
+        gpu::imageBarrier(cmd, image, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                          VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT,
+                          VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT |
+                              VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT |
+                              VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                          VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
+                              VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
+    };
+    colorBarrier(target.color);
+    depthBarrier(target.depth);
+    if (msaa) {
+        colorBarrier(target.msaaColor);
+        depthBarrier(target.msaaDepth);
+    }
 
     VkRenderingAttachmentInfo colorAttachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    colorAttachment.imageView = target.color.view.get();
+    colorAttachment.imageView = (msaa ? target.msaaColor : target.color).view.get();
     colorAttachment.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
     colorAttachment.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    colorAttachment.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    colorAttachment.storeOp =
+        msaa ? VK_ATTACHMENT_STORE_OP_DONT_CARE : VK_ATTACHMENT_STORE_OP_STORE;
     std::memcpy(colorAttachment.clearValue.color.float32, &clearColor, sizeof(float) * 4);
     VkRenderingAttachmentInfo depthAttachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    depthAttachment.imageView = target.depth.view.get();
+    depthAttachment.imageView = (msaa ? target.msaaDepth : target.depth).view.get();
     depthAttachment.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
     depthAttachment.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    depthAttachment.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    depthAttachment.storeOp =
+        msaa ? VK_ATTACHMENT_STORE_OP_DONT_CARE : VK_ATTACHMENT_STORE_OP_STORE;
     depthAttachment.clearValue.depthStencil = {1.0f, 0};
+    if (msaa) {
+        colorAttachment.resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;
+        colorAttachment.resolveImageView = target.color.view.get();
+        colorAttachment.resolveImageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+        depthAttachment.resolveMode = VK_RESOLVE_MODE_SAMPLE_ZERO_BIT;
+        depthAttachment.resolveImageView = target.depth.view.get();
+        depthAttachment.resolveImageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+    }
 
     VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
     rendering.renderArea = {{0, 0}, {target.width, target.height}};

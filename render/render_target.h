@@ -15,17 +15,26 @@ inline constexpr VkFormat kColorFormat = VK_FORMAT_R8G8B8A8_SRGB;
 inline constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 
 struct RenderTarget {
-    gpu::Image color;
-    gpu::Image depth;
+    gpu::Image color; // single-sampled: what is read back (the resolve target with MSAA)
+    gpu::Image depth; // single-sampled: sample 0 of each pixel with MSAA
+    gpu::Image msaaColor, msaaDepth; // what is drawn into when samples > 1
+    VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
     uint32_t width = 0;
     uint32_t height = 0;
 };
 
-// Colour (attachment, transfer source, sampled) and depth (attachment, transfer source).
-RenderTarget createRenderTarget(const gpu::Context& ctx, uint32_t width, uint32_t height);
+// Colour (attachment, transfer source, sampled) and depth (attachment, transfer source), and with
+// `samples` > 1 multisampled colour and depth drawn into and resolved at the end of rendering
+// (colour averaged, depth from sample 0). Pipelines drawing into it need the same sample count.
+RenderTarget createRenderTarget(const gpu::Context& ctx, uint32_t width, uint32_t height,
+                                VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT);
 
-// Transitions both images to attachment layouts and begins rendering, clearing colour to
-// `clearColor` (linear) and depth to 1; sets viewport and scissor to the whole target.
+// The largest sample count up to `wanted` that the device supports for both colour and depth.
+VkSampleCountFlagBits supportedSamples(const gpu::Context& ctx, VkSampleCountFlagBits wanted);
+
+// Transitions the images to attachment layouts and begins rendering, clearing colour to
+// `clearColor` (linear) and depth to 1; sets viewport and scissor to the whole target. With MSAA
+// the multisampled images are resolved into `color` and `depth` when rendering ends.
 void beginRendering(VkCommandBuffer cmd, RenderTarget& target, const glm::vec4& clearColor);
 void endRendering(VkCommandBuffer cmd);
 

@@ -9,6 +9,7 @@
 #include "tests/gpu_test.h"
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <set>
 
 namespace mfx::test {
 namespace {
@@ -66,6 +67,58 @@ TEST_F(CharacterPassTest, FighterLandsWhereItsVerticesProject) {
     for (size_t i = 4; i < rgba.size(); i += 4)
         changes += rgba[i] != rgba[i - 4] ? 1 : 0;
     EXPECT_GT(changes, 1000u);
+}
+
+// With 4x multisampling the silhouette's edge pixels blend the character with what is behind it:
+// many more distinct colours along the edges than in the single-sampled picture, the same
+// picture otherwise (the resolved depth is sample 0's).
+TEST_F(CharacterPassTest, MultisamplingSmoothsTheEdges) {
+    const anim::Character fighter = anim::makeFighter();
+    const scene::Scene s = scene::defaultScene();
+    const uint32_t width = 160, height = 90;
+    const render::SceneCamera camera = render::makeCamera(s.camera, 16.0f / 9.0f);
+    const anim::Pose pose =
+        anim::samplePose(fighter, fighter.findClip("roundhouse_kick"), 0.45f, anim::Wrap::Clamp);
+    auto renderWith = [&](VkSampleCountFlagBits samples, std::vector<float>* depth) {
+        render::RenderTarget target = render::createRenderTarget(ctx(), width, height, samples);
+        render::CharacterPass pass(ctx(), fighter, s, samples);
+        gpu::submitOneShot(ctx(), [&](VkCommandBuffer cmd) {
+            pass.skin(cmd, pose, glm::mat4(1.0f));
+            render::beginRendering(cmd, target, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+            pass.draw(cmd, camera);
+            render::endRendering(cmd);
+        });
+        if (depth) *depth = render::readDepth(ctx(), target);
+        return render::readColor(ctx(), target);
+    };
+    const VkSampleCountFlagBits four = render::supportedSamples(ctx(), VK_SAMPLE_COUNT_4_BIT);
+    ASSERT_EQ(four, VK_SAMPLE_COUNT_4_BIT) << "lavapipe supports 4x";
+    std::vector<float> depth1, depth4;
+    const auto one = renderWith(VK_SAMPLE_COUNT_1_BIT, &depth1);
+    const auto many = renderWith(four, &depth4);
+    const std::string dir = std::string(MFX_TEST_OUTPUT_DIR) + "/character_pass";
+    ASSERT_TRUE(render::ensureOutputDirectory(dir).ok());
+    ASSERT_TRUE(render::writePng(dir + "/kick_msaa.png", width, height, many).ok());
+    auto colours = [](const std::vector<uint8_t>& rgba) {
+        std::set<uint32_t> distinct;
+        for (size_t i = 0; i < rgba.size(); i += 4)
+            distinct.insert(uint32_t(rgba[i]) | uint32_t(rgba[i + 1]) << 8 |
+                            uint32_t(rgba[i + 2]) << 16);
+        return distinct.size();
+    };
+    size_t differing = 0;
+    for (size_t i = 0; i < one.size(); i += 4)
+        differing += (one[i] != many[i] || one[i + 1] != many[i + 1] || one[i + 2] != many[i + 2]);
+    std::printf("distinct colours: %zu single-sampled, %zu with 4x; %zu of %u pixels differ\n",
+                colours(one), colours(many), differing, width * height);
+    EXPECT_GT(colours(many), colours(one) + 50);
+    EXPECT_LT(differing, size_t(width) * height / 5); // edges only, not the whole picture
+    // Sample 0 sits off the pixel centre, so depths differ a little everywhere, and a lot only
+    // where an edge passes between the two positions.
+    size_t depthDiffers = 0;
+    for (size_t i = 0; i < depth1.size(); ++i)
+        depthDiffers += std::abs(depth1[i] - depth4[i]) > 1e-3f ? 1 : 0;
+    EXPECT_LT(depthDiffers, depth1.size() / 20);
 }
 
 } // namespace
