@@ -112,6 +112,20 @@ SmokeSolver::SmokeSolver(const gpu::Context& ctx, const SolverOptions& options)
     packedDivergence_ = gpu::createBuffer(ctx, packedBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                           gpu::MemoryUsage::DeviceLocal, "packed divergence");
     vorticity_ = makeImage(cells_, VK_FORMAT_R32G32B32A32_SFLOAT, "vorticity");
+    force_ = makeImage(cells_, VK_FORMAT_R32G32B32A32_SFLOAT, "confinement force");
+    // Stages that write a whole field write it here first (shaders/fluid_common.glsl): one buffer
+    // per velocity component, the first also large enough for four floats per cell.
+    VkDeviceSize faceFloats = 0;
+    for (int c = 0; c < 3; ++c) {
+        const glm::uvec3 n = faceExtent(options.grid, c);
+        faceFloats = std::max<VkDeviceSize>(faceFloats, VkDeviceSize(n.x) * n.y * n.z);
+    }
+    const VkDeviceSize cellFloats = VkDeviceSize(cells_.x) * cells_.y * cells_.z * 4;
+    for (int c = 0; c < 3; ++c)
+        scratch_[c] = gpu::createBuffer(
+            ctx, (c == 0 ? std::max(faceFloats, cellFloats) : faceFloats) * sizeof(float),
+            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+            gpu::MemoryUsage::DeviceLocal, "field output");
 
     // Everything starts at rest, in GENERAL layout for the whole of its life.
     gpu::submitOneShot(ctx, [&](VkCommandBuffer cmd) {
@@ -130,6 +144,7 @@ SmokeSolver::SmokeSolver(const gpu::Context& ctx, const SolverOptions& options)
             clear(image);
         clear(divergence_);
         clear(vorticity_);
+        clear(force_);
         barrier(cmd);
     });
 
@@ -156,19 +171,21 @@ gpu::Program& SmokeSolver::program(Stage stage, int part, uint32_t target) {
         slot = makeProgram(ctx_, options_, "splat_impulses", splat_impulses_comp, target, 6, 1);
         break;
     case Stage::AdvectVelocity:
-        slot = makeProgram(ctx_, options_, "advect_velocity", advect_velocity_comp, target, 7);
+        slot = makeProgram(ctx_, options_, "advect_velocity", advect_velocity_comp, target, 5, 4);
         break;
     case Stage::AdvectPigment:
-        slot = makeProgram(ctx_, options_, "advect_pigment", advect_pigment_comp, target, 6);
+        slot = makeProgram(ctx_, options_, "advect_pigment", advect_pigment_comp, target, 6, 5);
         break;
     case Stage::ApplyBuoyancy:
-        slot = makeProgram(ctx_, options_, "apply_buoyancy", apply_buoyancy_comp, target, 3);
+        slot = makeProgram(ctx_, options_, "apply_buoyancy", apply_buoyancy_comp, target, 4, 3);
         break;
     case Stage::VorticityConfinement:
-        slot = part == 0 ? makeProgram(ctx_, options_, "compute_vorticity", compute_vorticity_comp,
-                                       target, 5)
-                         : makeProgram(ctx_, options_, "apply_vorticity_force",
-                                       apply_vorticity_force_comp, target, 5);
+        slot = part == 0   ? makeProgram(ctx_, options_, "compute_vorticity",
+                                         compute_vorticity_comp, target, 5, 4)
+               : part == 1 ? makeProgram(ctx_, options_, "confinement_force",
+                                         confinement_force_comp, target, 3, 2)
+                           : makeProgram(ctx_, options_, "apply_vorticity_force",
+                                         apply_vorticity_force_comp, target, 6, 5);
         break;
     case Stage::DiffuseViscosity:
         slot = makeProgram(ctx_, options_, "diffuse_viscosity", diffuse_viscosity_comp, target, 10);
@@ -178,7 +195,7 @@ gpu::Program& SmokeSolver::program(Stage stage, int part, uint32_t target) {
         break;
     case Stage::ComputeDivergence:
         slot =
-            makeProgram(ctx_, options_, "compute_divergence", compute_divergence_comp, target, 5);
+            makeProgram(ctx_, options_, "compute_divergence", compute_divergence_comp, target, 5, 4);
         break;
     case Stage::SolvePressure: {
         // Constant ids 11-13: which side is packed (part), the layers and rows of a brick;
@@ -189,7 +206,7 @@ gpu::Program& SmokeSolver::program(Stage stage, int part, uint32_t target) {
         break;
     }
     case Stage::Project:
-        slot = makeProgram(ctx_, options_, "project", project_comp, target, 5);
+        slot = makeProgram(ctx_, options_, "project", project_comp, target, 6, 5);
         break;
     }
     return slot;
@@ -289,6 +306,60 @@ void SmokeSolver::dispatch(VkCommandBuffer cmd, gpu::Program& program, VkDescrip
                   gpu::groupCount(extent.z, group[2]));
 }
 
+void SmokeSolver::copyToImages(
+    VkCommandBuffer cmd, std::initializer_list<std::pair<const gpu::Buffer*, gpu::Image*>> copies) {
+    // The dispatches that wrote the buffers → the copies, each image in TRANSFER_DST_OPTIMAL (its
+    // contents are replaced whole) → every later command, the images back in GENERAL.
+    auto transition = [&](VkImageLayout from, VkImageLayout to, VkPipelineStageFlags2 srcStage,
+                          VkAccessFlags2 srcAccess, VkPipelineStageFlags2 dstStage,
+                          VkAccessFlags2 dstAccess) {
+        VkMemoryBarrier2 memory{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+        memory.srcStageMask = srcStage;
+        memory.srcAccessMask = srcAccess;
+        memory.dstStageMask = dstStage;
+        memory.dstAccessMask = dstAccess;
+        std::vector<VkImageMemoryBarrier2> images;
+        for (const auto& [buffer, image] : copies) {
+            VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+            b.srcStageMask = srcStage;
+            b.srcAccessMask = srcAccess;
+            b.dstStageMask = dstStage;
+            b.dstAccessMask = dstAccess;
+            b.oldLayout = from;
+            b.newLayout = to;
+            b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+            b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+            b.image = image->get();
+            b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+            images.push_back(b);
+        }
+        VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+        dependency.memoryBarrierCount = 1;
+        dependency.pMemoryBarriers = &memory;
+        dependency.imageMemoryBarrierCount = uint32_t(images.size());
+        dependency.pImageMemoryBarriers = images.data();
+        vkCmdPipelineBarrier2(cmd, &dependency);
+    };
+    const VkPipelineStageFlags2 all =
+        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
+    const VkAccessFlags2 everything =
+        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
+        VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT;
+    transition(VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, all,
+               VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT, all,
+               everything);
+    for (const auto& [buffer, image] : copies) {
+        VkBufferImageCopy region{};
+        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        region.imageExtent = image->extent;
+        vkCmdCopyBufferToImage(cmd, buffer->get(), image->get(),
+                               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+    }
+    transition(VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL, all,
+               VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT, all,
+               everything);
+}
+
 template <typename MakeWrites>
 VkDescriptorSet SmokeSolver::set(gpu::Program& program, std::tuple<int, int, int> key,
                                  MakeWrites makeWrites) {
@@ -349,29 +420,31 @@ void SmokeSolver::splatImpulses(VkCommandBuffer cmd) {
 
 void SmokeSolver::advectVelocity(VkCommandBuffer cmd) {
     const int from = currentVelocity_, to = 1 - currentVelocity_;
-    auto writes = [&](auto& w) {
-        addVelocity(w, from, 1);
-        addVelocity(w, to, 4);
-    };
     for (uint32_t c = 0; c < 3; ++c) {
         gpu::Program& prog = program(Stage::AdvectVelocity, 0, c);
-        dispatch(cmd, prog, set(prog, {from, to, 0}, writes), faceExtent(options_.grid, int(c)));
+        VkDescriptorSet s = set(prog, {from, 0, 0}, [&](auto& w) {
+            addVelocity(w, from, 1);
+            w.push_back(gpu::bindBuffer(4, scratch_[c]));
+        });
+        dispatch(cmd, prog, s, faceExtent(options_.grid, int(c)));
     }
+    copyToImages(cmd, {{&scratch_[0], &velocity_[to][0]},
+                       {&scratch_[1], &velocity_[to][1]},
+                       {&scratch_[2], &velocity_[to][2]}});
     currentVelocity_ = to;
-    barrier(cmd);
 }
 
 void SmokeSolver::advectPigment(VkCommandBuffer cmd) {
     const int v = currentVelocity_, from = currentPigment_, to = 1 - currentPigment_;
     gpu::Program& prog = program(Stage::AdvectPigment, 0, MFX_TARGET_PIGMENT);
-    VkDescriptorSet s = set(prog, {v, from, to}, [&](auto& w) {
+    VkDescriptorSet s = set(prog, {v, from, 0}, [&](auto& w) {
         addVelocity(w, v, 1);
         w.push_back(storage(4, pigment_[from]));
-        w.push_back(storage(5, pigment_[to]));
+        w.push_back(gpu::bindBuffer(5, scratch_[0]));
     });
     dispatch(cmd, prog, s, cells_);
+    copyToImages(cmd, {{&scratch_[0], &pigment_[to]}});
     currentPigment_ = to;
-    barrier(cmd);
 }
 
 void SmokeSolver::applyBuoyancy(VkCommandBuffer cmd) {
@@ -381,26 +454,42 @@ void SmokeSolver::applyBuoyancy(VkCommandBuffer cmd) {
     VkDescriptorSet s = set(prog, {v, p, 0}, [&](auto& w) {
         w.push_back(storage(1, velocity_[v][1]));
         w.push_back(storage(2, pigment_[p]));
+        w.push_back(gpu::bindBuffer(3, scratch_[1]));
     });
     dispatch(cmd, prog, s, faceExtent(options_.grid, 1));
-    barrier(cmd);
+    copyToImages(cmd, {{&scratch_[1], &velocity_[v][1]}});
 }
 
 void SmokeSolver::vorticityConfinement(VkCommandBuffer cmd) {
     if (options_.vorticity == 0.0f) return;
+    // Vorticity per cell, then the confinement force per cell, then the faces.
     const int v = currentVelocity_;
-    auto writes = [&](auto& w) {
-        addVelocity(w, v, 1);
-        w.push_back(storage(4, vorticity_));
-    };
     gpu::Program& compute = program(Stage::VorticityConfinement, 0, 0);
-    dispatch(cmd, compute, set(compute, {v, 0, 0}, writes), cells_);
-    barrier(cmd);
+    dispatch(cmd, compute, set(compute, {v, 0, 0}, [&](auto& w) {
+                 addVelocity(w, v, 1);
+                 w.push_back(gpu::bindBuffer(4, scratch_[0]));
+             }),
+             cells_);
+    copyToImages(cmd, {{&scratch_[0], &vorticity_}});
+    gpu::Program& force = program(Stage::VorticityConfinement, 1, 0);
+    dispatch(cmd, force, set(force, {0, 0, 0}, [&](auto& w) {
+                 w.push_back(storage(1, vorticity_));
+                 w.push_back(gpu::bindBuffer(2, scratch_[0]));
+             }),
+             cells_);
+    copyToImages(cmd, {{&scratch_[0], &force_}});
     for (uint32_t c = 0; c < 3; ++c) {
-        gpu::Program& apply = program(Stage::VorticityConfinement, 1, c);
-        dispatch(cmd, apply, set(apply, {v, 0, 0}, writes), faceExtent(options_.grid, int(c)));
+        gpu::Program& apply = program(Stage::VorticityConfinement, 2, c);
+        dispatch(cmd, apply, set(apply, {v, 0, 0}, [&](auto& w) {
+                     addVelocity(w, v, 1);
+                     w.push_back(storage(4, force_));
+                     w.push_back(gpu::bindBuffer(5, scratch_[c]));
+                 }),
+                 faceExtent(options_.grid, int(c)));
     }
-    barrier(cmd);
+    copyToImages(cmd, {{&scratch_[0], &velocity_[v][0]},
+                       {&scratch_[1], &velocity_[v][1]},
+                       {&scratch_[2], &velocity_[v][2]}});
 }
 
 void SmokeSolver::diffuseViscosity(VkCommandBuffer cmd) {
@@ -444,10 +533,10 @@ void SmokeSolver::computeDivergence(VkCommandBuffer cmd) {
     gpu::Program& prog = program(Stage::ComputeDivergence);
     VkDescriptorSet s = set(prog, {v, 0, 0}, [&](auto& w) {
         addVelocity(w, v, 1);
-        w.push_back(storage(4, divergence_));
+        w.push_back(gpu::bindBuffer(4, scratch_[0]));
     });
     dispatch(cmd, prog, s, cells_);
-    barrier(cmd);
+    copyToImages(cmd, {{&scratch_[0], &divergence_}});
 }
 
 void SmokeSolver::solvePressure(VkCommandBuffer cmd) {
@@ -492,15 +581,18 @@ void SmokeSolver::solvePressure(VkCommandBuffer cmd) {
 
 void SmokeSolver::project(VkCommandBuffer cmd) {
     const int v = currentVelocity_, p = currentPressure_;
-    auto writes = [&](auto& w) {
-        addVelocity(w, v, 1);
-        w.push_back(storage(4, pressure_[p]));
-    };
     for (uint32_t c = 0; c < 3; ++c) {
         gpu::Program& prog = program(Stage::Project, 0, c);
-        dispatch(cmd, prog, set(prog, {v, p, 0}, writes), faceExtent(options_.grid, int(c)));
+        VkDescriptorSet s = set(prog, {v, p, 0}, [&](auto& w) {
+            addVelocity(w, v, 1);
+            w.push_back(storage(4, pressure_[p]));
+            w.push_back(gpu::bindBuffer(5, scratch_[c]));
+        });
+        dispatch(cmd, prog, s, faceExtent(options_.grid, int(c)));
     }
-    barrier(cmd);
+    copyToImages(cmd, {{&scratch_[0], &velocity_[v][0]},
+                       {&scratch_[1], &velocity_[v][1]},
+                       {&scratch_[2], &velocity_[v][2]}});
 }
 
 // --- Recording
@@ -581,6 +673,9 @@ uint64_t SmokeSolver::memoryBytes() const {
         image(i);
     image(divergence_);
     image(vorticity_);
+    image(force_);
+    for (const gpu::Buffer& b : scratch_)
+        bytes += b.size;
     for (const gpu::Buffer& b : packedPressure_)
         bytes += b.size;
     bytes += packedDivergence_.size + parameters_.size + ownEmitters_.size;

@@ -6,9 +6,10 @@
 //   diffuseViscosity → applyBoundaries → computeDivergence → solvePressure (Jacobi) → project →
 //   applyBoundaries
 //
-// Fields live in r32f / rgba32f 3D storage images in GENERAL layout; velocity and pigment are
-// ping-ponged between image sets (no copies), and every dispatch is separated by a compute→compute
-// memory barrier.
+// Fields live in r32f / rgba32f 3D storage images in GENERAL layout. A stage that rewrites a whole
+// field writes it into a storage buffer, which is then copied into the image (a CPU driver's image
+// stores are costly; docs/fluid.md, "Grid"). Velocity and pigment are ping-ponged between image
+// sets, and every dispatch or copy is separated by a memory barrier.
 #pragma once
 
 #include "core/gpu/program.h"
@@ -17,6 +18,7 @@
 #include "fluid/solver_options.h"
 
 #include <array>
+#include <initializer_list>
 #include <map>
 #include <memory>
 #include <optional>
@@ -82,6 +84,10 @@ private:
     void writeParameters();
     void recordStageOnly(VkCommandBuffer cmd, Stage stage, gpu::GpuTimer* timer);
     void barrier(VkCommandBuffer cmd) const;
+    // Records, after the dispatches that wrote them, copies of whole fields written x-fastest
+    // into buffers into their images, and the barrier that makes them visible to what follows.
+    void copyToImages(VkCommandBuffer cmd,
+                      std::initializer_list<std::pair<const gpu::Buffer*, gpu::Image*>> copies);
     void dispatch(VkCommandBuffer cmd, gpu::Program& program, VkDescriptorSet set,
                   glm::uvec3 extent, glm::uvec3 origin = glm::uvec3(0)) const;
     // Descriptor set of `program` for a combination of image-set indices `key`, made by
@@ -114,6 +120,11 @@ private:
     std::array<gpu::Image, 2> pressure_;
     gpu::Image divergence_;
     gpu::Image vorticity_;
+    gpu::Image force_; // vorticity confinement force per cell (xyz)
+    // Where stages that write a whole field write it before it is copied into the field's image
+    // (shaders/fluid_common.glsl): one per velocity component, the first large enough for the
+    // pigment.
+    std::array<gpu::Buffer, 3> scratch_;
     // The pressure solve's working copies, four cells per vec4 (shaders/solve_pressure.comp):
     // pressure (ping-pong) and divergence; packedSolve_ is false for a grid too large for them.
     std::array<gpu::Buffer, 2> packedPressure_;
@@ -131,8 +142,9 @@ private:
     // World-space bounds of the emitters when they came from the CPU (none for a GPU buffer).
     std::optional<std::pair<glm::vec3, glm::vec3>> emitterBounds_;
 
-    // The program of a stage (part 1: the second program of vorticity confinement) for one
-    // target field (MFX_TARGET_*, a specialization constant), compiled on first use.
+    // The program of a stage (parts 1 and 2: the second and third programs of vorticity
+    // confinement) for one target field (MFX_TARGET_*, a specialization constant), compiled on
+    // first use.
     gpu::Program& program(Stage stage, int part = 0, uint32_t target = 0);
     std::map<std::tuple<int, int, uint32_t>, gpu::Program> programs_; // node addresses are stable
     std::map<std::tuple<const gpu::Program*, int, int, int>, VkDescriptorSet> sets_;

@@ -1,5 +1,6 @@
 // advectPigment: semi-Lagrangian advection of the RGBA pigment, then the per-second fade
-// (docs/fluid.md). Twin: fluid/reference/advect_pigment.cpp.
+// (docs/fluid.md). Twin: fluid/reference/advect_pigment.cpp. Writes a buffer that the solver copies
+// into the pigment image.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "fluid_common.glsl"
@@ -8,7 +9,9 @@ layout(binding = 1, r32f) uniform readonly image3D velocityX;
 layout(binding = 2, r32f) uniform readonly image3D velocityY;
 layout(binding = 3, r32f) uniform readonly image3D velocityZ;
 layout(binding = 4, rgba32f) uniform readonly image3D pigmentIn;
-layout(binding = 5, rgba32f) uniform writeonly image3D pigmentOut;
+layout(std430, binding = 5) writeonly buffer PigmentOut {
+    vec4 pigmentOut[];
+};
 
 float loadVelocity(int c, ivec3 index) {
     return c == 0 ? imageLoad(velocityX, index).r
@@ -37,5 +40,5 @@ void main() {
     ivec3 q = ivec3(gl_GlobalInvocationID);
     if (any(greaterThanEqual(q, cellCount()))) return;
     float fade = exp(-params.rates.x * timeStep());
-    imageStore(pigmentOut, q, samplePigment(backTrace(cellCentre(q))) * fade);
+    pigmentOut[cellElement(q)] = samplePigment(backTrace(cellCentre(q))) * fade;
 }

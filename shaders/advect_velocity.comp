@@ -1,6 +1,6 @@
 // advectVelocity: semi-Lagrangian advection of each MAC face component (docs/fluid.md; Stam 1999,
 // eq. 7), then the per-second drag, u *= exp(-drag * dt). Twin: fluid/reference/advect_velocity.cpp.
-// One dispatch per component.
+// One dispatch per component, writing a buffer that the solver copies into the component's image.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "fluid_common.glsl"
@@ -8,9 +8,9 @@
 layout(binding = 1, r32f) uniform readonly image3D velocityX;
 layout(binding = 2, r32f) uniform readonly image3D velocityY;
 layout(binding = 3, r32f) uniform readonly image3D velocityZ;
-layout(binding = 4, r32f) uniform writeonly image3D outX;
-layout(binding = 5, r32f) uniform writeonly image3D outY;
-layout(binding = 6, r32f) uniform writeonly image3D outZ;
+layout(std430, binding = 4) writeonly buffer Out {
+    float outValues[];
+};
 
 float loadVelocity(int c, ivec3 index) {
     return c == 0 ? imageLoad(velocityX, index).r
@@ -26,10 +26,5 @@ void main() {
     float value = 0.0;
     if (!wallNormalFace(c, q))
         value = sampleVelocity(c, backTrace(facePosition(c, q))) * exp(-params.cell.w * timeStep());
-    if (c == 0)
-        imageStore(outX, q, vec4(value));
-    else if (c == 1)
-        imageStore(outY, q, vec4(value));
-    else
-        imageStore(outZ, q, vec4(value));
+    outValues[faceElement(c, q)] = value;
 }

@@ -1,5 +1,6 @@
 // computeDivergence: div = (u[i+1]-u[i] + v[j+1]-v[j] + w[k+1]-w[k]) / h (docs/fluid.md).
-// Twin: fluid/reference/compute_divergence.cpp.
+// Twin: fluid/reference/compute_divergence.cpp. Writes a buffer that the solver copies into the
+// divergence image.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "fluid_common.glsl"
@@ -7,7 +8,9 @@
 layout(binding = 1, r32f) uniform readonly image3D velocityX;
 layout(binding = 2, r32f) uniform readonly image3D velocityY;
 layout(binding = 3, r32f) uniform readonly image3D velocityZ;
-layout(binding = 4, r32f) uniform writeonly image3D divergence;
+layout(std430, binding = 4) writeonly buffer Divergence {
+    float divergence[];
+};
 
 void main() {
     ivec3 q = ivec3(gl_GlobalInvocationID);
@@ -15,5 +18,5 @@ void main() {
     float sum = (imageLoad(velocityX, q + ivec3(1, 0, 0)).r - imageLoad(velocityX, q).r) +
                 (imageLoad(velocityY, q + ivec3(0, 1, 0)).r - imageLoad(velocityY, q).r) +
                 (imageLoad(velocityZ, q + ivec3(0, 0, 1)).r - imageLoad(velocityZ, q).r);
-    imageStore(divergence, q, vec4(sum / cellSize()));
+    divergence[cellElement(q)] = sum / cellSize();
 }

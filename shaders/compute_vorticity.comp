@@ -1,6 +1,7 @@
 // vorticityConfinement, first pass: omega = curl u at cell centres, stored with |omega|
 // (docs/fluid.md; Fedkiw, Stam, Jensen 2001, eq. 9). Twin:
-// fluid/reference/vorticity_confinement.cpp.
+// fluid/reference/vorticity_confinement.cpp. Writes a buffer that the solver copies into the
+// vorticity image.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "fluid_common.glsl"
@@ -8,7 +9,9 @@
 layout(binding = 1, r32f) uniform readonly image3D velocityX;
 layout(binding = 2, r32f) uniform readonly image3D velocityY;
 layout(binding = 3, r32f) uniform readonly image3D velocityZ;
-layout(binding = 4, rgba32f) uniform writeonly image3D vorticity;
+layout(std430, binding = 4) writeonly buffer Vorticity {
+    vec4 vorticity[];
+};
 
 float fetchVelocity(int c, ivec3 index) {
     FaceRef r = resolveFace(c, index);
@@ -35,5 +38,5 @@ void main() {
         (centred(0, q + ez) - centred(0, q - ez) - centred(2, q + ex) + centred(2, q - ex)) * inv2h,
         (centred(1, q + ex) - centred(1, q - ex) - centred(0, q + ey) + centred(0, q - ey)) *
             inv2h);
-    imageStore(vorticity, q, vec4(w, length(w)));
+    vorticity[cellElement(q)] = vec4(w, length(w));
 }

@@ -140,6 +140,20 @@ bool wallNormalFace(int c, ivec3 index) {
            (index[c] == cellCount()[c] && isWall(boundaryKind(c, true)));
 }
 
+// Element of an in-range cell or face in a storage buffer holding one value per cell or per face
+// of component c, x-fastest (the layout of a FieldState, and of a buffer-to-image copy). Stages
+// that write a whole field write it to such a buffer, which the solver then copies into the
+// field's image: on a CPU driver (lavapipe) an image store runs a costly per-lane loop, a buffer
+// store a cheap one, and the copy is a plain memory copy; the field is still read from its image.
+int cellElement(ivec3 q) {
+    ivec3 n = cellCount();
+    return q.x + n.x * (q.y + n.y * q.z);
+}
+int faceElement(int c, ivec3 q) {
+    ivec3 n = faceCount(c);
+    return q.x + n.x * (q.y + n.y * q.z);
+}
+
 vec3 facePosition(int c, ivec3 index) {
     vec3 x = (vec3(index) + 0.5) * cellSize();
     x[c] -= 0.5 * cellSize();
