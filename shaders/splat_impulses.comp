@@ -1,5 +1,7 @@
 // splatImpulses: emitters pull velocity and pigment towards their own values (docs/fluid.md).
 // Twin: fluid/reference/splat_impulses.cpp. One dispatch per target (velocity x, y, z, pigment).
+// Each workgroup first marks the emitters that reach its block of the grid, so a cell loops over
+// those only (a scene's hundreds of segment emitters touch a few blocks each).
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "fluid_common.glsl"
@@ -29,40 +31,87 @@ float emitterWeight(FluidEmitter e, vec3 x) {
     return 1.0 - exp(-s * t * t * timeStep());
 }
 
+// Emitters whose sphere reaches this workgroup's block, as a bit per emitter (the first
+// kMaskedEmitters; any beyond are tested one by one). Bits keep the emitters' order, and the pull
+// towards each emitter in turn depends on that order, as in the reference.
+const uint kMaskedEmitters = 4096u;
+shared uint reaching[kMaskedEmitters / 32u];
+
+// Whether emitter e's sphere reaches the box [lo, hi] (world units of the grid).
+bool reachesBox(FluidEmitter e, vec3 lo, vec3 hi) {
+    float r = e.positionRadius.w;
+    vec3 d = max(max(lo - e.positionRadius.xyz, e.positionRadius.xyz - hi), vec3(0.0));
+    return r > 0.0 && dot(d, d) < r * r; // false for NaN
+}
+
 void main() {
-    ivec3 q = ivec3(gl_GlobalInvocationID) +
-              ivec3(dispatchInfo.originX, dispatchInfo.originY, dispatchInfo.originZ);
     uint target = kTarget;
     // Bounded by the buffer's own length as well: never reads past the bound range. It also keeps
     // the loop bound from being a pure uniform, which a CPU driver (lavapipe) would otherwise fold
     // into a freshly compiled shader variant on every dispatch.
     uint count = min(params.size.w, uint(emitters.length()));
-    if (target == MFX_TARGET_PIGMENT) {
+    uint masked = min(count, kMaskedEmitters);
+
+    // The block this workgroup covers, one cell wider on every side (cell centres and faces of
+    // every component lie within it).
+    uvec3 size = gl_WorkGroupSize;
+    ivec3 first = ivec3(gl_WorkGroupID * size) +
+                  ivec3(dispatchInfo.originX, dispatchInfo.originY, dispatchInfo.originZ);
+    vec3 lo = (vec3(first) - 1.0) * cellSize();
+    vec3 hi = (vec3(first + ivec3(size)) + 1.0) * cellSize();
+    uint invocations = size.x * size.y * size.z;
+    for (uint w = gl_LocalInvocationIndex; w < (masked + 31u) / 32u; w += invocations)
+        reaching[w] = 0u;
+    barrier();
+    for (uint i = gl_LocalInvocationIndex; i < masked; i += invocations)
+        if (reachesBox(emitters[i], lo, hi)) atomicOr(reaching[i / 32u], 1u << (i % 32u));
+    barrier();
+
+    ivec3 q = ivec3(gl_GlobalInvocationID) +
+              ivec3(dispatchInfo.originX, dispatchInfo.originY, dispatchInfo.originZ);
+    int c = int(target);
+    bool pigmentTarget = target == MFX_TARGET_PIGMENT;
+    if (pigmentTarget) {
         if (any(greaterThanEqual(q, cellCount()))) return;
-        vec3 x = cellCentre(q);
-        vec4 value = imageLoad(pigment, q);
-        for (uint i = 0; i < count; ++i) {
-            FluidEmitter e = emitters[i];
-            float a = emitterWeight(e, x);
-            if (a > 0.0) value += a * (e.pigment - value);
-        }
-        imageStore(pigment, q, value);
+    } else if (any(greaterThanEqual(q, faceCount(c))) || wallNormalFace(c, q)) {
         return;
     }
-    int c = int(target);
-    if (any(greaterThanEqual(q, faceCount(c))) || wallNormalFace(c, q)) return;
-    vec3 x = facePosition(c, q);
-    float value = c == 0 ? imageLoad(velocityX, q).r
-                         : (c == 1 ? imageLoad(velocityY, q).r : imageLoad(velocityZ, q).r);
-    for (uint i = 0; i < count; ++i) {
+    vec3 x = pigmentTarget ? cellCentre(q) : facePosition(c, q);
+    vec4 value = pigmentTarget
+                     ? imageLoad(pigment, q)
+                     : vec4(c == 0 ? imageLoad(velocityX, q).r
+                                   : (c == 1 ? imageLoad(velocityY, q).r : imageLoad(velocityZ, q).r));
+    for (uint word = 0u; word < (masked + 31u) / 32u; ++word) {
+        uint bits = reaching[word];
+        while (bits != 0u) {
+            uint i = word * 32u + uint(findLSB(bits));
+            bits &= bits - 1u;
+            FluidEmitter e = emitters[i];
+            float a = emitterWeight(e, x);
+            if (a > 0.0) {
+                if (pigmentTarget)
+                    value += a * (e.pigment - value);
+                else
+                    value.x += a * (e.velocityStrength[c] - value.x);
+            }
+        }
+    }
+    for (uint i = masked; i < count; ++i) {
         FluidEmitter e = emitters[i];
         float a = emitterWeight(e, x);
-        if (a > 0.0) value += a * (e.velocityStrength[c] - value);
+        if (a > 0.0) {
+            if (pigmentTarget)
+                value += a * (e.pigment - value);
+            else
+                value.x += a * (e.velocityStrength[c] - value.x);
+        }
     }
-    if (c == 0)
-        imageStore(velocityX, q, vec4(value));
+    if (pigmentTarget)
+        imageStore(pigment, q, value);
+    else if (c == 0)
+        imageStore(velocityX, q, vec4(value.x));
     else if (c == 1)
-        imageStore(velocityY, q, vec4(value));
+        imageStore(velocityY, q, vec4(value.x));
     else
-        imageStore(velocityZ, q, vec4(value));
+        imageStore(velocityZ, q, vec4(value.x));
 }
