@@ -125,6 +125,7 @@ int runRender(std::span<const std::string> args) {
             {
                 gpu::ScopedPass pass(timer, cmd, "render/skin_vertices");
                 scenePass.skin(cmd, pose, sim.placement());
+                scenePass.shadow(cmd);
             }
             gpu::ScopedPass pass(timer, cmd, "render/scene_and_effects");
             render::beginRendering(cmd, target, clear);

@@ -1,6 +1,8 @@
 #include "render/character_pass.h"
 
 #include "core/anim/skinning.h"
+#include "core/gpu/check.h"
+#include "core/gpu/commands.h"
 #include "core/gpu/context.h"
 #include "render/render_target.h"
 #include "shaders/embedded.h"
@@ -24,7 +26,8 @@ CharacterPass::CharacterPass(const gpu::Context& ctx, const anim::Character& cha
     desc.vertex = shaders::character_vert;
     desc.fragment = shaders::character_frag;
     desc.bindings = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
-                      VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT}};
+                      VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT},
+                     {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT}};
     desc.pushConstantSize = sizeof(shared::SceneObject);
     desc.vertexStride = sizeof(shared::SkinVertexOut);
     desc.attributes = {{0, VK_FORMAT_R32G32B32A32_SFLOAT, 0},
@@ -37,7 +40,43 @@ CharacterPass::CharacterPass(const gpu::Context& ctx, const anim::Character& cha
     program_ = gpu::createGraphicsProgram(ctx, desc);
     frame_ = gpu::createBuffer(ctx, sizeof(shared::SceneFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                gpu::MemoryUsage::Upload, "scene frame");
-    set_ = program_.createSet(ctx, {gpu::bindBuffer(0, frame_)});
+
+    // The key light's shadow map: depth only, sampled with comparison (outside it: lit).
+    gpu::GraphicsProgramDesc shadowDesc;
+    shadowDesc.name = "shadow";
+    shadowDesc.vertex = shaders::shadow_vert;
+    shadowDesc.pushConstantSize = sizeof(glm::mat4);
+    shadowDesc.vertexStride = sizeof(shared::SkinVertexOut);
+    shadowDesc.attributes = {{0, VK_FORMAT_R32G32B32A32_SFLOAT, 0}};
+    shadowDesc.depthFormat = kDepthFormat;
+    shadowDesc.depthTest = true;
+    shadowDesc.depthWrite = true;
+    shadowProgram_ = gpu::createGraphicsProgram(ctx, shadowDesc);
+    gpu::ImageDesc map;
+    map.extent = {kShadowSize, kShadowSize, 1};
+    map.format = kDepthFormat;
+    map.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+    map.debugName = "shadow map";
+    shadowMap_ = gpu::createImage(ctx, map);
+    VkSamplerCreateInfo sampler{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    sampler.magFilter = VK_FILTER_LINEAR;
+    sampler.minFilter = VK_FILTER_LINEAR;
+    sampler.addressModeU = sampler.addressModeV = sampler.addressModeW =
+        VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER;
+    sampler.borderColor = VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE;
+    sampler.compareEnable = VK_TRUE;
+    sampler.compareOp = VK_COMPARE_OP_LESS_OR_EQUAL;
+    VkSampler handle = VK_NULL_HANDLE;
+    MFX_VK_CHECK(vkCreateSampler(ctx.device(), &sampler, nullptr, &handle));
+    shadowSampler_ = gpu::UniqueSampler(ctx.device(), handle);
+    // Until the first shadow(): a cleared map in the sampled layout.
+    gpu::submitOneShot(ctx, [&](VkCommandBuffer cmd) {
+        gpu::transitionImage(cmd, shadowMap_, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    });
+    set_ = program_.createSet(
+        ctx, {gpu::bindBuffer(0, frame_),
+              gpu::bindImage(1, shadowMap_, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                             shadowSampler_.get())});
 
     for (const anim::Mesh& mesh : character.meshes)
         for (const anim::Primitive& p : mesh.primitives) {
@@ -116,8 +155,53 @@ void CharacterPass::skin(VkCommandBuffer cmd, const anim::Pose& pose, const glm:
     }
 }
 
+void CharacterPass::shadow(VkCommandBuffer cmd) {
+    // Around where the character stands, big enough for a kick or a sword's reach.
+    const glm::vec3 centre = scene_.character.position + glm::vec3(0.0f, 1.0f, 0.0f);
+    const scene::LightSpec key = scene_.lights.empty() ? scene::LightSpec{} : scene_.lights.front();
+    lightViewProjection_ = lightViewProjection(key, centre, 2.5f);
+    shadowReady_ = key.shadow;
+    if (!key.shadow) return;
+    gpu::imageBarrier(cmd, shadowMap_, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                      VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT,
+                      VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT |
+                          VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
+                          VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
+    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    depth.imageView = shadowMap_.view.get();
+    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+    depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    depth.clearValue.depthStencil = {1.0f, 0};
+    VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    rendering.renderArea = {{0, 0}, {kShadowSize, kShadowSize}};
+    rendering.layerCount = 1;
+    rendering.pDepthAttachment = &depth;
+    vkCmdBeginRendering(cmd, &rendering);
+    const VkViewport viewport{0.0f, 0.0f, float(kShadowSize), float(kShadowSize), 0.0f, 1.0f};
+    const VkRect2D scissor{{0, 0}, {kShadowSize, kShadowSize}};
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    vkCmdSetScissor(cmd, 0, 1, &scissor);
+    shadowProgram_.bind(cmd);
+    shadowProgram_.push(cmd, lightViewProjection_);
+    const VkDeviceSize offset = 0;
+    for (const Part& part : parts_) { // the stage only receives shadows
+        VkBuffer vb = part.output.get();
+        vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
+        vkCmdBindIndexBuffer(cmd, part.indices.get(), 0, VK_INDEX_TYPE_UINT32);
+        vkCmdDrawIndexed(cmd, part.indexCount, 1, 0, 0, 0);
+    }
+    vkCmdEndRendering(cmd);
+    gpu::imageBarrier(cmd, shadowMap_, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                      VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+}
+
 void CharacterPass::draw(VkCommandBuffer cmd, const SceneCamera& camera) {
-    const shared::SceneFrame frame = sceneFrame(scene_, camera);
+    const shared::SceneFrame frame =
+        sceneFrame(scene_, camera, lightViewProjection_, shadowReady_ ? kShadowSize : 0);
     std::memcpy(frame_.mapped, &frame, sizeof frame);
     program_.bind(cmd, set_);
     const VkDeviceSize offset = 0;

@@ -25,8 +25,13 @@ public:
     // Records the skinning of every primitive in `pose`, the character placed by `placement`.
     // The palettes are written now: the previous recording must have finished executing.
     void skin(VkCommandBuffer cmd, const anim::Pose& pose, const glm::mat4& placement);
+    // Records the key light's shadow map of the skinned character (outside any rendering; after
+    // skin()). Without it, or for a light with "shadow": false, nothing is shadowed.
+    void shadow(VkCommandBuffer cmd);
     // Records the draws (inside rendering to a colour + depth target of kColorFormat/kDepthFormat).
     void draw(VkCommandBuffer cmd, const SceneCamera& camera);
+
+    static constexpr uint32_t kShadowSize = 2048;
 
 private:
     struct Part {
@@ -46,8 +51,12 @@ private:
     const anim::Character& character_;
     const scene::Scene& scene_;
     anim::SkinVertices skinning_;
-    gpu::Program program_;
+    gpu::Program program_, shadowProgram_;
     gpu::Buffer frame_;
+    gpu::Image shadowMap_;
+    gpu::UniqueSampler shadowSampler_;
+    glm::mat4 lightViewProjection_{1.0f};
+    bool shadowReady_ = false;
     VkDescriptorSet set_ = VK_NULL_HANDLE;
     std::vector<Part> parts_;
     std::vector<StageMesh> stage_;

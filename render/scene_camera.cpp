@@ -20,7 +20,18 @@ SceneCamera makeCamera(const scene::CameraSpec& spec, float aspect) {
     return c;
 }
 
-shared::SceneFrame sceneFrame(const scene::Scene& scene, const SceneCamera& camera) {
+glm::mat4 lightViewProjection(const scene::LightSpec& light, glm::vec3 centre, float radius) {
+    const glm::vec3 d = glm::normalize(light.direction);
+    const glm::vec3 up = std::abs(d.y) > 0.99f ? glm::vec3(0, 0, -1) : glm::vec3(0, 1, 0);
+    const float distance = 4.0f * radius;
+    const glm::mat4 view = glm::lookAt(centre - d * distance, centre, up);
+    const glm::mat4 projection =
+        glm::orthoRH_ZO(-radius, radius, -radius, radius, 0.01f, 2.0f * distance);
+    return projection * view;
+}
+
+shared::SceneFrame sceneFrame(const scene::Scene& scene, const SceneCamera& camera,
+                              const glm::mat4& lightViewProjection, uint32_t shadowSize) {
     shared::SceneFrame f{};
     f.viewProjection = camera.viewProjection;
     f.cameraPosition = glm::vec4(camera.eye, 1.0f);
@@ -29,6 +40,10 @@ shared::SceneFrame sceneFrame(const scene::Scene& scene, const SceneCamera& came
     f.lightColor = glm::vec4(key.colour * key.intensity, 0.28f);
     f.sky = glm::vec4(0.75f, 0.82f, 1.0f, 0.3f);
     f.ground = glm::vec4(0.35f, 0.3f, 0.28f, 40.0f);
+    f.lightViewProjection = lightViewProjection;
+    const bool shadow = shadowSize > 0 && key.shadow;
+    f.shadow = glm::vec4(shadow ? 1.0f : 0.0f, 0.0015f,
+                         shadowSize > 0 ? 1.0f / float(shadowSize) : 0.0f, 0.0f);
     return f;
 }
 

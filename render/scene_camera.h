@@ -19,7 +19,14 @@ struct SceneCamera {
 
 SceneCamera makeCamera(const scene::CameraSpec& camera, float aspect);
 
-// The frame uniform of the scene pass: the camera and the scene's first light (the key light).
-shared::SceneFrame sceneFrame(const scene::Scene& scene, const SceneCamera& camera);
+// The key light's view of the character's surroundings: an orthographic box of half-size
+// `radius` around `centre`, looking along the light's direction. Vulkan depth 0..1.
+glm::mat4 lightViewProjection(const scene::LightSpec& light, glm::vec3 centre, float radius);
+
+// The frame uniform of the scene pass: the camera and the scene's first light (the key light);
+// without a shadow map (shadowSize 0) nothing is in shadow.
+shared::SceneFrame sceneFrame(const scene::Scene& scene, const SceneCamera& camera,
+                              const glm::mat4& lightViewProjection = glm::mat4(1.0f),
+                              uint32_t shadowSize = 0);
 
 } // namespace mfx::render

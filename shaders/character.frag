@@ -1,6 +1,8 @@
 // The scene pass, fragment stage: Blinn-Phong with the key light, and a hemisphere ambient that
 // blends the sky colour (normals up) into the ground colour (normals down), in linear colour:
-//   colour = base * (ambient(n) + max(n·l, 0) * light) + strength * max(n·h, 0)^e * light
+//   colour = base * (ambient(n) + s * max(n·l, 0) * light) + s * strength * max(n·h, 0)^e * light
+// where s is the fraction of a 3x3 percentage-closer filter of the key light's shadow map that
+// sees the light.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "shared/scene_draw.h"
@@ -14,6 +16,23 @@ layout(std140, binding = 0) uniform Frame {
 layout(push_constant) uniform Object {
     SceneObject object;
 };
+layout(binding = 1) uniform sampler2DShadow shadowMap;
+
+float lit(vec3 world, vec3 n, vec3 l) {
+    if (frame.shadow.x == 0.0) return 1.0;
+    vec4 clip = frame.lightViewProjection * vec4(world, 1.0);
+    vec3 ndc = clip.xyz / clip.w;
+    vec2 uv = ndc.xy * 0.5 + 0.5;
+    if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))) || ndc.z > 1.0)
+        return 1.0; // outside the map: lit
+    // More bias where the light grazes the surface.
+    float bias = frame.shadow.y * (1.0 + 4.0 * (1.0 - max(dot(n, l), 0.0)));
+    float sum = 0.0;
+    for (int y = -1; y <= 1; ++y)
+        for (int x = -1; x <= 1; ++x)
+            sum += texture(shadowMap, vec3(uv + vec2(x, y) * frame.shadow.z, ndc.z - bias));
+    return sum / 9.0;
+}
 
 layout(location = 0) out vec4 outColor;
 
@@ -23,8 +42,9 @@ void main() {
     vec3 l = normalize(frame.lightDirection.xyz);
     vec3 v = normalize(frame.cameraPosition.xyz - worldPosition);
     vec3 h = normalize(l + v);
-    float diffuse = max(dot(n, l), 0.0);
-    float specular = diffuse > 0.0 ? pow(max(dot(n, h), 0.0), frame.ground.w) : 0.0;
+    float shade = lit(worldPosition, n, l);
+    float diffuse = max(dot(n, l), 0.0) * shade;
+    float specular = diffuse > 0.0 ? shade * pow(max(dot(n, h), 0.0), frame.ground.w) : 0.0;
     vec3 ambient = frame.lightColor.w * mix(frame.ground.rgb, frame.sky.rgb, 0.5 + 0.5 * n.y);
     vec3 color = object.baseColor.rgb * (ambient + diffuse * frame.lightColor.rgb) +
                  frame.sky.w * specular * frame.lightColor.rgb;

@@ -121,5 +121,52 @@ TEST_F(CharacterPassTest, MultisamplingSmoothsTheEdges) {
     EXPECT_LT(depthDiffers, depth1.size() / 20);
 }
 
+// The key light's shadow: the floor where the character's shadow falls (found by casting a ray
+// from a body point along the light to the floor) is darker than the same spot without shadows.
+TEST_F(CharacterPassTest, KeyLightCastsTheCharactersShadowOnTheFloor) {
+    const anim::Character fighter = anim::makeFighter();
+    scene::Scene s = scene::defaultScene();
+    s.camera.position = glm::vec3(0.0f, 4.0f, 4.0f); // looking down at the floor around the feet
+    s.camera.target = glm::vec3(0.0f, 0.0f, 0.0f);
+    const uint32_t width = 160, height = 120;
+    const render::SceneCamera camera = render::makeCamera(s.camera, float(width) / float(height));
+    const anim::Pose pose = anim::samplePose(fighter, fighter.findClip("idle"), 0.0f);
+    auto renderWith = [&](bool shadows) {
+        scene::Scene copy = s;
+        copy.lights[0].shadow = shadows;
+        render::RenderTarget target = render::createRenderTarget(ctx(), width, height);
+        render::CharacterPass pass(ctx(), fighter, copy);
+        gpu::submitOneShot(ctx(), [&](VkCommandBuffer cmd) {
+            pass.skin(cmd, pose, glm::mat4(1.0f));
+            pass.shadow(cmd);
+            render::beginRendering(cmd, target, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+            pass.draw(cmd, camera);
+            render::endRendering(cmd);
+        });
+        return render::readColor(ctx(), target);
+    };
+    const auto lit = renderWith(false), shadowed = renderWith(true);
+    const std::string dir = std::string(MFX_TEST_OUTPUT_DIR) + "/character_pass";
+    ASSERT_TRUE(render::ensureOutputDirectory(dir).ok());
+    ASSERT_TRUE(render::writePng(dir + "/shadow.png", width, height, shadowed).ok());
+    // Where the chest's shadow lands on the floor (y = 0), along the light's direction.
+    const glm::vec3 chest = glm::vec3(pose.world[size_t(*fighter.findNode("chest"))][3]);
+    const glm::vec3 d = glm::normalize(s.lights[0].direction);
+    const glm::vec3 onFloor = chest + d * (-chest.y / d.y);
+    const glm::vec4 clip = camera.viewProjection * glm::vec4(onFloor, 1.0f);
+    const int x = int((clip.x / clip.w * 0.5f + 0.5f) * float(width));
+    const int y = int((0.5f - clip.y / clip.w * 0.5f) * float(height));
+    ASSERT_TRUE(x > 0 && y > 0 && x < int(width) && y < int(height)) << x << "," << y;
+    const size_t i = (size_t(y) * width + size_t(x)) * 4;
+    const int before = lit[i] + lit[i + 1] + lit[i + 2];
+    const int after = shadowed[i] + shadowed[i + 1] + shadowed[i + 2];
+    std::printf("floor at the chest's shadow (%d, %d): brightness %d lit, %d shadowed\n", x, y,
+                before, after);
+    EXPECT_LT(after, before * 3 / 4);
+    // And a floor spot far from the character is the same in both.
+    const size_t far = (size_t(height - 3) * width + 3) * 4;
+    EXPECT_NEAR(lit[far], shadowed[far], 2);
+}
+
 } // namespace
 } // namespace mfx::test

@@ -35,6 +35,7 @@ std::vector<uint8_t> renderFrame(gpu::Context& ctx, const scene::Scene& s, uint3
                          scene::clipTimeAt(s, character.value(), t), anim::Wrap::Clamp);
     gpu::submitOneShot(ctx, [&](VkCommandBuffer cmd) {
         scenePass.skin(cmd, pose, glm::mat4(1.0f));
+        scenePass.shadow(cmd);
         render::beginRendering(cmd, target, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
         scenePass.draw(cmd, camera);
         if (effects) {

@@ -15,6 +15,8 @@ struct SceneFrame {
     vec4 lightColor;     // rgb linear radiance times intensity; w: ambient fraction
     vec4 sky;            // rgb: ambient colour from above; w: specular strength
     vec4 ground;         // rgb: ambient colour from below; w: specular exponent
+    mat4 lightViewProjection; // world to the key light's shadow map (clip space)
+    vec4 shadow;              // x: 1 when the shadow map is used; y: depth bias; z: 1 / its size
 };
 
 // Push constants, one per draw.
@@ -26,7 +28,9 @@ struct SceneObject {
 MFX_SHARED_END
 
 #ifdef __cplusplus
-MFX_CHECK_SIZE(SceneFrame, 144);
+MFX_CHECK_SIZE(SceneFrame, 224);
+MFX_CHECK_LAYOUT(SceneFrame, lightViewProjection, 144);
+MFX_CHECK_LAYOUT(SceneFrame, shadow, 208);
 MFX_CHECK_LAYOUT(SceneFrame, cameraPosition, 64);
 MFX_CHECK_LAYOUT(SceneFrame, lightColor, 96);
 MFX_CHECK_LAYOUT(SceneFrame, ground, 128);
