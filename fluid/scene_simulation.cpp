@@ -48,7 +48,8 @@ trajectory::Source strided(const trajectory::Source& source, uint32_t stride) {
 bool sameGrid(const scene::EffectSpec& a, const scene::EffectSpec& b) {
     return a.grid == b.grid && a.cellSize == b.cellSize && a.jacobi == b.jacobi &&
            a.fade == b.fade && a.drag == b.drag && a.buoyancy == b.buoyancy &&
-           a.vorticity == b.vorticity && a.stepsPerSecond == b.stepsPerSecond;
+           a.vorticity == b.vorticity && a.stepsPerSecond == b.stepsPerSecond &&
+           a.follow == b.follow;
 }
 
 } // namespace
@@ -158,6 +159,9 @@ Result<std::unique_ptr<SceneSimulation>> SceneSimulation::create(const gpu::Cont
                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                               gpu::MemoryUsage::Readback, "smoke activity");
         if (Status placed = sim->placeGrid(grid); !placed) return placed.error();
+        grid.follow = e.follow;
+        grid.placedOrigin = grid.origin;
+        grid.rootAtPlacement = sim->rootPosition(sim->frameTime(0));
     }
     if (!sim->grids_.empty()) sim->coupling_ = std::make_unique<SegmentEmitters>(ctx);
     sim->timer_ = gpu::GpuTimer(ctx, kMaxPasses);
@@ -258,9 +262,36 @@ void SceneSimulation::recordFrame(VkCommandBuffer cmd, uint32_t frame) {
 // whole number per frame): step s of the scene ends at s / rate, frame f's last step at f / fps,
 // so 30 and 60 frames per second run the same steps. Its smoke effects build their segments at
 // the step rate too.
+glm::vec3 SceneSimulation::rootPosition(float time) const {
+    if (character_.nodes.empty()) return glm::vec3(placement()[3]);
+    return glm::vec3(placement() * poseAt(time).world[0][3]);
+}
+
 void SceneSimulation::recordSmoke(VkCommandBuffer cmd, SmokeGrid& grid, uint32_t frame) {
     grid.measured = false;
     grid.emittersThisFrame = 0;
+    grid.shifted = glm::ivec3(0);
+    if (grid.follow && grid.awake) {
+        // Keep the grid where it was placed relative to the character's root, along the floor
+        // (x, z), by whole cells; the fields move the other way, so the smoke stays put.
+        const float h = grid.solver->options().grid.cellSize;
+        glm::vec3 moved = rootPosition(frameTime(frame)) - grid.rootAtPlacement;
+        moved.y = 0.0f;
+        const glm::vec3 target = grid.placedOrigin + moved;
+        const glm::ivec3 cells = glm::ivec3(glm::round((target - grid.origin) / h));
+        if (cells != glm::ivec3(0)) {
+            grid.solver->recordShift(cmd, cells);
+            grid.origin += glm::vec3(cells) * h;
+            grid.shifted = cells;
+            addPass(grid.name + "/shift", 0);
+        }
+    } else if (grid.follow) {
+        // Asleep: nothing to carry along; jump straight to where the grid belongs.
+        glm::vec3 moved = rootPosition(frameTime(frame)) - grid.rootAtPlacement;
+        moved.y = 0.0f;
+        const float h = grid.solver->options().grid.cellSize;
+        grid.origin = grid.placedOrigin + glm::round(moved / h) * h;
+    }
     const uint32_t n = grid.stepsPerFrame;
     const float rate = scene_.output.fps * float(n);
     bool anyLiveThisFrame = false;

@@ -11,7 +11,8 @@
 //   * each step every live smoke effect's newest segment becomes emitters on the GPU
 //     (segment_emitters: impulse velocity, colour as pigment, strength by attenuation), in the
 //     grid's own frame; the grid is placed around the effects' vertices over their windows, with
-//     its floor on the stage floor;
+//     its floor on the stage floor; with "follow" it moves with the character's root along the
+//     floor, by whole cells, its fields shifted the other way so the smoke stays in place;
 //   * a grid none of whose effects is live keeps stepping while its smoke settles and measures
 //     its largest pigment alpha and speed each frame; once both are below the effects' sleep
 //     threshold (speed: threshold x cell size / dt) it sleeps: zero dispatches until an effect is
@@ -80,6 +81,10 @@ public:
         bool measured = false; // measured its activity this frame
         float sleepThreshold = 1e-4f;
         uint32_t stepsPerFrame = 1;
+        bool follow = false;             // moves with the character's root, by whole cells
+        glm::vec3 placedOrigin{0.0f};    // where placement put it
+        glm::vec3 rootAtPlacement{0.0f}; // the root's position then (frame 0)
+        glm::ivec3 shifted{0};           // cells moved this frame
         uint32_t emittersThisFrame = 0;
     };
 
@@ -100,6 +105,7 @@ public:
     // Where the character stands, and its pose at a scene time (for drawing it).
     glm::mat4 placement() const;
     anim::Pose poseAt(float time) const;
+    glm::vec3 rootPosition(float time) const; // the character's first node, in the world
 
     const std::vector<TrajectoryEffect>& trajectories() const { return trajectories_; }
     const std::vector<SmokeGrid>& smokeGrids() const { return grids_; }

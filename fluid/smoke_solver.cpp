@@ -180,8 +180,8 @@ gpu::Program& SmokeSolver::program(Stage stage, int part, uint32_t target) {
         slot = makeProgram(ctx_, options_, "apply_buoyancy", apply_buoyancy_comp, target, 4, 3);
         break;
     case Stage::VorticityConfinement:
-        slot = part == 0   ? makeProgram(ctx_, options_, "compute_vorticity",
-                                         compute_vorticity_comp, target, 5, 4)
+        slot = part == 0 ? makeProgram(ctx_, options_, "compute_vorticity", compute_vorticity_comp,
+                                       target, 5, 4)
                : part == 1 ? makeProgram(ctx_, options_, "confinement_force",
                                          confinement_force_comp, target, 3, 2)
                            : makeProgram(ctx_, options_, "apply_vorticity_force",
@@ -194,8 +194,8 @@ gpu::Program& SmokeSolver::program(Stage stage, int part, uint32_t target) {
         slot = makeProgram(ctx_, options_, "apply_boundaries", apply_boundaries_comp, target, 4);
         break;
     case Stage::ComputeDivergence:
-        slot =
-            makeProgram(ctx_, options_, "compute_divergence", compute_divergence_comp, target, 5, 4);
+        slot = makeProgram(ctx_, options_, "compute_divergence", compute_divergence_comp, target, 5,
+                           4);
         break;
     case Stage::SolvePressure: {
         // Constant ids 11-13: which side is packed (part), the layers and rows of a brick;
@@ -465,26 +465,32 @@ void SmokeSolver::vorticityConfinement(VkCommandBuffer cmd) {
     // Vorticity per cell, then the confinement force per cell, then the faces.
     const int v = currentVelocity_;
     gpu::Program& compute = program(Stage::VorticityConfinement, 0, 0);
-    dispatch(cmd, compute, set(compute, {v, 0, 0}, [&](auto& w) {
-                 addVelocity(w, v, 1);
-                 w.push_back(gpu::bindBuffer(4, scratch_[0]));
-             }),
+    dispatch(cmd, compute,
+             set(compute, {v, 0, 0},
+                 [&](auto& w) {
+                     addVelocity(w, v, 1);
+                     w.push_back(gpu::bindBuffer(4, scratch_[0]));
+                 }),
              cells_);
     copyToImages(cmd, {{&scratch_[0], &vorticity_}});
     gpu::Program& force = program(Stage::VorticityConfinement, 1, 0);
-    dispatch(cmd, force, set(force, {0, 0, 0}, [&](auto& w) {
-                 w.push_back(storage(1, vorticity_));
-                 w.push_back(gpu::bindBuffer(2, scratch_[0]));
-             }),
+    dispatch(cmd, force,
+             set(force, {0, 0, 0},
+                 [&](auto& w) {
+                     w.push_back(storage(1, vorticity_));
+                     w.push_back(gpu::bindBuffer(2, scratch_[0]));
+                 }),
              cells_);
     copyToImages(cmd, {{&scratch_[0], &force_}});
     for (uint32_t c = 0; c < 3; ++c) {
         gpu::Program& apply = program(Stage::VorticityConfinement, 2, c);
-        dispatch(cmd, apply, set(apply, {v, 0, 0}, [&](auto& w) {
-                     addVelocity(w, v, 1);
-                     w.push_back(storage(4, force_));
-                     w.push_back(gpu::bindBuffer(5, scratch_[c]));
-                 }),
+        dispatch(cmd, apply,
+                 set(apply, {v, 0, 0},
+                     [&](auto& w) {
+                         addVelocity(w, v, 1);
+                         w.push_back(storage(4, force_));
+                         w.push_back(gpu::bindBuffer(5, scratch_[c]));
+                     }),
                  faceExtent(options_.grid, int(c)));
     }
     copyToImages(cmd, {{&scratch_[0], &velocity_[v][0]},
@@ -711,6 +717,52 @@ void SmokeSolver::step() {
 
 void SmokeSolver::runStage(Stage stage) {
     gpu::submitOneShot(ctx_, [&](VkCommandBuffer cmd) { recordStage(cmd, stage); });
+}
+
+void SmokeSolver::recordShift(VkCommandBuffer cmd, glm::ivec3 cells) {
+    if (cells == glm::ivec3(0)) return;
+    gpu::memoryBarrier(
+        cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
+            VK_ACCESS_2_TRANSFER_WRITE_BIT,
+        VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+        VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    // Each field into its ping-pong partner: cleared, then the overlap copied across.
+    auto shift = [&](const gpu::Image& from, const gpu::Image& to) {
+        const VkClearColorValue zero{};
+        VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        vkCmdClearColorImage(cmd, to.get(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
+        const glm::ivec3 size(int(from.extent.width), int(from.extent.height),
+                              int(from.extent.depth));
+        const glm::ivec3 extent = size - glm::abs(cells);
+        if (glm::any(glm::lessThanEqual(extent, glm::ivec3(0)))) return; // moved past it all
+        const glm::ivec3 src = glm::max(cells, glm::ivec3(0));
+        const glm::ivec3 dst = glm::max(-cells, glm::ivec3(0));
+        VkImageCopy region{};
+        region.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        region.dstSubresource = region.srcSubresource;
+        region.srcOffset = {src.x, src.y, src.z};
+        region.dstOffset = {dst.x, dst.y, dst.z};
+        region.extent = {uint32_t(extent.x), uint32_t(extent.y), uint32_t(extent.z)};
+        gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                           VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                           VK_ACCESS_2_TRANSFER_WRITE_BIT);
+        vkCmdCopyImage(cmd, from.get(), VK_IMAGE_LAYOUT_GENERAL, to.get(), VK_IMAGE_LAYOUT_GENERAL,
+                       1, &region);
+    };
+    for (int c = 0; c < 3; ++c)
+        shift(velocity_[size_t(currentVelocity_)][size_t(c)],
+              velocity_[size_t(1 - currentVelocity_)][size_t(c)]);
+    shift(pigment_[size_t(currentPigment_)], pigment_[size_t(1 - currentPigment_)]);
+    shift(pressure_[size_t(currentPressure_)], pressure_[size_t(1 - currentPressure_)]);
+    currentVelocity_ = 1 - currentVelocity_;
+    currentPigment_ = 1 - currentPigment_;
+    currentPressure_ = 1 - currentPressure_;
+    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT |
+                           VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
+                           VK_ACCESS_2_TRANSFER_READ_BIT);
 }
 
 } // namespace mfx::fluid

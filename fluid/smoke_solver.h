@@ -76,6 +76,11 @@ public:
     // the smoke has settled. `out` needs STORAGE_BUFFER and TRANSFER_DST usage.
     void recordMeasureActivity(VkCommandBuffer cmd, const gpu::Buffer& out);
 
+    // Records a move of the grid by whole cells: afterwards field(q) holds what field(q + cells)
+    // held (velocity, pigment and pressure), and what comes in from outside is 0. For a grid that
+    // follows a character: the smoke stays where it was in the world.
+    void recordShift(VkCommandBuffer cmd, glm::ivec3 cells);
+
     // Upper bound of timer passes one recordStep() makes.
     uint32_t passesPerStep() const { return uint32_t(kStepOrder.size()) * options_.substeps; }
 

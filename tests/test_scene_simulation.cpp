@@ -232,6 +232,82 @@ TEST_F(SceneSimulationTest, SurfaceEmissionFeedsTheGrid) {
     EXPECT_GT(pigment, 0.01);
 }
 
+// A grid that follows: the fields move by whole cells the other way, what comes in is 0.
+TEST_F(SceneSimulationTest, ShiftMovesEveryFieldByWholeCells) {
+    fluid::SolverOptions options;
+    options.grid = {7, 5, 6, 0.1f};
+    auto solver = fluid::SmokeSolver::create(ctx(), options);
+    ASSERT_TRUE(solver.ok()) << solver.error().message;
+    fluid::FieldState before = fluid::FieldState::zero(options.grid);
+    uint32_t seed = 1;
+    auto next = [&]() { return float((seed = seed * 1664525u + 1013904223u) >> 8) / 16777216.0f; };
+    for (float& v : before.velocityX)
+        v = next();
+    for (float& v : before.velocityY)
+        v = next();
+    for (float& v : before.velocityZ)
+        v = next();
+    for (float& v : before.pressure)
+        v = next();
+    for (float& v : before.pigment)
+        v = next();
+    solver.value()->setState(before);
+    const glm::ivec3 shift(2, 0, -1);
+    gpu::submitOneShot(ctx(),
+                       [&](VkCommandBuffer cmd) { solver.value()->recordShift(cmd, shift); });
+    const fluid::FieldState after = solver.value()->state();
+    auto check = [&](const std::vector<float>& old, const std::vector<float>& now, glm::ivec3 n,
+                     int channels, const char* what) {
+        for (int z = 0; z < n.z; ++z)
+            for (int y = 0; y < n.y; ++y)
+                for (int x = 0; x < n.x; ++x) {
+                    const glm::ivec3 from = glm::ivec3(x, y, z) + shift;
+                    const bool inside = glm::all(glm::greaterThanEqual(from, glm::ivec3(0))) &&
+                                        glm::all(glm::lessThan(from, n));
+                    for (int k = 0; k < channels; ++k) {
+                        const size_t i = size_t(((z * n.y + y) * n.x + x) * channels + k);
+                        const float expected =
+                            inside ? old[size_t(
+                                         ((from.z * n.y + from.y) * n.x + from.x) * channels + k)]
+                                   : 0.0f;
+                        ASSERT_EQ(now[i], expected) << what << " at " << x << "," << y << "," << z;
+                    }
+                }
+    };
+    const glm::ivec3 cells(7, 5, 6);
+    check(before.velocityX, after.velocityX, cells + glm::ivec3(1, 0, 0), 1, "velocity x");
+    check(before.velocityY, after.velocityY, cells + glm::ivec3(0, 1, 0), 1, "velocity y");
+    check(before.velocityZ, after.velocityZ, cells + glm::ivec3(0, 0, 1), 1, "velocity z");
+    check(before.pressure, after.pressure, cells, 1, "pressure");
+    check(before.pigment, after.pigment, cells, 4, "pigment");
+}
+
+// With "follow", the grid keeps its place relative to a character walking along x (1.5 m/s),
+// and the smoke already made stays where it was in the world.
+TEST_F(SceneSimulationTest, GridFollowsTheCharacter) {
+    const anim::Character point = movingPoint();
+    scene::Scene s = parseScene(R"({
+        "character": {"source": "point.gltf"},
+        "output": {"fps": 30, "frames": 31},
+        "effects": [{"type": "smoke", "grid": [16, 8, 8], "cell_size": 0.1, "fade": 0,
+                     "drag": 0, "follow": true, "steps_per_second": 30, "end": 0.6}]})");
+    auto sim = simulate(ctx(), s, point);
+    ASSERT_TRUE(sim);
+    const glm::vec3 start = sim->smokeGrids()[0].origin;
+    uint32_t shifts = 0;
+    for (uint32_t f = 0; f < 31; ++f) {
+        const auto stats = sim->runFrame(f);
+        for (const auto& p : stats.passes)
+            shifts += p.name == "smoke0/shift" ? 1 : 0;
+    }
+    const glm::vec3 moved = sim->smokeGrids()[0].origin - start;
+    // 1.5 m in 1 s: the grid moved with it, to the nearest cell.
+    EXPECT_NEAR(moved.x, 1.5f, 0.1f);
+    EXPECT_EQ(moved.y, 0.0f);
+    EXPECT_NEAR(moved.z, 0.0f, 1e-6f);
+    EXPECT_GE(shifts, 8u); // about one a frame while it is awake (0.9 m in its window: 9 cells)
+}
+
 struct Totals {
     double pigment = 0.0;
     glm::dvec3 momentum{0.0};

@@ -233,9 +233,9 @@ const std::vector<std::string> kCommonEffectKeys = {
 const std::vector<std::string> kTrajectoryKeys = {
     "sub_samples", "lifetime", "stride", "colour", "alpha_start", "alpha_end", "alpha_power"};
 const std::vector<std::string> kSmokeKeys = {
-    "grid",         "cell_size",    "jacobi",         "fade",   "drag",     "steps_per_second",
-    "buoyancy",     "vorticity",    "impulse_k",      "radius", "strength", "emission",
-    "surface_step", "max_emitters", "sleep_threshold"};
+    "grid",         "cell_size",    "jacobi",          "fade",   "drag",     "steps_per_second",
+    "buoyancy",     "vorticity",    "impulse_k",       "radius", "strength", "emission",
+    "surface_step", "max_emitters", "sleep_threshold", "follow"};
 
 void readEffect(const Object& o, size_t index, EffectSpec& e) {
     if (!o.has("type"))
@@ -320,6 +320,7 @@ void readEffect(const Object& o, size_t index, EffectSpec& e) {
     e.fade = float(o.number("fade", e.fade, 0.0, 100.0));
     e.drag = float(o.number("drag", e.drag, 0.0, 100.0));
     e.stepsPerSecond = float(o.number("steps_per_second", e.stepsPerSecond, 1.0, 1000.0));
+    e.follow = o.boolean("follow", e.follow);
     e.buoyancy = float(o.number("buoyancy", e.buoyancy, -100.0, 100.0));
     e.vorticity = float(o.number("vorticity", e.vorticity, 0.0, 100.0));
     e.impulseScale = float(o.number("impulse_k", e.impulseScale, 0.0, 100.0));

@@ -86,6 +86,7 @@ struct EffectSpec {
     float fade = 0.6f;            // pigment decay per second
     float drag = 1.0f;            // velocity decay per second
     float stepsPerSecond = 60.0f; // solver steps per second at least (whole steps per frame)
+    bool follow = false;          // the grid moves with the character's root, by whole cells
     float buoyancy = 0.0f;
     float vorticity = 0.0f;
     float impulseScale = 1.0f; // k
