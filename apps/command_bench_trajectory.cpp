@@ -125,11 +125,17 @@ int runBenchTrajectory(std::span<const std::string> args) {
                 source.vertices.size(), subSamples.value(), frames.value());
 
     std::vector<trajectory::Method> methods = {trajectory::Method::Split};
-    if (ctx.features().geometryShader && ctx.features().transformFeedback)
-        methods.push_back(trajectory::Method::StreamOutput);
-    else
-        std::printf("(no split-xfb rows: %s lacks geometry shaders or transform feedback)\n\n",
-                    ctx.info().name.c_str());
+    {
+        // The geometry-shader route only where the device (and the loader as set up) offers it.
+        trajectory::QueueOptions probe;
+        probe.method = trajectory::Method::StreamOutput;
+        probe.lifetime = probe.maxLifetime = 1;
+        const auto xfb = trajectory::Queue::create(ctx, source, probe);
+        if (xfb)
+            methods.push_back(trajectory::Method::StreamOutput);
+        else
+            std::printf("(no split-xfb rows: %s)\n\n", xfb.error().message.c_str());
+    }
     methods.push_back(trajectory::Method::Unsplit);
     std::vector<Row> rows;
     nlohmann::json frameLog = nlohmann::json::array();

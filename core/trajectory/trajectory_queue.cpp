@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <dlfcn.h>
 #include <stdexcept>
 #include <string>
 
@@ -43,6 +44,19 @@ std::vector<uint32_t> segmentIndices(Kind kind, const Source& source, uint32_t s
             }
     }
     return out;
+}
+
+// A device-level command of an extension. Asked of the Vulkan loader itself when the plain call
+// gives nothing: a library loaded ahead of it (LD_PRELOAD of a layer, as the sanitizer runs do)
+// can shadow the loader's exported vkGetDeviceProcAddr with one that does not know this device.
+PFN_vkVoidFunction deviceCommand(const gpu::Context& ctx, const char* name) {
+    if (PFN_vkVoidFunction f = vkGetDeviceProcAddr(ctx.device(), name)) return f;
+    void* loader = dlopen("libvulkan.so.1", RTLD_NOW | RTLD_NOLOAD);
+    if (!loader) return nullptr;
+    auto get = reinterpret_cast<PFN_vkGetDeviceProcAddr>(dlsym(loader, "vkGetDeviceProcAddr"));
+    PFN_vkVoidFunction f = get ? get(ctx.device(), name) : nullptr;
+    dlclose(loader);
+    return f;
 }
 
 } // namespace
@@ -156,11 +170,11 @@ Result<std::unique_ptr<Queue>> Queue::create(const gpu::Context& ctx, Source sou
                                               gpu::bindBuffer(1, q->sources_),
                                               gpu::bindBuffer(2, q->colours_)});
         q->bindXfb_ = reinterpret_cast<PFN_vkCmdBindTransformFeedbackBuffersEXT>(
-            vkGetDeviceProcAddr(ctx.device(), "vkCmdBindTransformFeedbackBuffersEXT"));
+            deviceCommand(ctx, "vkCmdBindTransformFeedbackBuffersEXT"));
         q->beginXfb_ = reinterpret_cast<PFN_vkCmdBeginTransformFeedbackEXT>(
-            vkGetDeviceProcAddr(ctx.device(), "vkCmdBeginTransformFeedbackEXT"));
+            deviceCommand(ctx, "vkCmdBeginTransformFeedbackEXT"));
         q->endXfb_ = reinterpret_cast<PFN_vkCmdEndTransformFeedbackEXT>(
-            vkGetDeviceProcAddr(ctx.device(), "vkCmdEndTransformFeedbackEXT"));
+            deviceCommand(ctx, "vkCmdEndTransformFeedbackEXT"));
         if (!q->bindXfb_ || !q->beginXfb_ || !q->endXfb_)
             return Error{ctx.info().name + " does not expose the transform feedback commands"};
     } else {
