@@ -47,31 +47,9 @@ int runRender(std::span<const std::string> args) {
                      parsed, exitCode))
         return exitCode;
 
-    Result<scene::Scene> loaded = parsed.positional.empty()
-                                      ? Result<scene::Scene>(scene::defaultScene())
-                                      : scene::loadScene(parsed.positional[0]);
-    if (!loaded) {
-        printError(loaded.error().message);
-        return kExitFailure;
-    }
-    scene::Scene s = std::move(loaded).value();
-    if (parsed.has("size")) {
-        auto size = cli::parseSize(parsed.value("size"), 16384);
-        if (!size) {
-            printError(size.error().message);
-            return kExitUsage;
-        }
-        s.output.width = size.value().first;
-        s.output.height = size.value().second;
-    }
-    if (parsed.has("frames")) {
-        auto frames = cli::parseUnsigned(parsed.value("frames"), 1, 100000, "--frames");
-        if (!frames) {
-            printError(frames.error().message);
-            return kExitUsage;
-        }
-        s.output.frames = frames.value();
-    }
+    SceneArgument argument;
+    if (!loadSceneArgument(parsed, argument, exitCode)) return exitCode;
+    const scene::Scene& s = argument.scene;
     const std::string outDir = parsed.value("out", "out");
     // Check the outputs before the (slower) GPU work, so a typo fails at once.
     if (Status dir = render::ensureOutputDirectory(outDir); !dir) {
@@ -80,12 +58,6 @@ int runRender(std::span<const std::string> args) {
     }
     std::ofstream statsFile;
     if (!openOutputFile(parsed.value("stats"), statsFile)) return kExitFailure;
-    Result<anim::Character> character = scene::loadCharacter(s);
-    if (!character) {
-        printError(character.error().message);
-        return kExitFailure;
-    }
-
     const std::unique_ptr<gpu::Context> context = createContext(parsed);
     if (!context) return kExitFailure;
     const gpu::Context& ctx = *context;
@@ -96,7 +68,7 @@ int runRender(std::span<const std::string> args) {
                    "'s largest image, " + std::to_string(ctx.limits().maxImageDimension2D));
         return kExitUsage;
     }
-    auto created = fluid::SceneSimulation::create(ctx, s, character.value());
+    auto created = fluid::SceneSimulation::create(ctx, s, argument.character);
     if (!created) {
         printError(created.error().message);
         return kExitFailure;
@@ -106,7 +78,7 @@ int runRender(std::span<const std::string> args) {
     const VkSampleCountFlagBits samples = render::supportedSamples(ctx, VK_SAMPLE_COUNT_4_BIT);
     render::RenderTarget target =
         render::createRenderTarget(ctx, s.output.width, s.output.height, samples);
-    render::CharacterPass scenePass(ctx, character.value(), sim.scene(), samples);
+    render::CharacterPass scenePass(ctx, argument.character, sim.scene(), samples);
     render::EffectPass effectPass(ctx, samples);
     const render::SceneCamera camera =
         render::makeCamera(s.camera, float(s.output.width) / float(s.output.height));

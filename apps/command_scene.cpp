@@ -20,20 +20,10 @@ int runScene(std::span<const std::string> args) {
                      "meshes select. Without FILE, the built-in default scene.",
                      parsed, exitCode))
         return exitCode;
-    Result<scene::Scene> loaded = parsed.positional.empty()
-                                      ? Result<scene::Scene>(scene::defaultScene())
-                                      : scene::loadScene(parsed.positional[0]);
-    if (!loaded) {
-        printError(loaded.error().message);
-        return kExitFailure;
-    }
-    const scene::Scene& s = loaded.value();
-    Result<anim::Character> character = scene::loadCharacter(s);
-    if (!character) {
-        printError(character.error().message);
-        return kExitFailure;
-    }
-    const anim::Character& c = character.value();
+    SceneArgument argument;
+    if (!loadSceneArgument(parsed, argument, exitCode)) return exitCode;
+    const scene::Scene& s = argument.scene;
+    const anim::Character& c = argument.character;
     const anim::Clip& clip = scene::sceneClip(s, c);
     std::printf("scene        %s\n", s.file.c_str());
     std::printf("character    %s, clip %s (%.3g s), from %.3g s at speed %.3g%s\n",

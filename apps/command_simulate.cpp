@@ -44,32 +44,14 @@ int runSimulate(std::span<const std::string> args) {
                      "Without SCENE, the built-in default scene.",
                      parsed, exitCode))
         return exitCode;
-    Result<scene::Scene> loaded = parsed.positional.empty()
-                                      ? Result<scene::Scene>(scene::defaultScene())
-                                      : scene::loadScene(parsed.positional[0]);
-    if (!loaded) {
-        printError(loaded.error().message);
-        return kExitFailure;
-    }
-    scene::Scene s = std::move(loaded).value();
-    if (parsed.has("frames")) {
-        auto frames = cli::parseUnsigned(parsed.value("frames"), 1, 100000, "--frames");
-        if (!frames) {
-            printError(frames.error().message);
-            return kExitUsage;
-        }
-        s.output.frames = frames.value();
-    }
+    SceneArgument argument;
+    if (!loadSceneArgument(parsed, argument, exitCode)) return exitCode;
+    const scene::Scene& s = argument.scene;
     std::ofstream statsFile;
     if (!openOutputFile(parsed.value("stats"), statsFile)) return kExitFailure;
-    Result<anim::Character> character = scene::loadCharacter(s);
-    if (!character) {
-        printError(character.error().message);
-        return kExitFailure;
-    }
     const std::unique_ptr<gpu::Context> context = createContext(parsed);
     if (!context) return kExitFailure;
-    auto created = fluid::SceneSimulation::create(*context, s, character.value());
+    auto created = fluid::SceneSimulation::create(*context, s, argument.character);
     if (!created) {
         printError(created.error().message);
         return kExitFailure;

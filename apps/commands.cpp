@@ -61,6 +61,45 @@ bool openOutputFile(const std::string& path, std::ofstream& file) {
     return false;
 }
 
+bool loadSceneArgument(const cli::ParsedArgs& parsed, SceneArgument& out, int& exitCode) {
+    Result<scene::Scene> loaded = parsed.positional.empty()
+                                      ? Result<scene::Scene>(scene::defaultScene())
+                                      : scene::loadScene(parsed.positional[0]);
+    if (!loaded) {
+        printError(loaded.error().message);
+        exitCode = kExitFailure;
+        return false;
+    }
+    out.scene = std::move(loaded).value();
+    if (parsed.has("size")) {
+        auto size = cli::parseSize(parsed.value("size"), 16384);
+        if (!size) {
+            printError(size.error().message);
+            exitCode = kExitUsage;
+            return false;
+        }
+        out.scene.output.width = size.value().first;
+        out.scene.output.height = size.value().second;
+    }
+    if (parsed.has("frames")) {
+        auto frames = cli::parseUnsigned(parsed.value("frames"), 1, 100000, "--frames");
+        if (!frames) {
+            printError(frames.error().message);
+            exitCode = kExitUsage;
+            return false;
+        }
+        out.scene.output.frames = frames.value();
+    }
+    Result<anim::Character> character = scene::loadCharacter(out.scene);
+    if (!character) {
+        printError(character.error().message);
+        exitCode = kExitFailure;
+        return false;
+    }
+    out.character = std::move(character).value();
+    return true;
+}
+
 void printError(const std::string& message) {
     std::fprintf(stderr, "motionfx: error: %s\n", message.c_str());
 }

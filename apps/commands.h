@@ -47,6 +47,15 @@ std::unique_ptr<gpu::Context> createContext(const cli::ParsedArgs& args);
 // Opens `path` for writing when it is not empty; false (after printing why) when it cannot be.
 bool openOutputFile(const std::string& path, std::ofstream& file);
 
+// The scene a command was given as its first word, or the built-in default without one, with
+// --size and --frames applied where the command has them, and its character loaded. On failure
+// prints the one-line reason, sets `exitCode` (1, or 2 for a bad option value) and returns false.
+struct SceneArgument {
+    scene::Scene scene;
+    anim::Character character;
+};
+bool loadSceneArgument(const cli::ParsedArgs& parsed, SceneArgument& out, int& exitCode);
+
 // One frame's simulation statistics as JSON ({"frame", "time", "passes", "fluid_bytes", ...}).
 nlohmann::json statsJson(const fluid::SimulationFrameStats& stats);
 
