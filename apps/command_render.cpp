@@ -10,6 +10,7 @@
 #include "render/effect_pass.h"
 #include "render/image_output.h"
 #include "render/render_target.h"
+#include "render/smoke_pass.h"
 
 #include <cstdio>
 #include <cstdlib>
@@ -80,6 +81,7 @@ int runRender(std::span<const std::string> args) {
         render::createRenderTarget(ctx, s.output.width, s.output.height, samples);
     render::CharacterPass scenePass(ctx, argument.character, sim.scene(), samples);
     render::EffectPass effectPass(ctx, samples);
+    render::SmokePass smokePass(ctx);
     const render::SceneCamera camera =
         render::makeCamera(s.camera, float(s.output.width) / float(s.output.height));
     gpu::GpuTimer timer(ctx, 4);
@@ -104,6 +106,7 @@ int runRender(std::span<const std::string> args) {
             scenePass.draw(cmd, camera);
             draws = effectPass.draw(cmd, sim, camera, t);
             render::endRendering(cmd);
+            smokePass.draw(cmd, target, sim, camera);
         });
         fluid::SimulationFrameStats stats = sim.finishFrame();
         for (const gpu::PassTime& p : timer.results())

@@ -12,8 +12,10 @@ namespace mfx::fluid {
 
 namespace {
 
+// Sampled too: a renderer ray-marches the pigment (in GENERAL layout, as the solver keeps it).
 constexpr VkImageUsageFlags kFieldUsage =
-    VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
+    VK_IMAGE_USAGE_SAMPLED_BIT;
 constexpr uint32_t kSetsPerProgram = 16;
 // Cells per solve_pressure invocation: 4 along x (fixed by the shader, and the cells per element
 // of the packed buffers) by kPressureRows along y by kPressureLayers along z.

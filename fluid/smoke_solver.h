@@ -41,6 +41,8 @@ public:
     SmokeSolver& operator=(const SmokeSolver&) = delete;
 
     const SolverOptions& options() const { return options_; }
+    // The current pigment field (rgba32f, GENERAL layout, sampled usage): what a renderer draws.
+    const gpu::Image& pigmentImage() const { return pigment_[size_t(currentPigment_)]; }
 
     // Uploads / reads back every field (waits for the GPU).
     void setState(const FieldState& state);

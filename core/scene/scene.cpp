@@ -458,6 +458,8 @@ Scene defaultScene() {
     smoke.colour = {0.85f, 0.35f, 0.15f, 1.0f};
     smoke.useMeshColour = false;
     smoke.lifetime = 2;
+    smoke.strength = 4.0f;
+    smoke.radius = 0.08f;
     s.effects = {lines, blur, smoke};
     return s;
 }

@@ -1,0 +1,95 @@
+// The smoke pass: a ball of pigment in front of the fighter covers it, the same ball behind it is
+// hidden by it.
+#include "core/anim/fighter.h"
+#include "core/gpu/commands.h"
+#include "fluid/smoke_solver.h"
+#include "render/character_pass.h"
+#include "render/image_output.h"
+#include "render/smoke_pass.h"
+#include "tests/gpu_test.h"
+
+namespace mfx::test {
+namespace {
+
+using SmokePassTest = GpuTest;
+
+constexpr uint32_t kWidth = 200, kHeight = 150;
+
+// A solver whose pigment is a ball of radius `radius` cells, white, full alpha in its middle.
+std::unique_ptr<fluid::SmokeSolver> ball(gpu::Context& ctx, float radius) {
+    fluid::SolverOptions options;
+    options.grid = {16, 16, 16, 0.05f};
+    auto solver = fluid::SmokeSolver::create(ctx, options).value();
+    fluid::FieldState state = fluid::FieldState::zero(options.grid);
+    for (uint32_t z = 0; z < 16; ++z)
+        for (uint32_t y = 0; y < 16; ++y)
+            for (uint32_t x = 0; x < 16; ++x) {
+                const glm::vec3 d = glm::vec3(x, y, z) + 0.5f - 8.0f;
+                const float a = glm::clamp(1.5f * (1.0f - glm::length(d) / radius), 0.0f, 1.0f);
+                const size_t i = options.grid.index(x, y, z) * 4;
+                state.pigment[i + 0] = state.pigment[i + 1] = state.pigment[i + 2] = a;
+                state.pigment[i + 3] = a;
+            }
+    solver->setState(state);
+    return solver;
+}
+
+struct Shot {
+    std::vector<uint8_t> rgba;
+    std::vector<float> depth;
+};
+
+// The fighter in its idle pose seen from the front, and the ball centred at `centre`.
+Shot shoot(gpu::Context& ctx, const fluid::SmokeSolver* smoke, glm::vec3 centre, float fade,
+           const std::string& png) {
+    const anim::Character fighter = anim::makeFighter();
+    scene::Scene s = scene::defaultScene();
+    s.camera.position = glm::vec3(0.0f, 1.0f, 4.0f);
+    s.camera.target = glm::vec3(0.0f, 0.8f, 0.0f);
+    const render::SceneCamera camera = render::makeCamera(s.camera, float(kWidth) / kHeight);
+    render::RenderTarget target = render::createRenderTarget(ctx, kWidth, kHeight);
+    render::CharacterPass scenePass(ctx, fighter, s);
+    render::SmokePass smokePass(ctx);
+    const anim::Pose pose = anim::samplePose(fighter, fighter.findClip("idle"), 0.0f);
+    gpu::submitOneShot(ctx, [&](VkCommandBuffer cmd) {
+        scenePass.skin(cmd, pose, glm::mat4(1.0f));
+        render::beginRendering(cmd, target, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+        scenePass.draw(cmd, camera);
+        render::endRendering(cmd);
+        if (smoke) {
+            const render::SmokePass::Volume volume{&smoke->pigmentImage(), smoke->options().grid,
+                                                   centre - glm::vec3(0.4f)};
+            render::SmokeLook look;
+            look.fadeDistance = fade;
+            smokePass.draw(cmd, target, std::span(&volume, 1), camera, s.lights[0], look);
+        }
+    });
+    Shot shot{render::readColor(ctx, target), render::readDepth(ctx, target)};
+    const std::string dir = std::string(MFX_TEST_OUTPUT_DIR) + "/smoke_pass";
+    EXPECT_TRUE(render::ensureOutputDirectory(dir).ok());
+    EXPECT_TRUE(render::writePng(dir + "/" + png, kWidth, kHeight, shot.rgba).ok());
+    return shot;
+}
+
+float brightness(const std::vector<uint8_t>& rgba, uint32_t x, uint32_t y) {
+    const size_t i = (size_t(y) * kWidth + x) * 4;
+    return float(rgba[i] + rgba[i + 1] + rgba[i + 2]) / 3.0f;
+}
+
+TEST_F(SmokePassTest, InFrontCoversTheFighterBehindIsHidden) {
+    const auto smoke = ball(ctx(), 6.0f);
+    const Shot plain = shoot(ctx(), nullptr, {}, 0.1f, "plain.png");
+    const Shot front = shoot(ctx(), smoke.get(), glm::vec3(0.0f, 1.1f, 0.7f), 0.1f, "front.png");
+    const Shot behind = shoot(ctx(), smoke.get(), glm::vec3(0.0f, 1.1f, -0.7f), 0.1f, "behind.png");
+    // The chest's pixel: white smoke in front brightens it; behind, the chest hides the smoke.
+    const uint32_t x = kWidth / 2, y = uint32_t(0.36f * kHeight);
+    ASSERT_LT(plain.depth[size_t(y) * kWidth + x], 1.0f) << "the chest is there";
+    const float before = brightness(plain.rgba, x, y);
+    std::printf("chest pixel: %.0f plain, %.0f smoke in front, %.0f smoke behind\n", double(before),
+                double(brightness(front.rgba, x, y)), double(brightness(behind.rgba, x, y)));
+    EXPECT_GT(brightness(front.rgba, x, y), before + 40.0f);
+    EXPECT_NEAR(brightness(behind.rgba, x, y), before, 2.0f);
+}
+
+} // namespace
+} // namespace mfx::test
