@@ -91,5 +91,49 @@ TEST_F(SmokePassTest, InFrontCoversTheFighterBehindIsHidden) {
     EXPECT_NEAR(brightness(behind.rgba, x, y), before, 2.0f);
 }
 
+// A dense block of smoke sunk into the floor. Marching only up to the floor would cut the smoke
+// where it meets the floor: the rows just above the contact line go from no smoke to a lot within
+// a row or two. With the depth fade (b = 0.15 m) smoke a little behind the floor still counts,
+// faded, so the same rows change gradually: a smaller largest row-to-row step.
+TEST_F(SmokePassTest, SmokeMeetsTheFloorSoftly) {
+    fluid::SolverOptions options;
+    options.grid = {16, 16, 16, 0.05f};
+    auto block = fluid::SmokeSolver::create(ctx(), options).value();
+    fluid::FieldState state = fluid::FieldState::zero(options.grid);
+    for (size_t c = 0; c < state.pigment.size(); ++c)
+        state.pigment[c] = 1.0f; // white, alpha 1
+    block->setState(state);
+    // Its centre 0.2 m above the floor: the floor cuts it 0.2 m above its bottom.
+    const glm::vec3 centre(-0.9f, 0.2f, 0.5f);
+    const Shot plain = shoot(ctx(), nullptr, {}, 0.1f, "floor_plain.png");
+    const Shot soft = shoot(ctx(), block.get(), centre, 0.15f, "floor_soft.png");
+    const Shot hard = shoot(ctx(), block.get(), centre, 0.0005f, "floor_hard.png");
+    scene::Scene s = scene::defaultScene();
+    s.camera.position = glm::vec3(0.0f, 1.0f, 4.0f);
+    s.camera.target = glm::vec3(0.0f, 0.8f, 0.0f);
+    const render::SceneCamera camera = render::makeCamera(s.camera, float(kWidth) / kHeight);
+    // Where the block's front face meets the floor, under its centre.
+    const glm::vec4 clip = camera.viewProjection * glm::vec4(centre.x, 0.0f, centre.z + 0.4f, 1.0f);
+    const uint32_t x = uint32_t((clip.x / clip.w * 0.5f + 0.5f) * kWidth);
+    const int contact = int((0.5f - clip.y / clip.w * 0.5f) * kHeight);
+    auto largestStep = [&](const Shot& shot) {
+        float worst = 0.0f;
+        for (int y = contact - 8; y <= contact + 2; ++y) {
+            auto added = [&](int row) {
+                return brightness(shot.rgba, x, uint32_t(row)) -
+                       brightness(plain.rgba, x, uint32_t(row));
+            };
+            worst = std::max(worst, std::abs(added(y) - added(y - 1)));
+        }
+        return worst;
+    };
+    const float softStep = largestStep(soft), hardStep = largestStep(hard);
+    std::printf("contact row %d: largest row-to-row step of the smoke's brightness %.1f with the "
+                "fade, %.1f without\n",
+                contact, double(softStep), double(hardStep));
+    EXPECT_GT(hardStep, 20.0f); // without the fade there is an edge to soften
+    EXPECT_LT(softStep, 0.6f * hardStep);
+}
+
 } // namespace
 } // namespace mfx::test
