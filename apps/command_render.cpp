@@ -91,17 +91,17 @@ int runRender(std::span<const std::string> args) {
     const glm::vec4 clear(0.02f, 0.02f, 0.03f, 1.0f);
     for (uint32_t f = 0; f < sim.frameCount(); ++f) {
         const float t = sim.frameTime(f);
-        const anim::Pose pose = sim.poseAt(t);
         uint32_t draws = 0;
         gpu::submitOneShot(ctx, [&](VkCommandBuffer cmd) {
             sim.recordFrame(cmd, f);
+            const anim::Pose& pose = sim.framePose();
             timer.reset(cmd);
             {
                 gpu::ScopedPass pass(timer, cmd, "render/skin_vertices");
                 scenePass.skin(cmd, pose, sim.placement());
                 scenePass.shadow(cmd);
             }
-            gpu::ScopedPass pass(timer, cmd, "render/scene_and_effects");
+            gpu::ScopedPass pass(timer, cmd, "render/scene_effects_smoke");
             render::beginRendering(cmd, target, clear);
             scenePass.draw(cmd, camera);
             draws = effectPass.draw(cmd, sim, camera, t);

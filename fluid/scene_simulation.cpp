@@ -161,7 +161,7 @@ Result<std::unique_ptr<SceneSimulation>> SceneSimulation::create(const gpu::Cont
         if (Status placed = sim->placeGrid(grid); !placed) return placed.error();
         grid.follow = e.follow;
         grid.placedOrigin = grid.origin;
-        grid.rootAtPlacement = sim->rootPosition(sim->frameTime(0));
+        grid.rootAtPlacement = sim->rootPosition(sim->poseAt(sim->frameTime(0)));
     }
     if (!sim->grids_.empty()) sim->coupling_ = std::make_unique<SegmentEmitters>(ctx);
     sim->timer_ = gpu::GpuTimer(ctx, kMaxPasses);
@@ -236,7 +236,8 @@ void SceneSimulation::recordFrame(VkCommandBuffer cmd, uint32_t frame) {
     currentFrame_ = frame;
     recorded_.clear();
     const float t = frameTime(frame);
-    const anim::Pose pose = poseAt(t);
+    framePose_ = poseAt(t);
+    const anim::Pose& pose = framePose_;
     timer_.reset(cmd);
     // The drawn effects: one segment per frame.
     for (TrajectoryEffect& effect : trajectories_) {
@@ -258,39 +259,34 @@ void SceneSimulation::recordFrame(VkCommandBuffer cmd, uint32_t frame) {
         recordSmoke(cmd, grid, frame);
 }
 
+glm::vec3 SceneSimulation::rootPosition(const anim::Pose& pose) const {
+    if (character_.nodes.empty()) return glm::vec3(placement()[3]);
+    return glm::vec3(placement() * pose.world[0][3]);
+}
+
 // A grid takes stepsPerFrame steps per frame at a fixed rate (steps_per_second rounded up to a
 // whole number per frame): step s of the scene ends at s / rate, frame f's last step at f / fps,
 // so 30 and 60 frames per second run the same steps. Its smoke effects build their segments at
 // the step rate too.
-glm::vec3 SceneSimulation::rootPosition(float time) const {
-    if (character_.nodes.empty()) return glm::vec3(placement()[3]);
-    return glm::vec3(placement() * poseAt(time).world[0][3]);
-}
-
 void SceneSimulation::recordSmoke(VkCommandBuffer cmd, SmokeGrid& grid, uint32_t frame) {
     grid.measured = false;
     grid.emittersThisFrame = 0;
-    grid.shifted = glm::ivec3(0);
-    if (grid.follow && grid.awake) {
+    if (grid.follow) {
         // Keep the grid where it was placed relative to the character's root, along the floor
-        // (x, z), by whole cells; the fields move the other way, so the smoke stays put.
+        // (x, z), by whole cells. Awake, the fields move the other way, so the smoke stays put;
+        // asleep, there is nothing to carry along.
         const float h = grid.solver->options().grid.cellSize;
-        glm::vec3 moved = rootPosition(frameTime(frame)) - grid.rootAtPlacement;
+        glm::vec3 moved = rootPosition(framePose_) - grid.rootAtPlacement;
         moved.y = 0.0f;
-        const glm::vec3 target = grid.placedOrigin + moved;
-        const glm::ivec3 cells = glm::ivec3(glm::round((target - grid.origin) / h));
+        const glm::ivec3 cells =
+            glm::ivec3(glm::round((grid.placedOrigin + moved - grid.origin) / h));
         if (cells != glm::ivec3(0)) {
-            grid.solver->recordShift(cmd, cells);
+            if (grid.awake) {
+                grid.solver->recordShift(cmd, cells);
+                addPass(grid.name + "/shift", 0);
+            }
             grid.origin += glm::vec3(cells) * h;
-            grid.shifted = cells;
-            addPass(grid.name + "/shift", 0);
         }
-    } else if (grid.follow) {
-        // Asleep: nothing to carry along; jump straight to where the grid belongs.
-        glm::vec3 moved = rootPosition(frameTime(frame)) - grid.rootAtPlacement;
-        moved.y = 0.0f;
-        const float h = grid.solver->options().grid.cellSize;
-        grid.origin = grid.placedOrigin + glm::round(moved / h) * h;
     }
     const uint32_t n = grid.stepsPerFrame;
     const float rate = scene_.output.fps * float(n);
@@ -300,7 +296,9 @@ void SceneSimulation::recordSmoke(VkCommandBuffer cmd, SmokeGrid& grid, uint32_t
         if (step < 0) continue;
         const float t = float(step) / rate;
         bool anyLive = false;
-        const anim::Pose pose = poseAt(t);
+        // The frame's last step is at the frame's time, whose pose recordFrame already has.
+        const anim::Pose stepPose = k + 1 == n ? anim::Pose{} : poseAt(t);
+        const anim::Pose& pose = k + 1 == n ? framePose_ : stepPose;
         for (size_t i : grid.effects) {
             TrajectoryEffect& effect = trajectories_[i];
             effect.live = effectLive(*effect.spec, t);
@@ -333,7 +331,7 @@ void SceneSimulation::recordSmoke(VkCommandBuffer cmd, SmokeGrid& grid, uint32_t
             const std::string name = grid.name + "/" + effect.spec->name + "/segment_emitters";
             timer_.begin(cmd, name);
             emitters += coupling_->record(
-                cmd, effect.queue->vertices(), effect.queue->liveSegments().front().firstVertex,
+                cmd, effect.queue->vertices(), effect.queue->newestSegment().firstVertex,
                 effect.queue->verticesPerSegment(), grid.emitters, emitters, parameters);
             timer_.end(cmd);
             addPass(name, 1);

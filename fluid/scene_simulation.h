@@ -84,7 +84,6 @@ public:
         bool follow = false;             // moves with the character's root, by whole cells
         glm::vec3 placedOrigin{0.0f};    // where placement put it
         glm::vec3 rootAtPlacement{0.0f}; // the root's position then (frame 0)
-        glm::ivec3 shifted{0};           // cells moved this frame
         uint32_t emittersThisFrame = 0;
     };
 
@@ -105,7 +104,9 @@ public:
     // Where the character stands, and its pose at a scene time (for drawing it).
     glm::mat4 placement() const;
     anim::Pose poseAt(float time) const;
-    glm::vec3 rootPosition(float time) const; // the character's first node, in the world
+    glm::vec3 rootPosition(const anim::Pose& pose) const; // the first node, in the world
+    // The pose of the frame last recorded (what a renderer draws with it).
+    const anim::Pose& framePose() const { return framePose_; }
 
     const std::vector<TrajectoryEffect>& trajectories() const { return trajectories_; }
     const std::vector<SmokeGrid>& smokeGrids() const { return grids_; }
@@ -129,6 +130,7 @@ private:
     gpu::GpuTimer timer_;
     std::vector<PassRecord> recorded_; // names and dispatches of this frame's passes
     uint32_t currentFrame_ = 0;
+    anim::Pose framePose_;
 };
 
 } // namespace mfx::fluid

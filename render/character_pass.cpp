@@ -8,6 +8,7 @@
 #include "shaders/embedded.h"
 
 #include <cstring>
+#include <map>
 
 namespace mfx::render {
 
@@ -138,18 +139,23 @@ void CharacterPass::addStageQuad(const gpu::Context& ctx, glm::vec3 centre, glm:
 }
 
 void CharacterPass::skin(VkCommandBuffer cmd, const anim::Pose& pose, const glm::mat4& placement) {
+    // One palette per skin (or rigid node), however many primitives it moves.
+    std::map<std::pair<int, int>, std::vector<shared::SkinJoint>> palettes;
     for (Part& part : parts_) {
         const anim::Primitive& p = *part.primitive;
-        std::vector<glm::mat4> matrices;
-        if (p.skin >= 0) {
-            matrices = anim::jointMatrices(character_, p.skin, pose);
-        } else {
-            matrices = {p.node >= 0 ? pose.world[size_t(p.node)] : glm::mat4(1.0f)};
+        const auto key = p.skin >= 0 ? std::make_pair(p.skin, -1) : std::make_pair(-1, p.node);
+        auto it = palettes.find(key);
+        if (it == palettes.end()) {
+            std::vector<glm::mat4> matrices =
+                p.skin >= 0 ? anim::jointMatrices(character_, p.skin, pose)
+                            : std::vector<glm::mat4>{p.node >= 0 ? pose.world[size_t(p.node)]
+                                                                 : glm::mat4(1.0f)};
+            for (glm::mat4& m : matrices)
+                m = placement * m;
+            it = palettes.emplace(key, anim::packPalette(anim::dualQuatPalette(matrices))).first;
         }
-        for (glm::mat4& m : matrices)
-            m = placement * m;
-        const auto packed = anim::packPalette(anim::dualQuatPalette(matrices));
-        std::memcpy(part.palette.mapped, packed.data(), packed.size() * sizeof(shared::SkinJoint));
+        std::memcpy(part.palette.mapped, it->second.data(),
+                    it->second.size() * sizeof(shared::SkinJoint));
         skinning_.record(cmd, part.palette, part.jointCount, part.input, part.output,
                          part.vertexCount);
     }

@@ -38,6 +38,13 @@ VkSampleCountFlagBits supportedSamples(const gpu::Context& ctx, VkSampleCountFla
 void beginRendering(VkCommandBuffer cmd, RenderTarget& target, const glm::vec4& clearColor);
 void endRendering(VkCommandBuffer cmd);
 
+// Begins rendering over what the single-sampled colour already holds (loaded, no depth), for
+// composite passes after beginRendering/endRendering; same viewport.
+void beginCompositing(VkCommandBuffer cmd, RenderTarget& target);
+
+// The whole target as viewport (flipped: +y up in clip space) and scissor.
+void setWholeViewport(VkCommandBuffer cmd, const RenderTarget& target);
+
 // RGBA8 rows, top row first (sRGB-encoded values, as a PNG stores them).
 std::vector<uint8_t> readColor(const gpu::Context& ctx, RenderTarget& target);
 // Depth in [0, 1] per pixel, top row first; 1 where nothing was drawn.

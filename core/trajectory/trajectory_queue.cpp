@@ -399,6 +399,16 @@ bool Queue::previousWritten() const {
     return frames_ > 0 && historyWritten_.size() > 1 && historyWritten_[1];
 }
 
+LiveSegment Queue::newestSegment() const {
+    LiveSegment s;
+    s.frame = frames_ - 1;
+    s.birth = historyTimes_.front();
+    s.firstVertex = options_.method == Method::Unsplit
+                        ? 0
+                        : uint32_t(s.frame % options_.maxLifetime) * verticesPerSegment();
+    return s;
+}
+
 std::vector<LiveSegment> Queue::liveSegments() const {
     std::vector<LiveSegment> out;
     if (frames_ == 0) return out;

@@ -87,6 +87,9 @@ public:
     // rebuilds the trail from every frame's palette; it throws std::logic_error).
     void skip(float time);
 
+    // The segment the last record() wrote (call only after one).
+    LiveSegment newestSegment() const;
+
     // The live segments, newest first.
     std::vector<LiveSegment> liveSegments() const;
     uint32_t verticesPerSegment() const { return sourceVertices_ * (subSamples_ + 1); }

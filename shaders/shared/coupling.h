@@ -10,12 +10,12 @@
 MFX_SHARED_BEGIN
 
 struct SegmentEmitterConstants {
-    vec4 gridOrigin;   // xyz: world position of the grid's low corner; w: splat radius (world)
-    uint firstVertex;  // first trajectory vertex of the segment in the ring
-    uint vertexCount;  // the segment's vertices
-    uint emitterCount; // emitter records to write (<= vertexCount)
-    uint firstEmitter; // where in the emitter buffer they go
-    float strength;    // emitter strength per second at full alpha
+    vec4 gridOrigin;       // xyz: world position of the grid's low corner; w: splat radius (world)
+    uint firstVertex;      // first trajectory vertex of the segment in the ring
+    uint vertexCount;      // the segment's vertices
+    uint emitterCount;     // emitter records to write (<= vertexCount)
+    uint firstEmitter;     // where in the emitter buffer they go
+    float strength;        // emitter strength per second at full alpha
     uint samplesPerVertex; // S + 1: the segment is source-major, this many samples per source
     float pad1;
     float pad2;

@@ -10,11 +10,11 @@ MFX_SHARED_BEGIN
 // Uniform buffer, std140: the camera and the key light of a frame.
 struct SceneFrame {
     mat4 viewProjection;
-    vec4 cameraPosition; // xyz world
-    vec4 lightDirection; // xyz unit vector from the surface towards the light
-    vec4 lightColor;     // rgb linear radiance times intensity; w: ambient fraction
-    vec4 sky;            // rgb: ambient colour from above; w: specular strength
-    vec4 ground;         // rgb: ambient colour from below; w: specular exponent
+    vec4 cameraPosition;      // xyz world
+    vec4 lightDirection;      // xyz unit vector from the surface towards the light
+    vec4 lightColor;          // rgb linear radiance times intensity; w: ambient fraction
+    vec4 sky;                 // rgb: ambient colour from above; w: specular strength
+    vec4 ground;              // rgb: ambient colour from below; w: specular exponent
     mat4 lightViewProjection; // world to the key light's shadow map (clip space)
     vec4 shadow;              // x: 1 when the shadow map is used; y: depth bias; z: 1 / its size
 };
