@@ -4,13 +4,9 @@
 #include "apps/progress.h"
 
 #include "core/gpu/commands.h"
-#include "core/gpu/timer.h"
 #include "fluid/scene_simulation.h"
-#include "render/character_pass.h"
-#include "render/effect_pass.h"
+#include "render/frame_renderer.h"
 #include "render/image_output.h"
-#include "render/render_target.h"
-#include "render/smoke_pass.h"
 
 #include <cstdio>
 #include <cstdlib>
@@ -76,42 +72,16 @@ int runRender(std::span<const std::string> args) {
     }
     fluid::SceneSimulation& sim = *created.value();
     // 4x multisampling for anti-aliased edges (fewer where the device allows fewer).
-    const VkSampleCountFlagBits samples = render::supportedSamples(ctx, VK_SAMPLE_COUNT_4_BIT);
-    render::RenderTarget target =
-        render::createRenderTarget(ctx, s.output.width, s.output.height, samples);
-    render::CharacterPass scenePass(ctx, argument.character, sim.scene(), samples);
-    render::EffectPass effectPass(ctx, samples);
-    render::SmokePass smokePass(ctx);
-    const render::SceneCamera camera =
-        render::makeCamera(s.camera, float(s.output.width) / float(s.output.height));
-    gpu::GpuTimer timer(ctx, 4);
+    render::FrameRenderer renderer(ctx, sim, s.output.width, s.output.height);
 
     Progress progress("rendering", sim.frameCount());
     nlohmann::json frames = nlohmann::json::array();
-    const glm::vec4 clear(0.02f, 0.02f, 0.03f, 1.0f);
     for (uint32_t f = 0; f < sim.frameCount(); ++f) {
-        const float t = sim.frameTime(f);
-        uint32_t draws = 0;
-        gpu::submitOneShot(ctx, [&](VkCommandBuffer cmd) {
-            sim.recordFrame(cmd, f);
-            const anim::Pose& pose = sim.framePose();
-            timer.reset(cmd);
-            {
-                gpu::ScopedPass pass(timer, cmd, "render/skin_vertices");
-                scenePass.skin(cmd, pose, sim.placement());
-                scenePass.shadow(cmd);
-            }
-            gpu::ScopedPass pass(timer, cmd, "render/scene_effects_smoke");
-            render::beginRendering(cmd, target, clear);
-            scenePass.draw(cmd, camera);
-            draws = effectPass.draw(cmd, sim, camera, t);
-            render::endRendering(cmd);
-            smokePass.draw(cmd, target, sim, camera);
-        });
+        gpu::submitOneShot(ctx, [&](VkCommandBuffer cmd) { renderer.record(cmd, sim, f); });
         fluid::SimulationFrameStats stats = sim.finishFrame();
-        for (const gpu::PassTime& p : timer.results())
-            stats.passes.push_back({p.name, 0, p.milliseconds});
-        const std::vector<uint8_t> rgba = render::readColor(ctx, target);
+        for (const gpu::PassTime& p : renderer.passTimes())
+            stats.passes.push_back({"render/" + p.name, 0, p.milliseconds});
+        const std::vector<uint8_t> rgba = render::readColor(ctx, renderer.target());
         if (Status written = render::writePng(outDir + "/" + frameName(f), s.output.width,
                                               s.output.height, rgba);
             !written) {
@@ -119,7 +89,7 @@ int runRender(std::span<const std::string> args) {
             return kExitFailure;
         }
         nlohmann::json record = statsJson(stats);
-        record["effect_draws"] = draws;
+        record["effect_draws"] = renderer.effectDraws();
         frames.push_back(record);
         double gpu = 0.0;
         for (const fluid::PassRecord& p : stats.passes)

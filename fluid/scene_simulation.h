@@ -91,6 +91,11 @@ public:
     create(const gpu::Context& ctx, const scene::Scene& scene, const anim::Character& character);
 
     const scene::Scene& scene() const { return scene_; }
+    const anim::Character& character() const { return character_; }
+    // The index in scene().effects of a trajectory effect's spec.
+    size_t effectIndex(const TrajectoryEffect& effect) const {
+        return size_t(effect.spec - scene_.effects.data());
+    }
     uint32_t frameCount() const { return frames_; }
     float frameTime(uint32_t frame) const { return float(frame) / scene_.output.fps; }
 

@@ -59,7 +59,8 @@ EffectPass::EffectPass(const gpu::Context& ctx, VkSampleCountFlagBits samples) :
 }
 
 uint32_t EffectPass::draw(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
-                          const SceneCamera& camera, float now) {
+                          const SceneCamera& camera, float now,
+                          std::span<const uint8_t> shown) {
     const shared::SceneFrame frame = sceneFrame(simulation.scene(), camera);
     std::memcpy(frame_.mapped, &frame, sizeof frame);
     uint32_t draws = 0;
@@ -74,6 +75,8 @@ uint32_t EffectPass::draw(VkCommandBuffer cmd, const fluid::SceneSimulation& sim
                                                                       : particleSet_;
         for (const fluid::SceneSimulation::TrajectoryEffect& effect : simulation.trajectories()) {
             if (effect.spec->type != type) continue;
+            const size_t index = simulation.effectIndex(effect);
+            if (!shown.empty() && (index >= shown.size() || shown[index] == 0)) continue;
             const trajectory::Queue& queue = *effect.queue;
             const auto live = queue.liveSegments();
             if (live.empty()) continue;

@@ -12,6 +12,8 @@
 #include "fluid/scene_simulation.h"
 #include "render/scene_camera.h"
 
+#include <span>
+
 namespace mfx::render {
 
 class EffectPass {
@@ -20,9 +22,10 @@ public:
                         VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT);
 
     // Draws every drawn effect (speed-lines, blur, particles) of `simulation` at scene time
-    // `now`; returns the number of draws recorded.
+    // `now`; with `shown` non-empty, only the effects whose entry (by index in scene.effects) is
+    // non-zero. Returns the number of draws recorded.
     uint32_t draw(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
-                  const SceneCamera& camera, float now);
+                  const SceneCamera& camera, float now, std::span<const uint8_t> shown = {});
 
 private:
     const gpu::Context& ctx_;

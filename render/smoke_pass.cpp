@@ -32,10 +32,17 @@ SmokePass::SmokePass(const gpu::Context& ctx) : ctx_(ctx) {
 
 uint32_t SmokePass::draw(VkCommandBuffer cmd, RenderTarget& target,
                          const fluid::SceneSimulation& simulation, const SceneCamera& camera,
-                         const SmokeLook& look) {
+                         std::span<const uint8_t> shown, const SmokeLook& look) {
     std::vector<Volume> volumes;
-    for (const fluid::SceneSimulation::SmokeGrid& grid : simulation.smokeGrids())
+    for (const fluid::SceneSimulation::SmokeGrid& grid : simulation.smokeGrids()) {
+        bool visible = shown.empty();
+        for (size_t e : grid.effects) {
+            const size_t index = simulation.effectIndex(simulation.trajectories()[e]);
+            visible = visible || (index < shown.size() && shown[index] != 0);
+        }
+        if (!visible) continue;
         volumes.push_back({&grid.solver->pigmentImage(), grid.solver->options().grid, grid.origin});
+    }
     if (volumes.empty()) return 0;
     const scene::LightSpec key =
         simulation.scene().lights.empty() ? scene::LightSpec{} : simulation.scene().lights.front();

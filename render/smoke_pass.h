@@ -28,10 +28,11 @@ public:
 
     // Records the composite of every grid of `simulation` into `target`'s single-sampled colour
     // (outside any rendering; after the scene's rendering has ended, so its depth is resolved).
-    // Returns the number of grids drawn.
+    // With `shown` non-empty, a grid is drawn only while one of its effects' entries (by index in
+    // scene.effects) is non-zero. Returns the number of grids drawn.
     uint32_t draw(VkCommandBuffer cmd, RenderTarget& target,
                   const fluid::SceneSimulation& simulation, const SceneCamera& camera,
-                  const SmokeLook& look = {});
+                  std::span<const uint8_t> shown = {}, const SmokeLook& look = {});
 
     // One pigment volume (rgba32f, GENERAL layout) of `shape` whose low corner is at `origin`.
     struct Volume {

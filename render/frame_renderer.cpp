@@ -1,0 +1,51 @@
+#include "render/frame_renderer.h"
+
+namespace mfx::render {
+
+FrameRenderer::FrameRenderer(const gpu::Context& ctx, const fluid::SceneSimulation& simulation,
+                             uint32_t width, uint32_t height,
+                             VkSampleCountFlagBits wantedSamples)
+    : ctx_(ctx),
+      target_(createRenderTarget(ctx, width, height, supportedSamples(ctx, wantedSamples))),
+      scenePass_(ctx, simulation.character(), simulation.scene(), target_.samples),
+      effectPass_(ctx, target_.samples), smokePass_(ctx),
+      camera_(makeCamera(simulation.scene().camera, float(width) / float(height))),
+      timer_(ctx, uint32_t(std::size(kFramePassNames))),
+      shown_(simulation.scene().effects.size(), 1) {}
+
+void FrameRenderer::setShown(size_t effect, bool shown) {
+    if (effect < shown_.size()) shown_[effect] = shown ? 1 : 0;
+}
+
+void FrameRenderer::record(VkCommandBuffer cmd, fluid::SceneSimulation& simulation,
+                           uint32_t frame) {
+    simulation.recordFrame(cmd, frame);
+    recordDraw(cmd, simulation, simulation.frameTime(frame));
+}
+
+void FrameRenderer::recordDraw(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
+                               float time) {
+    timer_.reset(cmd);
+    {
+        gpu::ScopedPass pass(timer_, cmd, "skin");
+        scenePass_.skin(cmd, simulation.framePose(), simulation.placement());
+    }
+    {
+        gpu::ScopedPass pass(timer_, cmd, "shadow");
+        scenePass_.shadow(cmd);
+    }
+    {
+        gpu::ScopedPass pass(timer_, cmd, "scene");
+        beginRendering(cmd, target_, kClearColour);
+        scenePass_.draw(cmd, camera_);
+    }
+    {
+        gpu::ScopedPass pass(timer_, cmd, "effects");
+        draws_ = effectPass_.draw(cmd, simulation, camera_, time, shown_);
+        endRendering(cmd);
+    }
+    gpu::ScopedPass pass(timer_, cmd, "smoke");
+    smokePass_.draw(cmd, target_, simulation, camera_, shown_);
+}
+
+} // namespace mfx::render

@@ -1,0 +1,65 @@
+// One frame of a scene, drawn: the character's skinning and shadow, the scene pass, the effect
+// passes and the smoke composite, recorded into one command buffer after the simulation's own
+// work for that frame, each pass bracketed by a GPU timestamp. `motionfx render`, `bench frame`
+// and `view` and the golden-image tests all draw through it.
+#pragma once
+
+#include "core/gpu/timer.h"
+#include "fluid/scene_simulation.h"
+#include "render/character_pass.h"
+#include "render/effect_pass.h"
+#include "render/render_target.h"
+#include "render/smoke_pass.h"
+
+#include <string>
+#include <vector>
+
+namespace mfx::render {
+
+// The passes a frame records, in order, by the names their timings carry.
+inline constexpr const char* kFramePassNames[] = {"skin", "shadow", "scene", "effects", "smoke"};
+
+class FrameRenderer {
+public:
+    // A target of `width` × `height` with up to `wantedSamples` samples per pixel (fewer where the
+    // device allows fewer), for the scene and character of `simulation`.
+    FrameRenderer(const gpu::Context& ctx, const fluid::SceneSimulation& simulation,
+                  uint32_t width, uint32_t height,
+                  VkSampleCountFlagBits wantedSamples = VK_SAMPLE_COUNT_4_BIT);
+
+    // Records the simulation's frame `frame` (its trajectories and smoke steps) and then the
+    // drawing of it. The previous recording must have finished executing.
+    void record(VkCommandBuffer cmd, fluid::SceneSimulation& simulation, uint32_t frame);
+    // Records only the drawing of what the simulation holds now, at scene time `time` (a paused
+    // view redraws the same frame this way).
+    void recordDraw(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation, float time);
+
+    // Which of the scene's effects are drawn, by their index in scene.effects (all by default).
+    // A smoke grid is drawn while any of its effects is shown.
+    void setShown(size_t effect, bool shown);
+    bool shown(size_t effect) const { return effect < shown_.size() && shown_[effect] != 0; }
+
+    // After the recording has finished executing: the GPU milliseconds of each drawing pass
+    // (kFramePassNames; empty without timestamp support) and the number of effect draws.
+    std::vector<gpu::PassTime> passTimes() const { return timer_.results(); }
+    uint32_t effectDraws() const { return draws_; }
+
+    RenderTarget& target() { return target_; }
+    const SceneCamera& camera() const { return camera_; }
+
+private:
+    const gpu::Context& ctx_;
+    RenderTarget target_;
+    CharacterPass scenePass_;
+    EffectPass effectPass_;
+    SmokePass smokePass_;
+    SceneCamera camera_;
+    gpu::GpuTimer timer_;
+    std::vector<uint8_t> shown_;
+    uint32_t draws_ = 0;
+};
+
+// The background colour every frame is cleared to (linear).
+inline constexpr glm::vec4 kClearColour{0.02f, 0.02f, 0.03f, 1.0f};
+
+} // namespace mfx::render
