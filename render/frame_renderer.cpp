@@ -3,8 +3,7 @@
 namespace mfx::render {
 
 FrameRenderer::FrameRenderer(const gpu::Context& ctx, const fluid::SceneSimulation& simulation,
-                             uint32_t width, uint32_t height,
-                             VkSampleCountFlagBits wantedSamples)
+                             uint32_t width, uint32_t height, VkSampleCountFlagBits wantedSamples)
     : ctx_(ctx),
       target_(createRenderTarget(ctx, width, height, supportedSamples(ctx, wantedSamples))),
       scenePass_(ctx, simulation.character(), simulation.scene(), target_.samples),

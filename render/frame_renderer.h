@@ -23,9 +23,8 @@ class FrameRenderer {
 public:
     // A target of `width` × `height` with up to `wantedSamples` samples per pixel (fewer where the
     // device allows fewer), for the scene and character of `simulation`.
-    FrameRenderer(const gpu::Context& ctx, const fluid::SceneSimulation& simulation,
-                  uint32_t width, uint32_t height,
-                  VkSampleCountFlagBits wantedSamples = VK_SAMPLE_COUNT_4_BIT);
+    FrameRenderer(const gpu::Context& ctx, const fluid::SceneSimulation& simulation, uint32_t width,
+                  uint32_t height, VkSampleCountFlagBits wantedSamples = VK_SAMPLE_COUNT_4_BIT);
 
     // Records the simulation's frame `frame` (its trajectories and smoke steps) and then the
     // drawing of it. The previous recording must have finished executing.

@@ -4,6 +4,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <stb_image.h>
 #include <stb_image_write.h>
 #include <unistd.h>
 
@@ -36,6 +37,19 @@ Status writePng(const std::string& path, uint32_t width, uint32_t height,
         stbi_write_png(path.c_str(), int(width), int(height), 4, rgba.data(), int(width * 4));
     if (ok == 0) return Error{"cannot write " + path + ": PNG encoding or writing failed"};
     return Ok{};
+}
+
+Result<RgbaImage> readPng(const std::string& path) {
+    int w = 0, h = 0, channels = 0;
+    stbi_uc* pixels = stbi_load(path.c_str(), &w, &h, &channels, 4);
+    if (!pixels) {
+        const char* reason = stbi_failure_reason();
+        return Error{"cannot read " + path + ": " + (reason ? reason : "unknown reason")};
+    }
+    RgbaImage image{uint32_t(w), uint32_t(h), {}};
+    image.rgba.assign(pixels, pixels + size_t(w) * size_t(h) * 4);
+    stbi_image_free(pixels);
+    return image;
 }
 
 } // namespace mfx::render
