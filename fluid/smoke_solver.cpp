@@ -158,6 +158,10 @@ SmokeSolver::SmokeSolver(const gpu::Context& ctx, const SolverOptions& options)
                                      "fluid emitters");
     emitterBuffer_ = ownEmitters_.get();
     emitterBufferSize_ = ownEmitters_.size;
+    splatRegions_ = gpu::createBuffer(
+        ctx, 4 * sizeof(shared::SplatRegion),
+        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
+        gpu::MemoryUsage::DeviceLocal, "fluid splat regions");
 
     writeParameters();
 }
@@ -170,7 +174,10 @@ gpu::Program& SmokeSolver::program(Stage stage, int part, uint32_t target) {
     if (slot.pipeline() != VK_NULL_HANDLE) return slot;
     switch (stage) {
     case Stage::SplatImpulses:
-        slot = makeProgram(ctx_, options_, "splat_impulses", splat_impulses_comp, target, 6, 1);
+        slot = part == 0 ? makeProgram(ctx_, options_, "splat_impulses", splat_impulses_comp,
+                                       target, 7, 1, {}, 1u << 6)
+                         : makeProgram(ctx_, options_, "emitter_bounds", emitter_bounds_comp, 0, 3,
+                                       1, {}, 1u << 2);
         break;
     case Stage::AdvectVelocity:
         slot = makeProgram(ctx_, options_, "advect_velocity", advect_velocity_comp, target, 5, 4);
@@ -255,24 +262,14 @@ Status SmokeSolver::setEmitters(std::span<const shared::FluidEmitter> emitters) 
     }
     if (bytes > 0) std::memcpy(ownEmitters_.mapped, emitters.data(), bytes);
     setEmitterBuffer(ownEmitters_, uint32_t(emitters.size()));
-    // World-space box around every emitter's sphere (after setEmitterBuffer, which clears it).
-    if (!emitters.empty()) {
-        glm::vec3 lo(INFINITY), hi(-INFINITY);
-        for (const shared::FluidEmitter& e : emitters) {
-            lo = glm::min(lo, glm::vec3(e.positionRadius) - e.positionRadius.w);
-            hi = glm::max(hi, glm::vec3(e.positionRadius) + e.positionRadius.w);
-        }
-        emitterBounds_ = std::pair{lo, hi};
-    }
     return Ok{};
 }
 
 void SmokeSolver::setEmitterBuffer(const gpu::Buffer& buffer, uint32_t count) {
-    emitterBounds_.reset();
     if (buffer.get() != emitterBuffer_) {
         // The splat program's sets name the old buffer: drop them all.
         for (auto& [key, splat] : programs_) {
-            if (std::get<0>(key) != int(Stage::SplatImpulses)) continue;
+            if (std::get<0>(key) != int(Stage::SplatImpulses)) continue; // and emitter_bounds
             splat.resetSets(ctx_);
             std::erase_if(sets_,
                           [&](const auto& entry) { return std::get<0>(entry.first) == &splat; });
@@ -386,36 +383,40 @@ void SmokeSolver::addVelocity(std::vector<gpu::DescriptorWrite>& writes, int vel
 void SmokeSolver::splatImpulses(VkCommandBuffer cmd) {
     if (emitterCount_ == 0) return;
     const int v = currentVelocity_, p = currentPigment_;
+    gpu::DescriptorWrite emitters;
+    emitters.binding = 1;
+    emitters.buffer = {emitterBuffer_, 0, emitterBufferSize_};
+    gpu::DescriptorWrite regions;
+    regions.binding = 6;
+    regions.buffer = {splatRegions_.get(), 0, splatRegions_.size};
+    // The emitters' bounding box, per target, as indirect dispatches (emitters may be written on
+    // the GPU, so only the GPU knows where they are).
+    gpu::Program& bounds = program(Stage::SplatImpulses, 1);
+    bounds.bind(cmd, set(bounds, {0, 0, 0}, [&](auto& w) {
+                    w.push_back(emitters);
+                    gpu::DescriptorWrite out = regions;
+                    out.binding = 2;
+                    w.push_back(out);
+                }));
+    ++dispatches_;
+    vkCmdDispatch(cmd, 1, 1, 1);
+    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                       VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                       VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
     auto writes = [&](auto& w) {
-        gpu::DescriptorWrite emitters;
-        emitters.binding = 1;
-        emitters.buffer = {emitterBuffer_, 0, emitterBufferSize_};
         w.push_back(emitters);
         addVelocity(w, v, 2);
         w.push_back(storage(5, pigment_[p]));
+        w.push_back(regions);
     };
     for (uint32_t target = 0; target < 4; ++target) {
         gpu::Program& prog = program(Stage::SplatImpulses, 0, target);
-        const glm::uvec3 extent =
-            target == MFX_TARGET_PIGMENT ? cells_ : faceExtent(options_.grid, int(target));
-        // Only the emitters' bounding box can change (emitters read from a GPU buffer: all).
-        glm::uvec3 lo(0), hi = extent;
-        if (emitterBounds_) {
-            const glm::vec3 shift = target == MFX_TARGET_PIGMENT ? glm::vec3(0.5f)
-                                    : target == 0                ? glm::vec3(0.0f, 0.5f, 0.5f)
-                                    : target == 1                ? glm::vec3(0.5f, 0.0f, 0.5f)
-                                                                 : glm::vec3(0.5f, 0.5f, 0.0f);
-            // Sample positions (index + shift) * h inside [min, max]: a margin of one index.
-            const glm::vec3 first =
-                glm::floor(emitterBounds_->first / options_.grid.cellSize - shift);
-            const glm::vec3 last =
-                glm::ceil(emitterBounds_->second / options_.grid.cellSize - shift);
-            const glm::vec3 top = glm::vec3(extent);
-            lo = glm::uvec3(glm::clamp(first, glm::vec3(0.0f), top));
-            hi = glm::uvec3(glm::clamp(last + 1.0f, glm::vec3(0.0f), top));
-            if (glm::any(glm::lessThanEqual(hi, lo))) continue; // wholly outside the grid
-        }
-        dispatch(cmd, prog, set(prog, {v, p, 0}, writes), hi - lo, lo);
+        prog.bind(cmd, set(prog, {v, p, 0}, writes));
+        const shared::FluidDispatch unused{0, 0, 0, 0};
+        prog.push(cmd, unused);
+        ++dispatches_;
+        vkCmdDispatchIndirect(cmd, splatRegions_.get(), target * sizeof(shared::SplatRegion));
     }
     barrier(cmd);
 }

@@ -147,7 +147,7 @@ private:
     VkDeviceSize emitterBufferSize_ = 0;
     uint32_t emitterCount_ = 0;
     // World-space bounds of the emitters when they came from the CPU (none for a GPU buffer).
-    std::optional<std::pair<glm::vec3, glm::vec3>> emitterBounds_;
+    gpu::Buffer splatRegions_; // SplatRegion per target, written by emitter_bounds
 
     // The program of a stage (parts 1 and 2: the second and third programs of vorticity
     // confinement) for one target field (MFX_TARGET_*, a specialization constant), compiled on

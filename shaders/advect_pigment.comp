@@ -40,5 +40,5 @@ void main() {
     ivec3 q = ivec3(gl_GlobalInvocationID);
     if (any(greaterThanEqual(q, cellCount()))) return;
     float fade = exp(-params.rates.x * timeStep());
-    pigmentOut[cellElement(q)] = samplePigment(backTrace(cellCentre(q))) * fade;
+    pigmentOut[cellElement(q)] = flushTiny(samplePigment(backTrace(cellCentre(q))) * fade);
 }

@@ -26,5 +26,5 @@ void main() {
     float value = 0.0;
     if (!wallNormalFace(c, q))
         value = sampleVelocity(c, backTrace(facePosition(c, q))) * exp(-params.cell.w * timeStep());
-    outValues[faceElement(c, q)] = value;
+    outValues[faceElement(c, q)] = flushTiny(value);
 }

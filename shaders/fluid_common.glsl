@@ -21,6 +21,17 @@ layout(push_constant) uniform Dispatch {
 // scalarise each dynamically indexed vector access lane by lane).
 layout(constant_id = 0) const uint kTarget = 0;
 
+// Advection writes a value of magnitude below kFlushBelow as 0 (docs/fluid.md, steps 2 and 3):
+// the decaying tails of faded pigment and dragged velocity would otherwise pass through float
+// denormals, which a CPU driver computes many times slower than normal numbers.
+const float kFlushBelow = 1.0e-30;
+float flushTiny(float v) {
+    return abs(v) < kFlushBelow ? 0.0 : v;
+}
+vec4 flushTiny(vec4 v) {
+    return mix(v, vec4(0.0), lessThan(abs(v), vec4(kFlushBelow)));
+}
+
 ivec3 cellCount() {
     return ivec3(params.size.xyz);
 }

@@ -1,5 +1,6 @@
 // splatImpulses: emitters pull velocity and pigment towards their own values (docs/fluid.md).
 // Twin: fluid/reference/splat_impulses.cpp. One dispatch per target (velocity x, y, z, pigment).
+// It runs over the region emitterBounds wrote (an indirect dispatch; shaders/emitter_bounds.comp).
 // Each workgroup first marks the emitters that reach its block of the grid, so a cell loops over
 // those only (a scene's hundreds of segment emitters touch a few blocks each).
 #version 450
@@ -13,6 +14,9 @@ layout(binding = 2, r32f) uniform image3D velocityX;
 layout(binding = 3, r32f) uniform image3D velocityY;
 layout(binding = 4, r32f) uniform image3D velocityZ;
 layout(binding = 5, rgba32f) uniform image3D pigment;
+layout(std430, binding = 6) readonly buffer Regions {
+    SplatRegion regions[4];
+};
 
 // Blend weight of emitter e at x over one sub-step; 0 outside its radius and for emitters whose
 // fields are not finite or whose radius is not positive (buffers filled on the GPU are not
@@ -55,8 +59,9 @@ void main() {
     // The block this workgroup covers, one cell wider on every side (cell centres and faces of
     // every component lie within it).
     uvec3 size = gl_WorkGroupSize;
-    ivec3 first = ivec3(gl_WorkGroupID * size) +
-                  ivec3(dispatchInfo.originX, dispatchInfo.originY, dispatchInfo.originZ);
+    ivec3 origin =
+        ivec3(regions[target].originX, regions[target].originY, regions[target].originZ);
+    ivec3 first = ivec3(gl_WorkGroupID * size) + origin;
     vec3 lo = (vec3(first) - 1.0) * cellSize();
     vec3 hi = (vec3(first + ivec3(size)) + 1.0) * cellSize();
     uint invocations = size.x * size.y * size.z;
@@ -67,8 +72,7 @@ void main() {
         if (reachesBox(emitters[i], lo, hi)) atomicOr(reaching[i / 32u], 1u << (i % 32u));
     barrier();
 
-    ivec3 q = ivec3(gl_GlobalInvocationID) +
-              ivec3(dispatchInfo.originX, dispatchInfo.originY, dispatchInfo.originZ);
+    ivec3 q = ivec3(gl_GlobalInvocationID) + origin;
     int c = int(target);
     bool pigmentTarget = target == MFX_TARGET_PIGMENT;
     if (pigmentTarget) {

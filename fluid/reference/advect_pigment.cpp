@@ -17,7 +17,7 @@ void ReferenceSolver::advectPigment() {
                 const glm::dvec3 source = backTrace(cellCentre(q));
                 for (int channel = 0; channel < 4; ++channel)
                     advected[Eigen::Index(cellIndex(q) * 4 + size_t(channel))] =
-                        sampleCell(pigment_, source, 4, channel) * fade;
+                        flushTiny(sampleCell(pigment_, source, 4, channel) * fade);
             }
     pigment_ = std::move(advected);
 }

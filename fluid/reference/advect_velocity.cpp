@@ -20,7 +20,7 @@ void ReferenceSolver::advectVelocity() {
                     double value = 0.0;
                     if (!wallNormalFace(c, q))
                         value = sampleFace(c, velocity_[c], backTrace(facePosition(c, q))) * drag;
-                    advected[c][Eigen::Index(faceIndex(c, q))] = value;
+                    advected[c][Eigen::Index(faceIndex(c, q))] = flushTiny(value);
                 }
     }
     velocity_ = std::move(advected);

@@ -11,6 +11,7 @@
 
 #include "fluid/solver_options.h"
 
+#include <cmath>
 #include <Eigen/Core>
 #include <array>
 #include <glm/glm.hpp>
@@ -62,6 +63,9 @@ public:
     void project();
 
     // --- Grid access shared by the stages (fluid/reference/grid_access.cpp) ------------------
+    // Advection's output rule (docs/fluid.md, steps 2 and 3): a magnitude below 1e-30 becomes 0.
+    static double flushTiny(double v) { return std::abs(v) < kFlushBelow ? 0.0 : v; }
+    static constexpr double kFlushBelow = 1.0e-30;
     // Value of velocity component `c` at integer face index `index`, which may lie outside the
     // array: periodic axes wrap, others clamp, and a no-slip wall mirrors tangential components
     // about its wall velocity.

@@ -52,9 +52,23 @@ struct FluidEmitter {
 // Push constants of every stage.
 struct FluidDispatch {
     uint target;  // unused: the target is a specialization constant (kTarget)
-    uint originX; // first cell/face of the dispatched region (splatImpulses covers only the
-    uint originY; // emitters' bounding box when the emitters are known on the CPU)
+    uint originX; // first cell/face of the dispatched region (every stage covers its whole
+    uint originY; // field: 0; splatImpulses reads its region from SplatRegion instead)
     uint originZ;
+};
+
+// Where splatImpulses runs for one target (velocity x, y, z, pigment), written on the GPU by
+// emitterBounds from the emitters' spheres: the first three words are a
+// VkDispatchIndirectCommand (workgroups), then the first cell/face of the region.
+struct SplatRegion {
+    uint groupsX;
+    uint groupsY;
+    uint groupsZ;
+    uint pad0;
+    uint originX;
+    uint originY;
+    uint originZ;
+    uint pad1;
 };
 
 MFX_SHARED_END
@@ -70,6 +84,8 @@ MFX_CHECK_SIZE(FluidEmitter, 48);
 MFX_CHECK_LAYOUT(FluidEmitter, velocityStrength, 16);
 MFX_CHECK_LAYOUT(FluidEmitter, pigment, 32);
 MFX_CHECK_SIZE(FluidDispatch, 16);
+MFX_CHECK_SIZE(SplatRegion, 32);
+MFX_CHECK_LAYOUT(SplatRegion, originX, 16);
 #endif
 
 #endif
