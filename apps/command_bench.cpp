@@ -21,13 +21,6 @@ namespace mfx::app {
 
 namespace {
 
-double median(std::vector<double> values) {
-    if (values.empty()) return 0.0;
-    std::sort(values.begin(), values.end());
-    const size_t mid = values.size() / 2;
-    return values.size() % 2 ? values[mid] : 0.5 * (values[mid - 1] + values[mid]);
-}
-
 struct GridResult {
     std::array<uint32_t, 3> grid;
     std::array<uint32_t, 3> workgroup;
@@ -233,17 +226,19 @@ int runBenchSolver(std::span<const std::string> args) {
 
 int runBench(std::span<const std::string> args) {
     const std::string usage =
-        "usage: motionfx bench solver|trajectory [options]   (see --help of each)";
+        "usage: motionfx bench solver|trajectory|frame [options]   (see --help of each)";
     if (args.empty() || args[0] == "--help") {
         std::printf("%s\n\nbenchmarks:\n  solver       GPU milliseconds per solver stage and per "
                     "step, by grid size\n  trajectory   split trajectory against the unsplit "
-                    "baseline: skinning, vertices and GPU ms per frame, by lifetime\n",
+                    "baseline: skinning, vertices and GPU ms per frame, by lifetime\n  frame        GPU "
+                    "ms per pass and whole-frame time of a scene, simulated and drawn\n",
                     usage.c_str());
         return args.empty() ? kExitUsage : kExitOk;
     }
     if (args[0] == "solver") return runBenchSolver(args.subspan(1));
     if (args[0] == "trajectory") return runBenchTrajectory(args.subspan(1));
-    printError("unknown benchmark '" + args[0] + "'; benchmarks are: solver, trajectory");
+    if (args[0] == "frame") return runBenchFrame(args.subspan(1));
+    printError("unknown benchmark '" + args[0] + "'; benchmarks are: solver, trajectory, frame");
     return kExitUsage;
 }
 

@@ -21,13 +21,6 @@ namespace mfx::app {
 
 namespace {
 
-double medianOf(std::vector<double> values) {
-    if (values.empty()) return 0.0;
-    std::sort(values.begin(), values.end());
-    const size_t mid = values.size() / 2;
-    return values.size() % 2 ? values[mid] : 0.5 * (values[mid - 1] + values[mid]);
-}
-
 Result<std::vector<uint32_t>> parseLifetimes(const std::string& text) {
     std::vector<uint32_t> out;
     std::stringstream stream(text);
@@ -186,8 +179,8 @@ int runBenchTrajectory(std::span<const std::string> args) {
             row.method = method;
             row.lifetime = lifetime;
             row.stats = queue.lastFrame();
-            row.gpuMs = medianOf(gpu);
-            row.wallMs = medianOf(wall);
+            row.gpuMs = median(gpu);
+            row.wallMs = median(wall);
             row.gsVertices = uint64_t(subSamples.value() + 1) *
                              (method == trajectory::Method::Unsplit ? lifetime : 1);
             rows.push_back(row);

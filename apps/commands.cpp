@@ -1,5 +1,6 @@
 #include "apps/commands.h"
 
+#include <algorithm>
 #include <cstdio>
 
 namespace mfx::app {
@@ -13,7 +14,7 @@ std::span<const Command> commands() {
          &runCompare},
         {"bench",
          "benchmarks (bench solver: GPU ms per stage and step; bench trajectory: split vs "
-         "unsplit trail by lifetime)",
+         "unsplit trail by lifetime; bench frame: a scene's passes and frame time)",
          &runBench},
         {"inspect", "load a glTF character and summarise it (meshes, joints, clips, bounds)",
          &runInspect},
@@ -98,6 +99,13 @@ bool loadSceneArgument(const cli::ParsedArgs& parsed, SceneArgument& out, int& e
     }
     out.character = std::move(character).value();
     return true;
+}
+
+double median(std::vector<double> values) {
+    if (values.empty()) return 0.0;
+    std::sort(values.begin(), values.end());
+    const size_t mid = values.size() / 2;
+    return values.size() % 2 ? values[mid] : 0.5 * (values[mid - 1] + values[mid]);
 }
 
 void printError(const std::string& message) {

@@ -32,6 +32,7 @@ int runRender(std::span<const std::string> args);
 int runCompare(std::span<const std::string> args);
 int runBench(std::span<const std::string> args);
 int runBenchTrajectory(std::span<const std::string> args);
+int runBenchFrame(std::span<const std::string> args);
 int runInspect(std::span<const std::string> args);
 int runExportFighter(std::span<const std::string> args);
 int runScene(std::span<const std::string> args);
@@ -58,6 +59,9 @@ bool loadSceneArgument(const cli::ParsedArgs& parsed, SceneArgument& out, int& e
 
 // One frame's simulation statistics as JSON ({"frame", "time", "passes", "fluid_bytes", ...}).
 nlohmann::json statsJson(const fluid::SimulationFrameStats& stats);
+
+// The median of `values` (0 when empty); benchmarks quote medians.
+double median(std::vector<double> values);
 
 // Prints "motionfx: error: <message>" to stderr.
 void printError(const std::string& message);
