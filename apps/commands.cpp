@@ -23,6 +23,8 @@ std::span<const Command> commands() {
         {"simulate",
          "run a scene's trajectories and smoke on the GPU without drawing; per-frame --stats",
          &runSimulate},
+        {"view", "play a scene in a window in real time (pause, step, scrub, effect toggles)",
+         &runView},
         {"export-fighter", "write the built-in fighter as glTF 2.0 (.glb or .gltf)",
          &runExportFighter},
     };

@@ -37,6 +37,7 @@ int runInspect(std::span<const std::string> args);
 int runExportFighter(std::span<const std::string> args);
 int runScene(std::span<const std::string> args);
 int runSimulate(std::span<const std::string> args);
+int runView(std::span<const std::string> args);
 
 // Options every GPU subcommand takes.
 std::vector<cli::OptionSpec> deviceOptions();

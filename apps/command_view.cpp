@@ -1,0 +1,515 @@
+// motionfx view: a window playing a scene in real time, drawn by the same passes as `motionfx
+// render` (render/frame_renderer.h) and copied to a swapchain, with a status line drawn on top
+// (frame, frame time, state) and keys to pause, step, scrub, restart and toggle effects. Needs an
+// X server (under CI: Xvfb); built only when GLFW is found.
+#include "apps/commands.h"
+
+#ifdef MFX_HAVE_GLFW
+
+#include "core/gpu/check.h"
+#include "core/gpu/commands.h"
+#include "core/gpu/resources.h"
+#include "core/gpu/swapchain.h"
+#include "fluid/scene_simulation.h"
+#include "render/frame_renderer.h"
+#include "render/image_output.h"
+#include "render/text_overlay.h"
+
+#define GLFW_INCLUDE_VULKAN
+#include <GLFW/glfw3.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <deque>
+
+namespace mfx::app {
+
+namespace {
+
+constexpr const char* kKeysHelp =
+    "keys: space play/pause; right/left (or . and ,) one frame forward/back; page down/up ten "
+    "frames forward/back; home or r restart; 1-9 show/hide the scene's effects by their order; "
+    "escape or q "
+    "quit";
+
+std::string glfwProblem;
+
+void onGlfwError(int, const char* description) {
+    glfwProblem = description ? description : "unknown GLFW error";
+}
+
+// What the keys asked for since the last frame.
+struct Input {
+    bool togglePause = false;
+    int step = 0; // frames forward (+) or back (-)
+    bool restart = false;
+    std::vector<int> toggles; // effect indices
+};
+
+void onKey(GLFWwindow* window, int key, int, int action, int) {
+    if (action != GLFW_PRESS && action != GLFW_REPEAT) return;
+    Input& in = *static_cast<Input*>(glfwGetWindowUserPointer(window));
+    switch (key) {
+    case GLFW_KEY_ESCAPE:
+    case GLFW_KEY_Q:
+        glfwSetWindowShouldClose(window, GLFW_TRUE);
+        break;
+    case GLFW_KEY_SPACE:
+        in.togglePause = true;
+        break;
+    case GLFW_KEY_RIGHT:
+    case GLFW_KEY_PERIOD:
+        in.step += 1;
+        break;
+    case GLFW_KEY_LEFT:
+    case GLFW_KEY_COMMA:
+        in.step -= 1;
+        break;
+    case GLFW_KEY_PAGE_DOWN:
+        in.step += 10;
+        break;
+    case GLFW_KEY_PAGE_UP:
+        in.step -= 10;
+        break;
+    case GLFW_KEY_HOME:
+    case GLFW_KEY_R:
+        in.restart = true;
+        break;
+    default:
+        if (key >= GLFW_KEY_1 && key <= GLFW_KEY_9) in.toggles.push_back(key - GLFW_KEY_1);
+    }
+}
+
+// Barrier for a swapchain image (not a gpu::Image: the swapchain owns it).
+void swapchainBarrier(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to,
+                      VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                      VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
+    VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+    b.srcStageMask = srcStage;
+    b.srcAccessMask = srcAccess;
+    b.dstStageMask = dstStage;
+    b.dstAccessMask = dstAccess;
+    b.oldLayout = from;
+    b.newLayout = to;
+    b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.image = image;
+    b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dependency.imageMemoryBarrierCount = 1;
+    dependency.pImageMemoryBarriers = &b;
+    vkCmdPipelineBarrier2(cmd, &dependency);
+}
+
+// The viewer's state: a simulation that can only run forwards, so going back re-simulates.
+class Viewer {
+public:
+    Viewer(const gpu::Context& ctx, const SceneArgument& scene, VkSampleCountFlagBits samples)
+        : ctx_(ctx), scene_(scene), samples_(samples) {}
+
+    Status start() {
+        auto created = fluid::SceneSimulation::create(ctx_, scene_.scene, scene_.character);
+        if (!created) return created.error();
+        sim_ = std::move(created).value();
+        if (!renderer_) {
+            renderer_ = std::make_unique<render::FrameRenderer>(
+                ctx_, *sim_, scene_.scene.output.width, scene_.scene.output.height, samples_);
+        }
+        shown_ = -1;
+        return Ok{};
+    }
+
+    // Brings the simulation to frame `target` (simulating without drawing the frames before it,
+    // from the start when going back); the frame itself is simulated by the next record().
+    Status seek(uint32_t target) {
+        target = std::min(target, sim_->frameCount() - 1);
+        if (shown_ >= 0 && target <= uint32_t(shown_)) {
+            if (Status ok = start(); !ok) return ok;
+        }
+        for (uint32_t f = uint32_t(shown_ + 1); f < target; ++f)
+            sim_->runFrame(f);
+        shown_ = int(target) - 1;
+        return Ok{};
+    }
+
+    // Records frame shown()+1 when `advance`, else the shown frame again.
+    void record(VkCommandBuffer cmd, bool advance) {
+        if (advance || shown_ < 0) {
+            ++shown_;
+            renderer_->record(cmd, *sim_, uint32_t(shown_));
+            pendingFinish_ = true;
+        } else {
+            renderer_->recordDraw(cmd, *sim_, sim_->frameTime(uint32_t(shown_)));
+        }
+    }
+    void finish() {
+        if (pendingFinish_) sim_->finishFrame();
+        pendingFinish_ = false;
+    }
+
+    int shown() const { return shown_; }
+    uint32_t frameCount() const { return sim_->frameCount(); }
+    float fps() const { return float(scene_.scene.output.fps); }
+    render::FrameRenderer& renderer() { return *renderer_; }
+    const scene::Scene& scene() const { return scene_.scene; }
+
+private:
+    const gpu::Context& ctx_;
+    const SceneArgument& scene_;
+    VkSampleCountFlagBits samples_;
+    std::unique_ptr<fluid::SceneSimulation> sim_;
+    std::unique_ptr<render::FrameRenderer> renderer_;
+    int shown_ = -1;
+    bool pendingFinish_ = false;
+};
+
+void say(const std::string& line) {
+    std::printf("%s\n", line.c_str());
+    std::fflush(stdout);
+}
+
+std::string formatMs(double ms) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.1f", ms);
+    return text;
+}
+
+} // namespace
+
+int runView(std::span<const std::string> args) {
+    std::vector<cli::OptionSpec> options = deviceOptions();
+    options.push_back({"size", "WxH",
+                       "the picture's size in pixels (default 960x540); the "
+                       "window starts at this size and may be resized"});
+    options.push_back({"samples", "N", "MSAA samples per pixel: 1, 2, 4 or 8 (default 4)"});
+    options.push_back({"paused", "", "start paused on the first frame"});
+    options.push_back({"quit-after", "N", "close by itself after presenting N frames"});
+    options.push_back({"screenshot", "FILE", "on closing, write the window's last picture as PNG"});
+    cli::ParsedArgs parsed;
+    int exitCode = kExitOk;
+    if (!parseOrExit(args, options, 1,
+                     "usage: motionfx view [SCENE] [options]\n\nPlays a scene file (default: "
+                     "the built-in scene) in a window in real time, looping, with the frame "
+                     "number, frame time and state drawn in the corner.\n" +
+                         std::string(kKeysHelp) + ".",
+                     parsed, exitCode))
+        return exitCode;
+    auto samples = cli::parseUnsigned(parsed.value("samples", "4"), 1, 8, "--samples");
+    if (samples && (samples.value() & (samples.value() - 1)) != 0)
+        samples = Error{"--samples: expected 1, 2, 4 or 8, got " + parsed.value("samples")};
+    auto quitAfter =
+        cli::parseUnsigned(parsed.value("quit-after", "0"), 0, 100000000, "--quit-after");
+    for (const Error* e :
+         {samples.ok() ? nullptr : &samples.error(), quitAfter.ok() ? nullptr : &quitAfter.error()})
+        if (e) {
+            printError(e->message);
+            return kExitUsage;
+        }
+    cli::ParsedArgs sceneArgs = parsed;
+    if (!sceneArgs.has("size")) sceneArgs.values["size"] = "960x540";
+    SceneArgument argument;
+    if (!loadSceneArgument(sceneArgs, argument, exitCode)) return exitCode;
+    const std::string screenshot = parsed.value("screenshot");
+    if (!screenshot.empty()) {
+        std::ofstream probe;
+        if (!openOutputFile(screenshot, probe)) return kExitFailure;
+    }
+
+    glfwSetErrorCallback(onGlfwError);
+    if (!glfwInit()) {
+        printError("cannot open a window: " + glfwProblem +
+                   " (motionfx view needs an X server; without a screen, run it under "
+                   "xvfb-run)");
+        return kExitFailure;
+    }
+    struct GlfwSession {
+        ~GlfwSession() { glfwTerminate(); }
+    } session;
+    if (!glfwVulkanSupported()) {
+        printError("cannot open a window: GLFW finds no Vulkan loader with window surfaces");
+        return kExitFailure;
+    }
+    uint32_t extensionCount = 0;
+    const char** extensions = glfwGetRequiredInstanceExtensions(&extensionCount);
+    if (!extensions) {
+        printError("cannot open a window: " + glfwProblem);
+        return kExitFailure;
+    }
+    gpu::ContextOptions contextOpts = contextOptions(parsed);
+    contextOpts.instanceExtensions.assign(extensions, extensions + extensionCount);
+    contextOpts.deviceExtensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+    auto createdContext = gpu::Context::create(contextOpts);
+    if (!createdContext) {
+        printError(createdContext.error().message);
+        return kExitFailure;
+    }
+    const gpu::Context& ctx = *createdContext.value();
+    const scene::Scene& s = argument.scene;
+    if (s.output.width > ctx.limits().maxImageDimension2D ||
+        s.output.height > ctx.limits().maxImageDimension2D) {
+        printError("--size exceeds " + ctx.info().name + "'s largest image, " +
+                   std::to_string(ctx.limits().maxImageDimension2D));
+        return kExitUsage;
+    }
+
+    glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
+    const std::string title = "motionfx view - " + s.file;
+    GLFWwindow* window = glfwCreateWindow(int(s.output.width), int(s.output.height), title.c_str(),
+                                          nullptr, nullptr);
+    if (!window) {
+        printError("cannot open a window: " + glfwProblem);
+        return kExitFailure;
+    }
+    struct WindowOwner {
+        GLFWwindow* w;
+        ~WindowOwner() { glfwDestroyWindow(w); }
+    } windowOwner{window};
+    Input input;
+    glfwSetWindowUserPointer(window, &input);
+    glfwSetKeyCallback(window, onKey);
+    VkSurfaceKHR surface = VK_NULL_HANDLE;
+    if (glfwCreateWindowSurface(ctx.instance(), window, nullptr, &surface) != VK_SUCCESS) {
+        printError("cannot make a Vulkan surface for the window: " + glfwProblem);
+        return kExitFailure;
+    }
+    auto swapchainResult = gpu::Swapchain::create(ctx, surface, s.output.width, s.output.height);
+    if (!swapchainResult) {
+        printError(swapchainResult.error().message);
+        return kExitFailure;
+    }
+    gpu::Swapchain& swapchain = *swapchainResult.value();
+
+    Viewer viewer(ctx, argument, VkSampleCountFlagBits(samples.value()));
+    if (Status started = viewer.start(); !started) {
+        printError(started.error().message);
+        return kExitFailure;
+    }
+    std::printf("viewing %s on %s at %ux%u, %u frames at %g fps\n%s\n", s.file.c_str(),
+                ctx.info().name.c_str(), s.output.width, s.output.height, viewer.frameCount(),
+                s.output.fps, kKeysHelp);
+    std::fflush(stdout);
+
+    gpu::CommandBuffer commands = gpu::CommandBuffer::create(ctx, ctx.graphicsQueue());
+    // A screenshot's pixels: the swapchain image copied out on the last frame.
+    gpu::Buffer readback;
+    bool paused = parsed.has("paused");
+    uint32_t presented = 0;
+    std::deque<double> recentMs; // the last frames' times, for a steady on-screen figure
+    std::vector<double> allMs;
+    auto lastAdvance = std::chrono::steady_clock::now();
+    bool resized = false;
+    bool lastFrame = false;
+    while (!lastFrame) {
+        glfwPollEvents();
+        lastFrame = glfwWindowShouldClose(window) ||
+                    (quitAfter.value() > 0 && presented + 1 >= quitAfter.value());
+        // Keys, each answered with a line on stdout as well as on screen.
+        if (input.togglePause) {
+            paused = !paused;
+            say(std::string(paused ? "paused" : "playing") + " at frame " +
+                std::to_string(viewer.shown() + 1));
+        }
+        for (int e : input.toggles)
+            if (size_t(e) < s.effects.size()) {
+                const bool show = !viewer.renderer().shown(size_t(e));
+                viewer.renderer().setShown(size_t(e), show);
+                say("effect " + std::to_string(e + 1) + " (" + s.effects[size_t(e)].name + ") " +
+                    (show ? "shown" : "hidden"));
+            }
+        bool advance = false;
+        Status moved = Ok{};
+        if (input.restart) {
+            moved = viewer.start();
+            say("restarted");
+        } else if (input.step != 0) {
+            paused = true;
+            const int target =
+                std::clamp(viewer.shown() + input.step, 0, int(viewer.frameCount()) - 1);
+            if (target != viewer.shown()) {
+                moved = viewer.seek(uint32_t(target)); // then drawn by advancing to it
+                advance = true;
+            }
+            say("paused at frame " + std::to_string(target + 1));
+        } else if (!paused) {
+            // Real time: the next frame once its time has come (every loop when slower).
+            const auto now = std::chrono::steady_clock::now();
+            if (std::chrono::duration<double>(now - lastAdvance).count() >= 1.0 / viewer.fps() ||
+                viewer.shown() < 0) {
+                lastAdvance = now;
+                advance = true;
+                if (viewer.shown() + 1 >= int(viewer.frameCount())) moved = viewer.start();
+            }
+        }
+        if (!moved) {
+            printError(moved.error().message);
+            return kExitFailure;
+        }
+        input = Input{};
+        glfwSetWindowUserPointer(window, &input);
+
+        int width = 0, height = 0;
+        glfwGetFramebufferSize(window, &width, &height);
+        if (width == 0 || height == 0) { // minimised
+            glfwWaitEventsTimeout(0.1);
+            continue;
+        }
+        if (resized) {
+            swapchain.recreate(uint32_t(width), uint32_t(height));
+            resized = false;
+        }
+        uint32_t index = 0;
+        VkSemaphore ready = VK_NULL_HANDLE;
+        if (!swapchain.acquire(index, ready)) {
+            swapchain.recreate(uint32_t(width), uint32_t(height));
+            continue;
+        }
+        const bool capture = lastFrame && !screenshot.empty() && swapchain.readable();
+        const VkExtent2D extent = swapchain.extent();
+        const auto start = std::chrono::steady_clock::now();
+        VkCommandBuffer cmd = commands.begin();
+        viewer.record(cmd, advance || viewer.shown() < 0);
+        render::RenderTarget& target = viewer.renderer().target();
+        gpu::transitionImage(cmd, target.color, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+        const VkImage image = swapchain.image(index);
+        swapchainBarrier(cmd, image, VK_IMAGE_LAYOUT_UNDEFINED,
+                         VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                         0, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+        // The picture scaled to the window, letterboxed to keep its shape.
+        const float scale = std::min(float(extent.width) / float(target.width),
+                                     float(extent.height) / float(target.height));
+        const int32_t w = std::max(1, int32_t(float(target.width) * scale));
+        const int32_t h = std::max(1, int32_t(float(target.height) * scale));
+        const int32_t x0 = (int32_t(extent.width) - w) / 2, y0 = (int32_t(extent.height) - h) / 2;
+        VkClearColorValue black{{0.0f, 0.0f, 0.0f, 1.0f}};
+        VkImageSubresourceRange whole{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        vkCmdClearColorImage(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &black, 1, &whole);
+        swapchainBarrier(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                         VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                         VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                         VK_ACCESS_2_TRANSFER_WRITE_BIT);
+        VkImageBlit blit{};
+        blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        blit.srcOffsets[1] = {int32_t(target.width), int32_t(target.height), 1};
+        blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        blit.dstOffsets[0] = {x0, y0, 0};
+        blit.dstOffsets[1] = {x0 + w, y0 + h, 1};
+        vkCmdBlitImage(cmd, target.color.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, image,
+                       VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
+        swapchainBarrier(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                         VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                         VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                         VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                         VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+        // The status lines.
+        VkRenderingAttachmentInfo colour{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+        colour.imageView = swapchain.view(index);
+        colour.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+        colour.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+        colour.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
+        rendering.renderArea = {{0, 0}, extent};
+        rendering.layerCount = 1;
+        rendering.colorAttachmentCount = 1;
+        rendering.pColorAttachments = &colour;
+        vkCmdBeginRendering(cmd, &rendering);
+        double shownMs = 0.0;
+        for (double ms : recentMs)
+            shownMs += ms / double(recentMs.size());
+        const uint32_t textScale = extent.height >= 400 ? 2 : 1;
+        const std::string status =
+            "FRAME " + std::to_string(viewer.shown() + 1) + "/" +
+            std::to_string(viewer.frameCount()) + "  " +
+            (recentMs.empty() ? std::string("-") : formatMs(shownMs)) + " MS" +
+            (recentMs.empty() ? "" : " (" + formatMs(1000.0 / shownMs) + " FPS)") +
+            (paused ? "  PAUSED" : "");
+        const glm::vec4 white(1.0f), shade(0.0f, 0.0f, 0.0f, 1.0f);
+        const int margin = int(4 * textScale);
+        render::drawText(cmd, status, {margin, margin}, textScale, white, shade, extent);
+        int line = 1;
+        for (size_t e = 0; e < s.effects.size() && e < 9; ++e, ++line) {
+            const std::string label = std::to_string(e + 1) + " " + s.effects[e].name + " " +
+                                      (viewer.renderer().shown(e) ? "ON" : "OFF");
+            render::drawText(cmd, label, {margin, margin + line * int(10 * textScale)}, textScale,
+                             viewer.renderer().shown(e) ? white : glm::vec4(0.6f), shade, extent);
+        }
+        vkCmdEndRendering(cmd);
+        if (capture) {
+            const VkDeviceSize bytes = VkDeviceSize(extent.width) * extent.height * 4;
+            readback = gpu::createBuffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                         gpu::MemoryUsage::Readback, "view screenshot");
+            swapchainBarrier(cmd, image, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                             VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                             VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                             VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
+                             VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+            VkBufferImageCopy copy{};
+            copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+            copy.imageExtent = {extent.width, extent.height, 1};
+            vkCmdCopyImageToBuffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback.get(),
+                                   1, &copy);
+            swapchainBarrier(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                             VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                             0, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0);
+        } else {
+            swapchainBarrier(
+                cmd, image, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0);
+        }
+        commands.end();
+        const VkSemaphore finished = swapchain.renderFinished(index);
+        commands.submit(ready, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, finished);
+        if (!swapchain.present(index, finished)) resized = true;
+        commands.wait();
+        viewer.finish();
+        const double ms =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                .count();
+        recentMs.push_back(ms);
+        if (recentMs.size() > 10) recentMs.pop_front();
+        allMs.push_back(ms);
+        ++presented;
+        if (presented == 1) {
+            std::printf("first frame presented\n");
+            std::fflush(stdout);
+        }
+        if (capture) {
+            std::vector<uint8_t> rgba(static_cast<const uint8_t*>(readback.mapped),
+                                      static_cast<const uint8_t*>(readback.mapped) +
+                                          size_t(extent.width) * extent.height * 4);
+            if (swapchain.format() == VK_FORMAT_B8G8R8A8_SRGB ||
+                swapchain.format() == VK_FORMAT_B8G8R8A8_UNORM)
+                for (size_t p = 0; p < rgba.size(); p += 4)
+                    std::swap(rgba[p], rgba[p + 2]);
+            if (Status written = render::writePng(screenshot, extent.width, extent.height, rgba);
+                !written) {
+                printError(written.error().message);
+                return kExitFailure;
+            }
+            std::printf("screenshot of the window (%ux%u) in %s\n", extent.width, extent.height,
+                        screenshot.c_str());
+        } else if (lastFrame && !screenshot.empty()) {
+            printError("no screenshot: this window's images cannot be read back");
+        }
+    }
+    std::printf("closed after %u frames; median frame time %.1f ms (%.1f fps) on %s\n", presented,
+                median(allMs), 1000.0 / std::max(median(allMs), 1e-6), ctx.info().name.c_str());
+    return finishValidation(ctx, kExitOk);
+}
+
+} // namespace mfx::app
+
+#else
+
+namespace mfx::app {
+
+int runView(std::span<const std::string>) {
+    printError("motionfx view: this build has no window support (GLFW was not found when it was "
+               "configured; install libglfw3-dev, or run ./build.sh, and build again)");
+    return kExitFailure;
+}
+
+} // namespace mfx::app
+
+#endif
