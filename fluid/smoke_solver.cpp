@@ -73,6 +73,16 @@ Result<std::unique_ptr<SmokeSolver>> SmokeSolver::create(const gpu::Context& ctx
                                        limits.maxComputeWorkGroupInvocations);
         !valid)
         return valid.error();
+    // The accuracy options the GPU solver has so far (docs/fluid.md, "Accuracy options").
+    if (options.pressureSolver != PressureSolver::Jacobi)
+        return Error{std::string("pressure solver \"") +
+                     pressureSolverName(options.pressureSolver) +
+                     "\" is not available on the GPU solver yet (only \"jacobi\")"};
+    if (options.advection != AdvectionScheme::SemiLagrangian)
+        return Error{std::string("advection \"") + advectionName(options.advection) +
+                     "\" is not available on the GPU solver yet (only \"semi-lagrangian\")"};
+    if (options.storage != Storage::Float32)
+        return Error{"fp16 storage is not available on the GPU solver yet (only fp32)"};
     for (int axis = 0; axis < 3; ++axis)
         if (options.workgroup[axis] > limits.maxComputeWorkGroupSize[axis])
             return Error{"workgroup size " + std::to_string(options.workgroup[axis]) + " along " +

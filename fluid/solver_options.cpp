@@ -31,6 +31,13 @@ Status validateOptions(const SolverOptions& o, uint32_t maxDimension, uint32_t m
         return bad("viscosity must be a finite number >= 0");
     if (o.viscosityIterations > 10000) return bad("viscosityIterations must be at most 10000");
     if (o.jacobiIterations > 100000) return bad("jacobiIterations must be at most 100000");
+    if (o.multigrid.levels > 16) return bad("multigrid levels must be at most 16");
+    if (o.multigrid.preSmooth > 100 || o.multigrid.postSmooth > 100)
+        return bad("multigrid smoothing sweeps must be at most 100");
+    if (o.multigrid.cycles > 1000) return bad("multigrid cycles must be at most 1000");
+    if (!finite(o.cgTolerance) || o.cgTolerance < 0.0f)
+        return bad("cgTolerance must be a finite number >= 0");
+    if (o.cgMaxIterations > 10000) return bad("cgMaxIterations must be at most 10000");
     const uint64_t invocations =
         uint64_t(o.workgroup[0]) * uint64_t(o.workgroup[1]) * uint64_t(o.workgroup[2]);
     if (invocations == 0 || invocations > maxInvocations)
@@ -51,6 +58,56 @@ Status validateOptions(const SolverOptions& o, uint32_t maxDimension, uint32_t m
                        kFaceNames[2 * axis + 1] + ": periodic must be set on both faces");
     }
     return Ok{};
+}
+
+const char* pressureSolverName(PressureSolver solver) {
+    switch (solver) {
+    case PressureSolver::Jacobi:
+        return "jacobi";
+    case PressureSolver::RedBlackGaussSeidel:
+        return "rbgs";
+    case PressureSolver::Multigrid:
+        return "multigrid";
+    case PressureSolver::MultigridPcg:
+        return "mgpcg";
+    }
+    return "?";
+}
+
+std::optional<PressureSolver> pressureSolverFromName(std::string_view name) {
+    for (PressureSolver s : {PressureSolver::Jacobi, PressureSolver::RedBlackGaussSeidel,
+                             PressureSolver::Multigrid, PressureSolver::MultigridPcg})
+        if (name == pressureSolverName(s)) return s;
+    return std::nullopt;
+}
+
+const char* advectionName(AdvectionScheme scheme) {
+    switch (scheme) {
+    case AdvectionScheme::SemiLagrangian:
+        return "semi-lagrangian";
+    case AdvectionScheme::MacCormack:
+        return "maccormack";
+    case AdvectionScheme::Bfecc:
+        return "bfecc";
+    }
+    return "?";
+}
+
+std::optional<AdvectionScheme> advectionFromName(std::string_view name) {
+    for (AdvectionScheme s :
+         {AdvectionScheme::SemiLagrangian, AdvectionScheme::MacCormack, AdvectionScheme::Bfecc})
+        if (name == advectionName(s)) return s;
+    return std::nullopt;
+}
+
+const char* storageName(Storage storage) {
+    return storage == Storage::Float16 ? "fp16" : "fp32";
+}
+
+std::optional<Storage> storageFromName(std::string_view name) {
+    if (name == "fp32") return Storage::Float32;
+    if (name == "fp16") return Storage::Float16;
+    return std::nullopt;
 }
 
 Status validateEmitters(std::span<const shared::FluidEmitter> emitters) {

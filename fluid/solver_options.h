@@ -26,6 +26,41 @@ enum class Boundary {
 
 enum class Integrator { Euler = MFX_INTEGRATOR_EULER, RK2 = MFX_INTEGRATOR_RK2 };
 
+// How the pressure Poisson equation is solved (docs/fluid.md, "Accuracy options").
+enum class PressureSolver {
+    Jacobi,              // jacobiIterations sweeps
+    RedBlackGaussSeidel, // jacobiIterations sweeps, each the red cells then the black ones
+    Multigrid,           // multigrid.cycles V-cycles
+    MultigridPcg,        // conjugate gradient preconditioned by one V-cycle per iteration
+};
+
+// How velocity and pigment are advected.
+enum class AdvectionScheme {
+    SemiLagrangian, // one back-trace and a trilinear sample
+    MacCormack,     // forward and backward semi-Lagrangian steps, the error corrected, limited
+    Bfecc,          // back and forth error compensation and correction, limited
+};
+
+// How the fields are stored between stages: 32-bit floats, or 16-bit (arithmetic in 32 bits).
+enum class Storage { Float32, Float16 };
+
+struct MultigridOptions {
+    uint32_t levels = 0;     // grids in the hierarchy, the finest included (0: as many as halve
+                             // every axis down to at least 2 cells)
+    uint32_t preSmooth = 2;  // red-black Gauss-Seidel sweeps before restriction, per level
+    uint32_t postSmooth = 2; // ... after prolongation
+    uint32_t cycles = 2;     // V-cycles (PressureSolver::Multigrid)
+};
+
+// Names as the command line and the benchmarks spell them ("jacobi", "rbgs", "multigrid",
+// "mgpcg"; "semi-lagrangian", "maccormack", "bfecc"; "fp32", "fp16").
+const char* pressureSolverName(PressureSolver solver);
+std::optional<PressureSolver> pressureSolverFromName(std::string_view name);
+const char* advectionName(AdvectionScheme scheme);
+std::optional<AdvectionScheme> advectionFromName(std::string_view name);
+const char* storageName(Storage storage);
+std::optional<Storage> storageFromName(std::string_view name);
+
 // Domain faces in the order -x, +x, -y, +y, -z, +z.
 enum Face { FaceLowX = 0, FaceHighX, FaceLowY, FaceHighY, FaceLowZ, FaceHighZ };
 
@@ -47,8 +82,14 @@ struct SolverOptions {
     float vorticity = 0.0f;            // vorticity confinement strength epsilon (0 = off)
     float viscosity = 0.0f;            // kinematic viscosity nu, world units^2 per second (0 = off)
     uint32_t viscosityIterations = 20; // Jacobi sweeps of the implicit diffusion solve
-    uint32_t jacobiIterations = 20;    // Jacobi sweeps of the pressure solve
-    bool warmStart = false;            // start the pressure solve from the last step's pressure
+    PressureSolver pressureSolver = PressureSolver::Jacobi;
+    uint32_t jacobiIterations = 20; // sweeps of the pressure solve (Jacobi and red-black)
+    MultigridOptions multigrid;
+    float cgTolerance = 1e-3f;     // MultigridPcg: stop at this relative residual ...
+    uint32_t cgMaxIterations = 20; // ... or after this many iterations
+    bool warmStart = false;        // start the pressure solve from the last step's pressure
+    AdvectionScheme advection = AdvectionScheme::SemiLagrangian;
+    Storage storage = Storage::Float32;
     std::array<FaceBoundary, 6> boundaries{};
     // Workgroup shape of every compute dispatch (a performance setting only: results do not
     // depend on it). At most the device's maxComputeWorkGroupInvocations in all.
