@@ -4,30 +4,165 @@
 #include "shaders/embedded.h"
 #include "shaders/shared/smoke_draw.h"
 
-#include <cstring>
+#include <stdexcept>
 
 namespace mfx::render {
 
 namespace {
+
 constexpr uint32_t kMaxSets = 32;
+constexpr uint32_t kBoxVertices = 36; // six faces, two triangles each (shaders/smoke.vert)
+constexpr VkFormat kFluidColorFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+constexpr VkFormat kFluidDistanceFormat = VK_FORMAT_R32_SFLOAT;
+
+uint32_t divisorOf(SmokeResolution resolution) {
+    return resolution == SmokeResolution::Full ? 1u : 2u;
 }
 
+gpu::BindingDesc sampled(uint32_t binding) {
+    return {binding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT};
+}
+
+} // namespace
+
 SmokePass::SmokePass(const gpu::Context& ctx) : ctx_(ctx) {
-    gpu::GraphicsProgramDesc desc;
-    desc.name = "smoke";
-    desc.vertex = shaders::smoke_vert;
-    desc.fragment = shaders::smoke_frag;
-    desc.bindings = {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
-                     {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT}};
-    desc.pushConstantSize = sizeof(shared::SmokeDraw);
-    desc.colorFormats = {kColorFormat};
-    desc.blend = gpu::BlendMode::PremultipliedAlpha;
-    desc.maxSets = kMaxSets;
-    program_ = gpu::createGraphicsProgram(ctx, desc);
+    gpu::ComputeProgramDesc bounds;
+    bounds.name = "pigment_bounds";
+    bounds.spirv = shaders::pigment_bounds_comp;
+    bounds.bindings = {{0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
+                       {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}};
+    bounds.pushConstantSize = sizeof(shared::PigmentBoundsDispatch);
+    bounds.maxSets = kMaxSets;
+    boundsProgram_ = gpu::createComputeProgram(ctx, bounds);
     volumeSampler_ =
         gpu::createSampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER);
-    depthSampler_ =
+    nearestSampler_ =
         gpu::createSampler(ctx, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+    programsFor(divisorOf(SmokeLook{}.resolution)); // the default's pipelines made up front
+}
+
+SmokePass::Programs& SmokePass::programsFor(uint32_t divisor) {
+    auto it = programs_.find(divisor);
+    if (it != programs_.end()) return it->second;
+    const gpu::BindingDesc box{2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_VERTEX_BIT};
+    Programs programs;
+    gpu::GraphicsProgramDesc march;
+    march.name = "smoke";
+    march.vertex = shaders::smoke_vert;
+    march.fragment = shaders::smoke_frag;
+    march.bindings = {sampled(0), sampled(1), box};
+    march.pushConstantSize = sizeof(shared::SmokeDraw);
+    march.specialization = {divisor};
+    march.colorFormats = {kFluidColorFormat, kFluidDistanceFormat};
+    march.blend = gpu::BlendMode::Opaque;
+    march.maxSets = kMaxSets;
+    programs.march = gpu::createGraphicsProgram(ctx_, march);
+    gpu::GraphicsProgramDesc composite = march;
+    composite.name = "smoke_composite";
+    composite.fragment = shaders::smoke_composite_frag;
+    composite.bindings = {sampled(0), sampled(1), box, sampled(3)};
+    composite.colorFormats = {kColorFormat};
+    composite.blend = gpu::BlendMode::PremultipliedAlpha;
+    programs.composite = gpu::createGraphicsProgram(ctx_, composite);
+    return programs_.emplace(divisor, std::move(programs)).first->second;
+}
+
+void SmokePass::prepareFluidBuffer(const RenderTarget& target, uint32_t divisor) {
+    if (fluid_.divisor == divisor && fluid_.targetWidth == target.width &&
+        fluid_.targetHeight == target.height)
+        return;
+    resetSets(); // the composite's sets name the fluid buffer
+    gpu::ImageDesc desc;
+    desc.extent = {(target.width + divisor - 1) / divisor, (target.height + divisor - 1) / divisor,
+                   1};
+    desc.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+    desc.format = kFluidColorFormat;
+    desc.debugName = "smoke fluid buffer colour";
+    fluid_.color = gpu::createImage(ctx_, desc);
+    desc.format = kFluidDistanceFormat;
+    desc.debugName = "smoke fluid buffer distance";
+    fluid_.distance = gpu::createImage(ctx_, desc);
+    fluid_.divisor = divisor;
+    fluid_.targetWidth = target.width;
+    fluid_.targetHeight = target.height;
+}
+
+void SmokePass::resetSets() {
+    boundsProgram_.resetSets(ctx_);
+    for (auto& [divisor, programs] : programs_) {
+        programs.march.resetSets(ctx_);
+        programs.composite.resetSets(ctx_);
+    }
+    sets_.clear();
+}
+
+std::vector<SmokePass::Sets> SmokePass::setsFor(std::span<const Volume> volumes,
+                                                const gpu::Image& depth, Programs& programs) {
+    auto keyOf = [&](size_t slot) {
+        return std::make_tuple(fluid_.divisor, slot, volumes[slot].pigment->view.get(),
+                               depth.view.get());
+    };
+    size_t missing = 0;
+    for (size_t i = 0; i < volumes.size(); ++i)
+        missing += sets_.count(keyOf(i)) == 0 ? 1 : 0;
+    // Sets are freed only all at once, and never between the volumes of one draw.
+    if (sets_.size() + missing > kMaxSets) resetSets();
+    std::vector<Sets> result;
+    for (size_t i = 0; i < volumes.size(); ++i) {
+        auto it = sets_.find(keyOf(i));
+        if (it == sets_.end()) {
+            const gpu::Image& pigment = *volumes[i].pigment;
+            const gpu::Buffer& box = bounds_[i];
+            const VkImageLayout read = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+            Sets sets;
+            sets.bounds =
+                boundsProgram_.createSet(ctx_, {gpu::bindImage(0, pigment, VK_IMAGE_LAYOUT_GENERAL),
+                                                gpu::bindBuffer(1, box)});
+            sets.march = programs.march.createSet(
+                ctx_,
+                {gpu::bindImage(0, pigment, VK_IMAGE_LAYOUT_GENERAL, volumeSampler_.get()),
+                 gpu::bindImage(1, depth, read, nearestSampler_.get()), gpu::bindBuffer(2, box)});
+            sets.composite = programs.composite.createSet(
+                ctx_,
+                {gpu::bindImage(0, fluid_.color, read, nearestSampler_.get()),
+                 gpu::bindImage(1, fluid_.distance, read, nearestSampler_.get()),
+                 gpu::bindBuffer(2, box), gpu::bindImage(3, depth, read, nearestSampler_.get())});
+            it = sets_.emplace(keyOf(i), sets).first;
+        }
+        result.push_back(it->second);
+    }
+    return result;
+}
+
+void SmokePass::findPigmentBounds(VkCommandBuffer cmd, std::span<const Volume> volumes,
+                                  std::span<const Sets> sets, const SmokeLook& look) {
+    // Each volume's box emptied, after the previous draw's reads of it.
+    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT, 0,
+                       VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    const shared::PigmentBounds empty{glm::uvec4(0xffffffffu), glm::uvec4(0u)};
+    for (size_t i = 0; i < volumes.size(); ++i)
+        vkCmdUpdateBuffer(cmd, bounds_[i].get(), 0, sizeof(empty), &empty);
+    // The solver's writes (compute, copies) and the emptied boxes before the search and the march.
+    gpu::memoryBarrier(
+        cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
+        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
+            VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    for (size_t i = 0; i < volumes.size(); ++i) {
+        const fluid::GridShape& shape = volumes[i].shape;
+        shared::PigmentBoundsDispatch d{};
+        d.size = glm::uvec4(shape.cellsX, shape.cellsY, shape.cellsZ, 0u);
+        d.threshold = look.pigmentThreshold;
+        boundsProgram_.bind(cmd, sets[i].bounds);
+        boundsProgram_.push(cmd, d);
+        vkCmdDispatch(cmd, gpu::groupCount(shape.cellsX, MFX_PIGMENT_BOUNDS_GROUP_X),
+                      gpu::groupCount(shape.cellsY, MFX_PIGMENT_BOUNDS_GROUP_Y),
+                      gpu::groupCount(shape.cellsZ, MFX_PIGMENT_BOUNDS_GROUP_Z));
+    }
+    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                       VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT,
+                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
 }
 
 uint32_t SmokePass::draw(VkCommandBuffer cmd, RenderTarget& target,
@@ -54,38 +189,29 @@ void SmokePass::draw(VkCommandBuffer cmd, RenderTarget& target, std::span<const 
                      const SceneCamera& camera, const scene::LightSpec& key,
                      const SmokeLook& look) {
     if (volumes.empty()) return;
-    // The solver's writes (compute, copies) before the samples; the scene's depth as a texture.
-    gpu::memoryBarrier(
-        cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
-        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
-        VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    if (volumes.size() > kMaxSets) throw std::logic_error("SmokePass: too many volumes");
+    const uint32_t divisor = divisorOf(look.resolution);
+    Programs& programs = programsFor(divisor);
+    prepareFluidBuffer(target, divisor);
+    while (bounds_.size() < volumes.size())
+        bounds_.push_back(
+            gpu::createBuffer(ctx_, sizeof(shared::PigmentBounds),
+                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                              gpu::MemoryUsage::DeviceLocal, "smoke pigment bounds"));
+    const std::vector<Sets> sets = setsFor(volumes, target.depth, programs);
+
+    findPigmentBounds(cmd, volumes, sets, look);
+    // The scene's depth as a texture.
     gpu::imageBarrier(cmd, target.depth, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                       VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT |
                           VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                       VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
                           VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
                       VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
-    beginCompositing(cmd, target);
 
-    for (const Volume& v : volumes) {
-        const gpu::Image& volume = *v.pigment;
-        const auto key2 = std::make_pair(volume.view.get(), target.depth.view.get());
-        auto it = sets_.find(key2);
-        if (it == sets_.end()) {
-            if (sets_.size() == kMaxSets) {
-                program_.resetSets(ctx_);
-                sets_.clear();
-            }
-            it = sets_
-                     .emplace(key2,
-                              program_.createSet(
-                                  ctx_, {gpu::bindImage(0, volume, VK_IMAGE_LAYOUT_GENERAL,
-                                                        volumeSampler_.get()),
-                                         gpu::bindImage(1, target.depth,
-                                                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                                                        depthSampler_.get())}))
-                     .first;
-        }
+    const VkExtent3D fluidSize = fluid_.color.extent;
+    for (size_t i = 0; i < volumes.size(); ++i) {
+        const Volume& v = volumes[i];
         const fluid::GridShape& shape = v.shape;
         shared::SmokeDraw d{};
         d.inverseViewProjection = glm::inverse(camera.viewProjection);
@@ -94,11 +220,54 @@ void SmokePass::draw(VkCommandBuffer cmd, RenderTarget& target, std::span<const 
                                look.stepsPerCell);
         d.eye = glm::vec4(camera.eye, look.fadeDistance);
         d.light = glm::vec4(-glm::normalize(key.direction), look.densityScale);
-        program_.bind(cmd, it->second);
-        program_.push(cmd, d);
-        vkCmdDraw(cmd, 3, 1, 0, 0);
+
+        // The march into the cleared fluid buffer (after the previous composite's reads).
+        for (gpu::Image* image : {&fluid_.color, &fluid_.distance})
+            gpu::imageBarrier(cmd, *image, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                              VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, 0,
+                              VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                              VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+        VkRenderingAttachmentInfo attachments[2];
+        for (int a = 0; a < 2; ++a) {
+            attachments[a] = {VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+            attachments[a].imageView = (a == 0 ? fluid_.color : fluid_.distance).view.get();
+            attachments[a].imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+            attachments[a].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+            attachments[a].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        }
+        attachments[1].clearValue.color.float32[0] = float(MFX_SMOKE_NO_DISTANCE);
+        VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
+        rendering.renderArea = {{0, 0}, {fluidSize.width, fluidSize.height}};
+        rendering.layerCount = 1;
+        rendering.colorAttachmentCount = 2;
+        rendering.pColorAttachments = attachments;
+        vkCmdBeginRendering(cmd, &rendering);
+        // The picture's viewport scaled by 1 / divisor (flipped, +y up, as the target's), so a
+        // fluid texel's centre is the centre of its block of pixels.
+        const float w = float(target.width) / float(divisor);
+        const float h = float(target.height) / float(divisor);
+        const VkViewport viewport{0.0f, h, w, -h, 0.0f, 1.0f};
+        vkCmdSetViewport(cmd, 0, 1, &viewport);
+        const VkRect2D scissor{{0, 0}, {fluidSize.width, fluidSize.height}};
+        vkCmdSetScissor(cmd, 0, 1, &scissor);
+        programs.march.bind(cmd, sets[i].march);
+        programs.march.push(cmd, d);
+        vkCmdDraw(cmd, kBoxVertices, 1, 0, 0);
+        vkCmdEndRendering(cmd);
+
+        // The composite over the picture.
+        for (gpu::Image* image : {&fluid_.color, &fluid_.distance})
+            gpu::imageBarrier(cmd, *image, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                              VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                              VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
+                              VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                              VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+        beginCompositing(cmd, target);
+        programs.composite.bind(cmd, sets[i].composite);
+        programs.composite.push(cmd, d);
+        vkCmdDraw(cmd, kBoxVertices, 1, 0, 0);
+        vkCmdEndRendering(cmd);
     }
-    vkCmdEndRendering(cmd);
 }
 
 } // namespace mfx::render

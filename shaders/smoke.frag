@@ -1,27 +1,30 @@
-// The smoke pass: a ray from the camera through the pixel marches the pigment volume (front to
-// back, trilinear samples), with light absorption towards the key light so the smoke has shape,
-// and stops at the scene's depth; the result is composited over the picture with premultiplied
-// alpha, faded by how far behind the smoke lies the scene surface it meets (DESIGN.md "Formulas":
-// alpha *= saturate(1 - (D_fluid - D_scene) / b)), so smoke meets the floor and the character
-// softly. Pigment is RGBA with rgb = colour x alpha; density = alpha x scale.
+// The smoke pass's march: a ray from the camera through a texel of the fluid buffer marches the
+// pigment volume (front to back, trilinear samples), with light absorption towards the key light
+// so the smoke has shape, and stops at the scene's depth, fading smoke behind the scene surface it
+// meets by how far behind it lies (DESIGN.md "Formulas": alpha *= saturate(1 - (D_fluid -
+// D_scene) / b)), so smoke meets the floor and the character softly. Pigment is RGBA with rgb =
+// colour x alpha; density = alpha x scale.
+//
+// The fluid buffer has 1 / kDivisor of the picture's width and height (a half-resolution fluid
+// buffer, as the spec allows); smoke_composite.frag lays it over the picture. Each texel writes its
+// premultiplied colour and alpha, and the scene distance it marched to: that of one pixel of its
+// kDivisor x kDivisor block, the nearest on one colour of a checkerboard and the farthest on the
+// other, so that along a silhouette both the near and the far surface have texels marched for
+// them (the checkerboard min/max depth downsample common in mixed-resolution rendering).
+//
+// The ray is marched only inside the box of cells that hold pigment (shaders/smoke.vert), with
+// its samples at the same places as a march over the whole grid would put them, so the box moving
+// from frame to frame does not move the samples.
 #version 450
 #extension GL_GOOGLE_include_directive : require
-#include "shared/smoke_draw.h"
 
-layout(location = 0) in vec2 ndc;
-
-layout(push_constant) uniform Draw {
-    SmokeDraw draw;
-};
 layout(binding = 0) uniform sampler3D pigment;
 layout(binding = 1) uniform sampler2D sceneDepth;
 
-layout(location = 0) out vec4 outColor;
+#include "smoke_common.glsl"
 
-vec3 toWorld(vec2 xy, float depth) {
-    vec4 p = draw.inverseViewProjection * vec4(xy, depth, 1.0);
-    return p.xyz / p.w;
-}
+layout(location = 0) out vec4 outColor;     // premultiplied
+layout(location = 1) out float outDistance; // marchedDistance() of the scene distance used
 
 vec4 sampleGrid(vec3 world) {
     vec3 uvw = (world - draw.gridOrigin.xyz) / (draw.gridOrigin.w * draw.gridSize.xyz);
@@ -29,37 +32,51 @@ vec4 sampleGrid(vec3 world) {
 }
 
 void main() {
-    // The target's viewport is flipped (+y up): texture rows run the other way.
-    vec2 uv = vec2(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5);
+    ivec2 texel = ivec2(gl_FragCoord.xy);
+    ivec2 size = textureSize(sceneDepth, 0);
+    // The scene pixel of this texel's block it marches to.
+    bool nearest = ((texel.x + texel.y) & 1) == 0;
+    ivec2 chosen = min(texel * kDivisor, size - 1);
+    float chosenDepth = texelFetch(sceneDepth, chosen, 0).r;
+    for (int k = 1; k < kDivisor * kDivisor; ++k) {
+        ivec2 pixel = min(texel * kDivisor + ivec2(k % kDivisor, k / kDivisor), size - 1);
+        float depth = texelFetch(sceneDepth, pixel, 0).r;
+        if (nearest ? depth < chosenDepth : depth > chosenDepth) {
+            chosen = pixel;
+            chosenDepth = depth;
+        }
+    }
+    float sceneDistance = sceneDistanceAt(chosen);
+    // The ray through the block's centre.
     vec3 eye = draw.eye.xyz;
-    vec3 far = toWorld(ndc, 1.0);
-    vec3 dir = normalize(far - eye);
-    float sceneDistance = length(toWorld(ndc, texture(sceneDepth, uv).r) - eye);
-    // The ray's stretch inside the grid's box.
-    vec3 lo = draw.gridOrigin.xyz;
-    vec3 hi = lo + draw.gridOrigin.w * draw.gridSize.xyz;
+    vec3 dir = rayDirection(gl_FragCoord.xy * float(kDivisor));
     vec3 inv = 1.0 / dir;
-    vec3 t0 = (lo - eye) * inv, t1 = (hi - eye) * inv;
-    float tEnter = max(max(min(t0.x, t1.x), min(t0.y, t1.y)), max(min(t0.z, t1.z), 0.0));
-    float tExit = min(min(max(t0.x, t1.x), max(t0.y, t1.y)), max(t0.z, t1.z));
-    float fadeDistance = max(draw.eye.w, 1e-4);
-    tExit = min(tExit, sceneDistance + fadeDistance);
-    if (tExit <= tEnter) discard;
+    vec2 box = crossBox(inv, boxLow, boxHigh);
+    outDistance = marchedDistance(sceneDistance);
+    outColor = vec4(0.0);
+    // Samples are spaced from where the ray enters the whole grid; only those inside the pigment's
+    // box and before the faded-out scene surface are taken.
+    vec3 gridLow = draw.gridOrigin.xyz;
+    float gridEnter = crossBox(inv, gridLow, gridLow + draw.gridOrigin.w * draw.gridSize.xyz).x;
+    float fade = fadeDistance();
+    float tExit = min(box.y, sceneDistance + fade);
+    if (tExit <= box.x) return;
     float step = draw.gridOrigin.w / max(draw.gridSize.w, 0.25);
-    int steps = min(int((tExit - tEnter) / step) + 1, 512);
+    int first = max(int((box.x - gridEnter) / step), 0);
+    int end = min(int((tExit - gridEnter) / step) + 1, first + 512);
     vec3 light = normalize(draw.light.xyz);
     float scale = draw.light.w;
     vec3 colour = vec3(0.0);
     float transmittance = 1.0;
-    for (int i = 0; i < steps && transmittance > 0.01; ++i) {
-        float t = tEnter + (float(i) + 0.5) * step;
+    for (int i = first; i < end && transmittance > 0.01; ++i) {
+        float t = gridEnter + (float(i) + 0.5) * step;
         vec3 p = eye + t * dir;
         vec4 s = sampleGrid(p);
         float density = max(s.a, 0.0) * scale;
         if (density <= 1e-5) continue;
         // Behind the scene surface by d: faded linearly to nothing at d = b.
-        float fade = clamp(1.0 - (t - sceneDistance) / fadeDistance, 0.0, 1.0);
-        float a = (1.0 - exp(-density * step)) * fade;
+        float visible = clamp(1.0 - (t - sceneDistance) / fade, 0.0, 1.0);
+        float a = (1.0 - exp(-density * step)) * visible;
         // Light reaching this sample: absorption along a few steps towards the light.
         float shadow = 0.0;
         for (int k = 1; k <= 4; ++k)
@@ -69,7 +86,5 @@ void main() {
         colour += transmittance * a * albedo * (0.35 + 0.65 * lit);
         transmittance *= 1.0 - a;
     }
-    float alpha = 1.0 - transmittance;
-    if (alpha <= 1e-4) discard;
-    outColor = vec4(colour, alpha); // premultiplied
+    outColor = vec4(colour, 1.0 - transmittance);
 }

@@ -1,10 +1,55 @@
-// The smoke pass: one triangle covering the screen; the fragment stage marches the pigment.
+// The smoke pass's proxy: the faces of the box of cells that hold pigment (found on the GPU by
+// shaders/pigment_bounds.comp), grown by one cell as trilinear samples reach that far, so only the
+// pixels whose ray meets pigment run the fragment stage. Only the faces turned away from the eye
+// are drawn: every ray that meets the box leaves it through exactly one of them, also from inside
+// the box, so each such pixel is shaded once. An empty box draws nothing (every vertex at one
+// point). The box goes on to the fragment stage, which marches the ray inside it (smoke.frag) or
+// lays the fluid buffer over the picture (smoke_composite.frag).
 #version 450
+#extension GL_GOOGLE_include_directive : require
+#include "shared/smoke_draw.h"
 
-layout(location = 0) out vec2 ndc;
+layout(push_constant) uniform Draw {
+    SmokeDraw draw;
+};
+layout(std430, binding = 2) readonly buffer Bounds {
+    PigmentBounds bounds;
+};
+
+layout(location = 0) flat out vec3 boxLow;
+layout(location = 1) flat out vec3 boxHigh;
+
+// Two triangles per face, as corners (u, v) of the face's square.
+const vec2 kCorners[6] =
+    vec2[](vec2(0, 0), vec2(1, 0), vec2(1, 1), vec2(0, 0), vec2(1, 1), vec2(0, 1));
+
+mat4 viewProjection() {
+    return inverse(draw.inverseViewProjection);
+}
 
 void main() {
-    vec2 p = vec2((gl_VertexIndex << 1) & 2, gl_VertexIndex & 2) * 2.0 - 1.0;
-    ndc = p;
-    gl_Position = vec4(p, 0.0, 1.0);
+    vec3 cells = draw.gridSize.xyz;
+    vec3 low = max(vec3(bounds.low.xyz) - 1.0, vec3(0.0));
+    vec3 high = min(vec3(bounds.high.xyz) + 2.0, cells);
+    boxLow = draw.gridOrigin.xyz + draw.gridOrigin.w * low;
+    boxHigh = draw.gridOrigin.xyz + draw.gridOrigin.w * high;
+    // Face f (0..5): axis f / 2, its low (even f) or high (odd f) side.
+    int face = gl_VertexIndex / 6;
+    int axis = face / 2;
+    bool highSide = (face & 1) == 1;
+    vec3 eye = draw.eye.xyz;
+    bool turnedAway = highSide ? eye[axis] <= boxHigh[axis] : eye[axis] >= boxLow[axis];
+    if (bounds.low.x > bounds.high.x || !turnedAway) {
+        gl_Position = vec4(2.0, 2.0, 2.0, 1.0); // degenerate: nothing rasterised
+        return;
+    }
+    vec2 corner = kCorners[gl_VertexIndex % 6];
+    vec3 p;
+    p[axis] = highSide ? 1.0 : 0.0;
+    p[(axis + 1) % 3] = corner.x;
+    p[(axis + 2) % 3] = corner.y;
+    vec4 clip = viewProjection() * vec4(mix(boxLow, boxHigh, p), 1.0);
+    // Faces beyond the far plane are kept on it (the same pixels; the depth is not used).
+    if (clip.w > 0.0) clip.z = min(clip.z, clip.w);
+    gl_Position = clip;
 }

@@ -40,8 +40,8 @@ struct Shot {
 };
 
 // The fighter in its idle pose seen from the front, and the ball centred at `centre`.
-Shot shoot(gpu::Context& ctx, const fluid::SmokeSolver* smoke, glm::vec3 centre, float fade,
-           const std::string& png) {
+Shot shoot(gpu::Context& ctx, const fluid::SmokeSolver* smoke, glm::vec3 centre,
+           const render::SmokeLook& look, const std::string& png) {
     const anim::Character fighter = anim::makeFighter();
     scene::Scene s = scene::defaultScene();
     s.camera.position = glm::vec3(0.0f, 1.0f, 4.0f);
@@ -59,8 +59,6 @@ Shot shoot(gpu::Context& ctx, const fluid::SmokeSolver* smoke, glm::vec3 centre,
         if (smoke) {
             const render::SmokePass::Volume volume{&smoke->pigmentImage(), smoke->options().grid,
                                                    centre - glm::vec3(0.4f)};
-            render::SmokeLook look;
-            look.fadeDistance = fade;
             smokePass.draw(cmd, target, std::span(&volume, 1), camera, s.lights[0], look);
         }
     });
@@ -69,6 +67,33 @@ Shot shoot(gpu::Context& ctx, const fluid::SmokeSolver* smoke, glm::vec3 centre,
     EXPECT_TRUE(render::ensureOutputDirectory(dir).ok());
     EXPECT_TRUE(render::writePng(dir + "/" + png, kWidth, kHeight, shot.rgba).ok());
     return shot;
+}
+
+Shot shoot(gpu::Context& ctx, const fluid::SmokeSolver* smoke, glm::vec3 centre, float fade,
+           const std::string& png) {
+    render::SmokeLook look;
+    look.fadeDistance = fade;
+    return shoot(ctx, smoke, centre, look, png);
+}
+
+// The largest difference of any channel, and the fraction of pixels differing by more than 16.
+struct ShotDifference {
+    int largest = 0;
+    double fractionOver16 = 0.0;
+};
+
+ShotDifference difference(const Shot& a, const Shot& b) {
+    ShotDifference d;
+    size_t over = 0;
+    for (size_t p = 0; p < a.rgba.size() / 4; ++p) {
+        int worst = 0;
+        for (size_t c = 0; c < 3; ++c)
+            worst = std::max(worst, std::abs(int(a.rgba[p * 4 + c]) - int(b.rgba[p * 4 + c])));
+        d.largest = std::max(d.largest, worst);
+        over += worst > 16 ? 1 : 0;
+    }
+    d.fractionOver16 = double(over) / double(a.rgba.size() / 4);
+    return d;
 }
 
 float brightness(const std::vector<uint8_t>& rgba, uint32_t x, uint32_t y) {
@@ -133,6 +158,49 @@ TEST_F(SmokePassTest, SmokeMeetsTheFloorSoftly) {
                 contact, double(softStep), double(hardStep));
     EXPECT_GT(hardStep, 20.0f); // without the fade there is an edge to soften
     EXPECT_LT(softStep, 0.6f * hardStep);
+}
+
+// A grid without pigment leaves the picture as it was.
+TEST_F(SmokePassTest, EmptyGridDrawsNothing) {
+    const auto empty = ball(ctx(), 0.0f);
+    const Shot plain = shoot(ctx(), nullptr, {}, 0.1f, "plain.png");
+    const Shot drawn = shoot(ctx(), empty.get(), glm::vec3(0.0f, 1.1f, 0.7f), 0.1f, "empty.png");
+    EXPECT_EQ(difference(plain, drawn).largest, 0);
+}
+
+// Marching only the box of cells that hold pigment gives the picture a march through the whole
+// grid gives (a threshold below zero counts every cell): the samples sit at the same places.
+TEST_F(SmokePassTest, MarchingThePigmentBoxOnlyChangesNothing) {
+    const auto smoke = ball(ctx(), 4.0f);
+    render::SmokeLook box, grid;
+    box.resolution = grid.resolution = render::SmokeResolution::Full;
+    grid.pigmentThreshold = -1.0f;
+    const glm::vec3 centre(0.3f, 1.1f, 0.5f);
+    const Shot boxed = shoot(ctx(), smoke.get(), centre, box, "box.png");
+    const Shot whole = shoot(ctx(), smoke.get(), centre, grid, "whole_grid.png");
+    EXPECT_LE(difference(boxed, whole).largest, 1);
+}
+
+// The half-resolution fluid buffer, upsampled by depth, looks like the full-resolution march: in
+// front of the fighter, behind it (its silhouette cuts the smoke) and sunk into the floor.
+TEST_F(SmokePassTest, HalfResolutionLooksLikeFull) {
+    const auto smoke = ball(ctx(), 6.0f);
+    int index = 0;
+    for (const glm::vec3 centre : {glm::vec3(0.0f, 1.1f, 0.7f), glm::vec3(0.2f, 1.1f, -0.3f),
+                                   glm::vec3(-0.5f, 0.2f, 0.5f)}) {
+        const std::string name = std::to_string(index++);
+        render::SmokeLook full, half;
+        full.resolution = render::SmokeResolution::Full;
+        half.resolution = render::SmokeResolution::Half;
+        const Shot a = shoot(ctx(), smoke.get(), centre, full, "full_" + name + ".png");
+        const Shot b = shoot(ctx(), smoke.get(), centre, half, "half_" + name + ".png");
+        const ShotDifference d = difference(a, b);
+        std::printf("ball at (%.1f, %.1f, %.1f): half against full resolution, largest difference "
+                    "%d, %.3f%% of pixels beyond 16\n",
+                    double(centre.x), double(centre.y), double(centre.z), d.largest,
+                    100.0 * d.fractionOver16);
+        EXPECT_LT(d.fractionOver16, 0.002);
+    }
 }
 
 } // namespace

@@ -1,11 +1,39 @@
-// Push constants of the smoke pass (render/smoke_pass.h, shaders/smoke.vert/.frag).
+// Structures of the smoke pass (render/smoke_pass.h): the pigment bounds found on the GPU
+// (shaders/pigment_bounds.comp) and the push constants of the march and the composite
+// (shaders/smoke.vert, smoke.frag, smoke_composite.frag).
 #ifndef MFX_SHARED_SMOKE_DRAW_H
 #define MFX_SHARED_SMOKE_DRAW_H
 
 #include "common.h"
 
+// Workgroup shape of pigment_bounds.comp, x fastest as the grid's cells.
+#define MFX_PIGMENT_BOUNDS_GROUP_X 8
+#define MFX_PIGMENT_BOUNDS_GROUP_Y 8
+#define MFX_PIGMENT_BOUNDS_GROUP_Z 4
+
+// The distance the fluid buffer is cleared to where no ray was marched (outside the pigment's box,
+// so no smoke): the composite counts such texels as matching every pixel.
+#define MFX_SMOKE_NO_DISTANCE (-1.0e30)
+
 MFX_SHARED_BEGIN
 
+// The box of cells whose pigment alpha exceeds the threshold (storage buffer, std430). Reset to
+// low = 0xffffffff, high = 0 before each search, so low.x > high.x means no pigment.
+struct PigmentBounds {
+    uvec4 low;  // xyz: lowest cell index with pigment; w: unused
+    uvec4 high; // xyz: highest cell index with pigment; w: unused
+};
+
+// Push constants of pigment_bounds.comp.
+struct PigmentBoundsDispatch {
+    uvec4 size;      // xyz: cells of the grid; w: unused
+    float threshold; // a cell counts when its alpha exceeds this
+    float pad0;
+    float pad1;
+    float pad2;
+};
+
+// Push constants of the march and the composite.
 struct SmokeDraw {
     mat4 inverseViewProjection; // clip (Vulkan depth 0..1) to world
     vec4 gridOrigin;            // xyz: world position of the grid's low corner; w: cell size
@@ -17,7 +45,13 @@ struct SmokeDraw {
 MFX_SHARED_END
 
 #ifdef __cplusplus
+MFX_CHECK_SIZE(PigmentBounds, 32);
+MFX_CHECK_LAYOUT(PigmentBounds, high, 16);
+MFX_CHECK_SIZE(PigmentBoundsDispatch, 32);
+MFX_CHECK_LAYOUT(PigmentBoundsDispatch, threshold, 16);
 MFX_CHECK_SIZE(SmokeDraw, 128);
+MFX_CHECK_LAYOUT(SmokeDraw, gridOrigin, 64);
+MFX_CHECK_LAYOUT(SmokeDraw, light, 112);
 #endif
 
 #endif

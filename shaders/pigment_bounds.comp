@@ -1,0 +1,49 @@
+// pigmentBounds: the box of cells whose pigment alpha exceeds a small threshold, so the smoke pass
+// marches (and rasterises) only that box rather than the whole grid. It changes where the march
+// runs, never what it computes beyond the threshold: the cells below it add about half an 8-bit
+// level of opacity at most to a ray (render/smoke_pass.h, SmokeLook::pigmentThreshold). Follows
+// shaders/emitter_bounds.comp, which bounds the splat the same way.
+//
+// One invocation per cell: each workgroup merges its cells' box in shared memory, then one
+// invocation merges it into the global box with atomicMin/atomicMax on uints (the buffer is reset
+// to an empty box before the dispatch).
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "shared/smoke_draw.h"
+
+layout(local_size_x = MFX_PIGMENT_BOUNDS_GROUP_X, local_size_y = MFX_PIGMENT_BOUNDS_GROUP_Y,
+       local_size_z = MFX_PIGMENT_BOUNDS_GROUP_Z) in;
+
+layout(push_constant) uniform Dispatch {
+    PigmentBoundsDispatch dispatch;
+};
+layout(rgba32f, binding = 0) uniform readonly image3D pigment;
+layout(std430, binding = 1) buffer Bounds {
+    PigmentBounds bounds;
+};
+
+shared uint groupLow[3];
+shared uint groupHigh[3];
+
+void main() {
+    if (gl_LocalInvocationIndex == 0u) {
+        groupLow[0] = groupLow[1] = groupLow[2] = 0xffffffffu;
+        groupHigh[0] = groupHigh[1] = groupHigh[2] = 0u;
+    }
+    barrier();
+    uvec3 cell = gl_GlobalInvocationID;
+    if (all(lessThan(cell, dispatch.size.xyz)) &&
+        imageLoad(pigment, ivec3(cell)).a > dispatch.threshold) {
+        for (int axis = 0; axis < 3; ++axis) {
+            atomicMin(groupLow[axis], cell[axis]);
+            atomicMax(groupHigh[axis], cell[axis]);
+        }
+    }
+    barrier();
+    if (gl_LocalInvocationIndex == 0u && groupLow[0] <= groupHigh[0]) {
+        for (int axis = 0; axis < 3; ++axis) {
+            atomicMin(bounds.low[axis], groupLow[axis]);
+            atomicMax(bounds.high[axis], groupHigh[axis]);
+        }
+    }
+}
