@@ -1,7 +1,8 @@
-// advectVelocity (docs/fluid.md): semi-Lagrangian, Stam 1999 eq. 7: every face takes the value
-// found by tracing its position back through the velocity field over dt (Euler or RK2) and
-// sampling its own component there trilinearly, then the per-second drag, u *= exp(-drag * dt).
-// Wall-normal faces stay 0.
+// advectVelocity (docs/fluid.md): every face takes its component advected through the velocity
+// field over dt by options().advection (semi-Lagrangian, Stam 1999 eq. 7: trace the face position
+// back, Euler or RK2, and sample trilinearly; or MacCormack or BFECC built on it, maccormack.cpp
+// and bfecc.cpp), then the per-second drag, u *= exp(-drag * dt). Wall-normal faces stay 0. All
+// three components are traced through the velocity as it was before the stage.
 #include "fluid/reference/reference_solver.h"
 
 #include <cmath>
@@ -9,19 +10,12 @@
 namespace mfx::fluid {
 
 void ReferenceSolver::advectVelocity() {
-    std::array<Eigen::ArrayXd, 3> advected = velocity_;
+    std::array<Eigen::ArrayXd, 3> advected;
     const double drag = std::exp(-double(options_.drag) * dt());
     for (int c = 0; c < 3; ++c) {
-        const glm::ivec3 n = faceCount(c);
-        for (int k = 0; k < n.z; ++k)
-            for (int j = 0; j < n.y; ++j)
-                for (int i = 0; i < n.x; ++i) {
-                    const glm::ivec3 q(i, j, k);
-                    double value = 0.0;
-                    if (!wallNormalFace(c, q))
-                        value = sampleFace(c, velocity_[c], backTrace(facePosition(c, q))) * drag;
-                    advected[c][Eigen::Index(faceIndex(c, q))] = flushTiny(value);
-                }
+        advected[c] = advectField(c, velocity_[c]);
+        for (double& value : advected[c])
+            value = flushTiny(value * drag);
     }
     velocity_ = std::move(advected);
 }

@@ -96,6 +96,34 @@ double ReferenceSolver::sampleCell(const Eigen::ArrayXd& field, glm::dvec3 x, in
     return lerp(lerp(c00, c10, f.y), lerp(c01, c11, f.y), f.z);
 }
 
+glm::dvec2 ReferenceSolver::sampleFaceRange(int c, const Eigen::ArrayXd& field,
+                                            glm::dvec3 x) const {
+    glm::dvec3 g = x / h_ - 0.5;
+    g[c] += 0.5;
+    const glm::ivec3 i0(glm::floor(g));
+    glm::dvec2 range(1e300, -1e300);
+    for (int dz = 0; dz < 2; ++dz)
+        for (int dy = 0; dy < 2; ++dy)
+            for (int dx = 0; dx < 2; ++dx) {
+                const double v = fetchFace(c, field, i0 + glm::ivec3(dx, dy, dz));
+                range = {std::min(range.x, v), std::max(range.y, v)};
+            }
+    return range;
+}
+
+glm::dvec2 ReferenceSolver::sampleCellRange(const Eigen::ArrayXd& field, glm::dvec3 x, int channels,
+                                            int channel) const {
+    const glm::ivec3 i0(glm::floor(x / h_ - 0.5));
+    glm::dvec2 range(1e300, -1e300);
+    for (int dz = 0; dz < 2; ++dz)
+        for (int dy = 0; dy < 2; ++dy)
+            for (int dx = 0; dx < 2; ++dx) {
+                const double v = fetchCell(field, i0 + glm::ivec3(dx, dy, dz), channels, channel);
+                range = {std::min(range.x, v), std::max(range.y, v)};
+            }
+    return range;
+}
+
 glm::dvec3 ReferenceSolver::velocityAt(glm::dvec3 x) const {
     return {sampleFace(0, velocity_[0], x), sampleFace(1, velocity_[1], x),
             sampleFace(2, velocity_[2], x)};
@@ -113,10 +141,14 @@ glm::dvec3 ReferenceSolver::clampToDomain(glm::dvec3 x) const {
 }
 
 glm::dvec3 ReferenceSolver::backTrace(glm::dvec3 x) const {
+    return backTrace(x, dt());
+}
+
+glm::dvec3 ReferenceSolver::backTrace(glm::dvec3 x, double interval) const {
     const glm::dvec3 v = velocityAt(x);
-    if (options_.integrator == Integrator::Euler) return clampToDomain(x - dt() * v);
-    const glm::dvec3 mid = clampToDomain(x - 0.5 * dt() * v);
-    return clampToDomain(x - dt() * velocityAt(mid));
+    if (options_.integrator == Integrator::Euler) return clampToDomain(x - interval * v);
+    const glm::dvec3 mid = clampToDomain(x - 0.5 * interval * v);
+    return clampToDomain(x - interval * velocityAt(mid));
 }
 
 glm::dvec3 ReferenceSolver::facePosition(int c, glm::ivec3 index) const {

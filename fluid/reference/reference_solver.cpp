@@ -36,6 +36,7 @@ void ReferenceSolver::setState(const FieldState& state) {
     pressure_ = toArray(state.pressure);
     divergence_ = toArray(state.divergence);
     pigment_ = toArray(state.pigment);
+    if (options_.storage == Storage::Float16) roundStoredFields();
 }
 
 FieldState ReferenceSolver::state() const {
@@ -83,6 +84,7 @@ void ReferenceSolver::runStage(Stage stage, std::span<const shared::FluidEmitter
         project();
         break;
     }
+    if (options_.storage == Storage::Float16) roundStoredFields();
 }
 
 void ReferenceSolver::step(std::span<const shared::FluidEmitter> emitters) {

@@ -6,16 +6,19 @@
 // Stam, "Stable Fluids" (SIGGRAPH 1999) for the semi-Lagrangian advection and projection;
 // Bridson, "Fluid Simulation for Computer Graphics" (2nd ed., 2015), ch. 2-5, for the MAC grid,
 // its boundary conditions and the pressure matrix; Fedkiw, Stam, Jensen, "Visual Simulation of
-// Smoke" (SIGGRAPH 2001), eqs. 9-11, for vorticity confinement.
+// Smoke" (SIGGRAPH 2001), eqs. 9-11, for vorticity confinement. The accuracy options (red-black
+// Gauss-Seidel, multigrid, MGPCG, MacCormack, BFECC, fp16 storage) cite their own sources in their
+// files and in docs/fluid.md, "Accuracy options".
 #pragma once
 
 #include "fluid/solver_options.h"
 
-#include <cmath>
 #include <Eigen/Core>
 #include <array>
+#include <cmath>
 #include <glm/glm.hpp>
 #include <span>
+#include <vector>
 
 namespace mfx::fluid {
 
@@ -39,6 +42,7 @@ public:
     // `options` must have passed validateOptions().
     explicit ReferenceSolver(const SolverOptions& options);
 
+    // With Storage::Float16 the stored fields are rounded to half precision on the way in.
     void setState(const FieldState& state);
     FieldState state() const;
     const SolverOptions& options() const { return options_; }
@@ -46,7 +50,8 @@ public:
     // One whole step: every stage of kStepOrder, `substeps` times. Emitters must have passed
     // validateEmitters().
     void step(std::span<const shared::FluidEmitter> emitters);
-    // One stage alone, with the sub-step dt.
+    // One stage alone, with the sub-step dt; with Storage::Float16, velocity, pressure and pigment
+    // are rounded to half precision after it (the member functions below do not round).
     void runStage(Stage stage, std::span<const shared::FluidEmitter> emitters);
 
     // The stages (docs/fluid.md). Each reads and writes the solver's fields.
@@ -58,9 +63,28 @@ public:
     void diffuseViscosity();
     void applyBoundaries();
     void computeDivergence();
-    void solvePressure();      // Jacobi, options().jacobiIterations sweeps
+    void solvePressure();      // by options().pressureSolver (docs/fluid.md, "Accuracy options")
     void solvePressureExact(); // Eigen's conjugate gradient to 1e-12 relative residual
     void project();
+
+    // --- Measuring the pressure solve ---------------------------------------------------------
+    // The relative residual ||b - A p|| / ||b|| of the pressure equation A p = b for the current
+    // pressure and divergence: (A p)_cell = sum over counted neighbours of (p - p_n) and
+    // b = -h² div (docs/fluid.md, step 9). Without an open face A is singular and b is made
+    // mean-free first (its part in the range of A). 0 when b is 0. After project(), the divergence
+    // left is -(b - A p) / h²: this is also ||div after|| / ||div before||.
+    double pressureResidual() const;
+    // When on, solvePressure() records the relative residual before it starts and after every
+    // sweep (Jacobi, red-black), V-cycle (multigrid) or iteration (MGPCG: CG's own residual).
+    // Off by default: for the sweeps it costs one residual evaluation each.
+    void setRecordResidualHistory(bool record) { recordHistory_ = record; }
+    const std::vector<double>& residualHistory() const { return residualHistory_; }
+    // Sweeps, V-cycles or CG iterations the last solvePressure() ran.
+    uint32_t pressureIterations() const { return pressureIterations_; }
+
+    // The nearest IEEE binary16 value to v (round to nearest, ties to even; overflow to +-inf,
+    // NaN stays NaN), as a double: what Storage::Float16 keeps of a value.
+    static double roundToHalf(double v);
 
     // --- Grid access shared by the stages (fluid/reference/grid_access.cpp) ------------------
     // Advection's output rule (docs/fluid.md, steps 2 and 3): a magnitude below 1e-30 becomes 0.
@@ -80,6 +104,14 @@ public:
     glm::dvec3 velocityAt(glm::dvec3 x) const; // from the current velocity
     glm::dvec3 clampToDomain(glm::dvec3 x) const;
     glm::dvec3 backTrace(glm::dvec3 x) const;
+    // The same trace over `interval` instead of the sub-step dt; a negative interval traces
+    // forwards (the reverse step of MacCormack and BFECC).
+    glm::dvec3 backTrace(glm::dvec3 x, double interval) const;
+    // Smallest and largest of the 8 values sampleFace / sampleCell interpolates from at x (the
+    // limiter's range).
+    glm::dvec2 sampleFaceRange(int c, const Eigen::ArrayXd& field, glm::dvec3 x) const;
+    glm::dvec2 sampleCellRange(const Eigen::ArrayXd& field, glm::dvec3 x, int channels = 1,
+                               int channel = 0) const;
     glm::dvec3 facePosition(int c, glm::ivec3 index) const;
     glm::dvec3 cellCentre(glm::ivec3 index) const;
     // True for faces of component c lying on a wall the component is normal to.
@@ -95,6 +127,35 @@ private:
     }
     double dt() const { return double(options_.substepDt()); }
 
+    // Pressure solvers (solve_pressure.cpp, red_black_gauss_seidel.cpp, multigrid.cpp,
+    // mgpcg.cpp).
+    void solvePressureJacobi();
+    void solvePressureRedBlack();
+    void solvePressureMultigrid();
+    void solvePressureMgpcg();
+    void recordResidual(); // appends pressureResidual() when recording
+
+    // Advection schemes (semi_lagrangian.cpp, maccormack.cpp, bfecc.cpp). A field is a velocity
+    // component 0..2 on its faces or kPigmentField, the RGBA pigment at cell centres.
+    static constexpr int kPigmentField = 3;
+    // `source` (laid out like `field`) advected by options().advection over the sub-step.
+    Eigen::ArrayXd advectField(int field, const Eigen::ArrayXd& source) const;
+    // Departure points of every sample point of `field`, traced over `interval`.
+    std::vector<glm::dvec3> departurePoints(int field, double interval) const;
+    // One semi-Lagrangian pass: each point takes `source` sampled at its departure point;
+    // wall-normal faces are 0.
+    Eigen::ArrayXd semiLagrangian(int field, const Eigen::ArrayXd& source,
+                                  std::span<const glm::dvec3> departures) const;
+    // The limiter: each value of `values` clamped to the range of the values of `source` that a
+    // sample at its departure point interpolates from.
+    void clampToSampleRange(int field, const Eigen::ArrayXd& source,
+                            std::span<const glm::dvec3> departures, Eigen::ArrayXd& values) const;
+    Eigen::ArrayXd advectMacCormack(int field, const Eigen::ArrayXd& source) const;
+    Eigen::ArrayXd advectBfecc(int field, const Eigen::ArrayXd& source) const;
+
+    // Storage::Float16 (half_storage.cpp): velocity, pressure and pigment rounded to half.
+    void roundStoredFields();
+
     SolverOptions options_;
     glm::ivec3 cells_;
     double h_;
@@ -102,6 +163,9 @@ private:
     Eigen::ArrayXd pressure_;
     Eigen::ArrayXd divergence_;
     Eigen::ArrayXd pigment_; // RGBA interleaved
+    bool recordHistory_ = false;
+    std::vector<double> residualHistory_;
+    uint32_t pressureIterations_ = 0;
 };
 
 } // namespace mfx::fluid

@@ -1,10 +1,13 @@
 // solvePressure (docs/fluid.md): the Poisson equation of the projection, sum over the cell's
-// counted neighbours of (p_n - p) = h² div, by Jacobi sweeps
+// counted neighbours of (p_n - p) = h² div, by the solver options().pressureSolver names: Jacobi
+// here, red-black Gauss-Seidel, multigrid and MGPCG in files of their own. Jacobi sweeps are
 //   p <- (sum of counted neighbour pressures - h² div) / count,
 // where a neighbour across a wall is not counted (zero normal gradient), one across an open face is
 // counted with p = 0, and a periodic one wraps. (The 7-point stencil divides by 6 in the interior;
 // the source paper's eq. 17 prints 8.) solvePressureExact solves the same matrix with Eigen's
-// conjugate gradient: the ground truth for how far N sweeps are from converged.
+// conjugate gradient: the ground truth for how far N sweeps are from converged. pressureResidual
+// measures any of them.
+#include "fluid/reference/pressure_equation.h"
 #include "fluid/reference/reference_solver.h"
 
 #include <Eigen/IterativeLinearSolvers>
@@ -18,7 +21,39 @@ const glm::ivec3 kSteps[6] = {{-1, 0, 0}, {1, 0, 0}, {0, -1, 0}, {0, 1, 0}, {0, 
 }
 
 void ReferenceSolver::solvePressure() {
+    residualHistory_.clear();
+    switch (options_.pressureSolver) {
+    case PressureSolver::Jacobi:
+        solvePressureJacobi();
+        break;
+    case PressureSolver::RedBlackGaussSeidel:
+        solvePressureRedBlack();
+        break;
+    case PressureSolver::Multigrid:
+        solvePressureMultigrid();
+        break;
+    case PressureSolver::MultigridPcg:
+        solvePressureMgpcg();
+        break;
+    }
+}
+
+double ReferenceSolver::pressureResidual() const {
+    const PressureGrid grid = PressureGrid::finest(cells_, options_.boundaries);
+    const Eigen::ArrayXd b = consistentRightHandSide(grid, -(h_ * h_) * divergence_);
+    const double norm = b.matrix().norm();
+    if (norm == 0.0) return 0.0;
+    // A p sums to 0 when A is singular, so b - A p is mean-free as b is.
+    return grid.residual(b, pressure_).matrix().norm() / norm;
+}
+
+void ReferenceSolver::recordResidual() {
+    if (recordHistory_) residualHistory_.push_back(pressureResidual());
+}
+
+void ReferenceSolver::solvePressureJacobi() {
     if (!options_.warmStart) pressure_.setZero();
+    recordResidual();
     Eigen::ArrayXd next = pressure_;
     const double h2 = h_ * h_;
     for (uint32_t iteration = 0; iteration < options_.jacobiIterations; ++iteration) {
@@ -46,7 +81,9 @@ void ReferenceSolver::solvePressure() {
                     next[index] = count > 0 ? (sum - h2 * divergence_[index]) / count : 0.0;
                 }
         std::swap(pressure_, next);
+        recordResidual();
     }
+    pressureIterations_ = options_.jacobiIterations;
 }
 
 void ReferenceSolver::solvePressureExact() {
