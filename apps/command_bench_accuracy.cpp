@@ -1,0 +1,542 @@
+// motionfx bench accuracy: what accuracy costs in time. Every configuration of the solver's
+// accuracy options (pressure solver and its effort, advection scheme, storage) runs a scenario for
+// K steps on the GPU, timed per step with timestamp queries, and its fields are compared with two
+// yardsticks on the CPU reference: the same grid with the exact pressure solve in fp32, and a grid
+// twice as fine (restricted to this one). Separately, each pressure solver's time to bring a
+// smooth divergence at 64^3 down to a relative residual of 1e-3 from a cold start. Writes a table,
+// CSV, JSON and an SVG plot (error against milliseconds, log-log, the Pareto front marked).
+#include "apps/commands.h"
+#include "apps/progress.h"
+#include "apps/svg_plot.h"
+
+#include "core/gpu/commands.h"
+#include "fluid/reference/reference_solver.h"
+#include "fluid/scenarios.h"
+#include "fluid/smoke_solver.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <sstream>
+
+namespace mfx::app {
+
+namespace {
+
+using fluid::AdvectionScheme;
+using fluid::FieldState;
+using fluid::PressureSolver;
+using fluid::SolverOptions;
+using fluid::Storage;
+
+struct Config {
+    std::string name;
+    std::function<void(SolverOptions&)> apply;
+};
+
+std::vector<Config> configs() {
+    std::vector<Config> out;
+    for (uint32_t n : {10u, 20u, 40u, 80u, 160u})
+        out.push_back({"jacobi " + std::to_string(n), [n](SolverOptions& o) {
+                           o.pressureSolver = PressureSolver::Jacobi;
+                           o.jacobiIterations = n;
+                       }});
+    for (uint32_t n : {5u, 10u, 20u, 40u})
+        out.push_back({"rbgs " + std::to_string(n), [n](SolverOptions& o) {
+                           o.pressureSolver = PressureSolver::RedBlackGaussSeidel;
+                           o.jacobiIterations = n;
+                       }});
+    for (uint32_t n : {1u, 2u, 4u})
+        out.push_back({"multigrid " + std::to_string(n), [n](SolverOptions& o) {
+                           o.pressureSolver = PressureSolver::Multigrid;
+                           o.multigrid.cycles = n;
+                       }});
+    for (float tol : {1e-2f, 1e-3f, 1e-4f}) {
+        char name[32];
+        std::snprintf(name, sizeof name, "mgpcg %g", double(tol));
+        out.push_back({name, [tol](SolverOptions& o) {
+                           o.pressureSolver = PressureSolver::MultigridPcg;
+                           o.cgTolerance = tol;
+                       }});
+    }
+    for (AdvectionScheme a : {AdvectionScheme::MacCormack, AdvectionScheme::Bfecc})
+        out.push_back({std::string(fluid::advectionName(a)) + " (jacobi 20)",
+                       [a](SolverOptions& o) { o.advection = a; }});
+    out.push_back({"fp16 (jacobi 20)", [](SolverOptions& o) { o.storage = Storage::Float16; }});
+    return out;
+}
+
+// Relative L2 difference of two equally long float arrays (0 when both are 0).
+double relativeL2(std::span<const float> a, std::span<const float> b) {
+    double diff = 0.0, norm = 0.0;
+    for (size_t i = 0; i < a.size() && i < b.size(); ++i) {
+        diff += (double(a[i]) - double(b[i])) * (double(a[i]) - double(b[i]));
+        norm += double(b[i]) * double(b[i]);
+    }
+    return norm > 0.0 ? std::sqrt(diff / norm) : std::sqrt(diff);
+}
+
+std::vector<float> velocity(const FieldState& s) {
+    std::vector<float> v = s.velocityX;
+    v.insert(v.end(), s.velocityY.begin(), s.velocityY.end());
+    v.insert(v.end(), s.velocityZ.begin(), s.velocityZ.end());
+    return v;
+}
+
+// A state on a grid twice as fine, restricted to `coarse`: pigment as the mean of the 8 fine
+// cells of a coarse cell, a face velocity as the mean of the 4 fine faces on the coarse face.
+FieldState restrictToCoarse(const FieldState& fine, const fluid::GridShape& coarse) {
+    FieldState out = FieldState::zero(coarse);
+    const fluid::GridShape& f = fine.grid;
+    for (uint32_t z = 0; z < coarse.cellsZ; ++z)
+        for (uint32_t y = 0; y < coarse.cellsY; ++y)
+            for (uint32_t x = 0; x < coarse.cellsX; ++x)
+                for (int c = 0; c < 4; ++c) {
+                    double sum = 0.0;
+                    for (uint32_t k = 0; k < 8; ++k)
+                        sum += fine.pigment[f.index(2 * x + (k & 1), 2 * y + (k >> 1 & 1),
+                                                    2 * z + (k >> 2 & 1)) *
+                                                4 +
+                                            size_t(c)];
+                    out.pigment[coarse.index(x, y, z) * 4 + size_t(c)] = float(sum / 8.0);
+                }
+    for (int c = 0; c < 3; ++c) {
+        const glm::uvec3 n = fluid::faceExtent(coarse, c), nf = fluid::faceExtent(f, c);
+        const std::vector<float>& src = c == 0   ? fine.velocityX
+                                        : c == 1 ? fine.velocityY
+                                                 : fine.velocityZ;
+        std::vector<float>& dst = c == 0 ? out.velocityX : c == 1 ? out.velocityY : out.velocityZ;
+        const int a = (c + 1) % 3, b = (c + 2) % 3;
+        for (uint32_t z = 0; z < n.z; ++z)
+            for (uint32_t y = 0; y < n.y; ++y)
+                for (uint32_t x = 0; x < n.x; ++x) {
+                    const glm::uvec3 q(x, y, z);
+                    double sum = 0.0;
+                    for (uint32_t k = 0; k < 4; ++k) {
+                        glm::uvec3 p = 2u * q;
+                        p[a] += k & 1;
+                        p[b] += k >> 1;
+                        sum += src[p.x + size_t(nf.x) * (p.y + size_t(nf.y) * p.z)];
+                    }
+                    dst[x + size_t(n.x) * (y + size_t(n.y) * z)] = float(sum / 4.0);
+                }
+    }
+    return out;
+}
+
+// K steps of `scenario` on the CPU reference; `exact` replaces the pressure solve by the exact
+// one.
+FieldState referenceRun(const fluid::Scenario& scenario, const SolverOptions& options,
+                        uint32_t steps, bool exact) {
+    fluid::ReferenceSolver ref(options);
+    ref.setState(scenario.initial);
+    for (uint32_t s = 0; s < steps; ++s) {
+        const std::vector<shared::FluidEmitter> emitters = scenario.emitters(s);
+        for (uint32_t sub = 0; sub < options.substeps; ++sub)
+            for (fluid::Stage stage : fluid::kStepOrder) {
+                if (exact && stage == fluid::Stage::SolvePressure)
+                    ref.solvePressureExact();
+                else
+                    ref.runStage(stage, emitters);
+            }
+    }
+    return ref.state();
+}
+
+// ||div after projection|| / ||div before|| of a state whose divergence field holds the
+// divergence the last pressure solve started from.
+double divergenceLeft(const SolverOptions& options, const FieldState& state) {
+    fluid::ReferenceSolver ref(options);
+    ref.setState(state);
+    ref.computeDivergence();
+    const FieldState after = ref.state();
+    const std::vector<float> zero(state.divergence.size(), 0.0f);
+    const double before = relativeL2(state.divergence, zero);
+    return before > 0.0 ? relativeL2(after.divergence, zero) / before : 0.0;
+}
+
+struct Row {
+    std::string scenario, config;
+    bool gpu = false;             // timed on the GPU (else errors from the CPU reference only)
+    std::string note;             // why not on the GPU
+    double stepMs = std::nan(""); // median GPU ms per step
+    double pressureMs = std::nan("");
+    double divergence = 0.0;                        // left after the last projection, relative
+    double velocityError = 0.0, pigmentError = 0.0; // vs the same grid, exact pressure, fp32
+    double velocityFine = 0.0, pigmentFine = 0.0;   // vs the 2x finer grid
+};
+
+// A smooth, divergent velocity field on `grid` with its divergence computed: the input of the
+// time-to-1e-3 measurement.
+FieldState smoothDivergence(const SolverOptions& options) {
+    FieldState s = FieldState::zero(options.grid);
+    const fluid::GridShape& g = options.grid;
+    const double pi = std::numbers::pi;
+    for (int c = 0; c < 3; ++c) {
+        const glm::uvec3 n = fluid::faceExtent(g, c);
+        std::vector<float>& v = c == 0 ? s.velocityX : c == 1 ? s.velocityY : s.velocityZ;
+        for (uint32_t z = 0; z < n.z; ++z)
+            for (uint32_t y = 0; y < n.y; ++y)
+                for (uint32_t x = 0; x < n.x; ++x) {
+                    glm::dvec3 p =
+                        (glm::dvec3(x, y, z) + 0.5) / glm::dvec3(g.cellsX, g.cellsY, g.cellsZ);
+                    p[c] = double(glm::uvec3(x, y, z)[c]) / double(n[c] - 1);
+                    v[x + size_t(n.x) * (y + size_t(n.y) * z)] =
+                        float(std::sin(pi * p[c]) * std::cos(pi * p[(c + 1) % 3]) *
+                              (1.0 + 0.5 * std::sin(2.0 * pi * p[(c + 2) % 3])));
+                }
+    }
+    fluid::ReferenceSolver ref(options);
+    ref.setState(s);
+    ref.applyBoundaries();
+    ref.computeDivergence();
+    return ref.state();
+}
+
+struct TimeToTarget {
+    std::string option;
+    uint32_t effort = 0;   // sweeps, cycles or iterations
+    bool reached = false;  // within the cap on the CPU reference
+    bool measured = false; // timed on the GPU (else extrapolated or unavailable)
+    double ms = std::nan("");
+    double gpuResidual = std::nan("");
+    std::string note;
+};
+
+} // namespace
+
+int runBenchAccuracy(std::span<const std::string> args) {
+    std::vector<cli::OptionSpec> options = deviceOptions();
+    options.push_back({"grid", "N", "cells per axis of the accuracy runs (default 32)"});
+    options.push_back({"steps", "K", "steps per run (default 20)"});
+    options.push_back({"scenarios", "LIST", "comma-separated scenarios (default puff,jet)"});
+    options.push_back({"target-grid", "N",
+                       "cells per axis of the time-to-1e-3 runs (default 64; "
+                       "0 skips them)"});
+    options.push_back({"csv", "FILE", "the table as CSV (default out/bench_accuracy.csv)"});
+    options.push_back({"plot", "FILE", "the SVG plot (default out/bench_accuracy.svg)"});
+    options.push_back({"json", "FILE", "also write the results as JSON"});
+    cli::ParsedArgs parsed;
+    int exitCode = kExitOk;
+    if (!parseOrExit(args, options, 0,
+                     "usage: motionfx bench accuracy [options]\n\nRuns every configuration of "
+                     "the solver's accuracy options (pressure solver and effort, advection, "
+                     "storage) for K steps of each scenario on the GPU, times it, and measures "
+                     "the divergence it leaves and its velocity and pigment error against the "
+                     "CPU reference with the exact pressure solve on the same grid and against a "
+                     "grid twice as fine; then each pressure solver's time to a relative residual "
+                     "of 1e-3 at 64^3. Configurations the GPU solver does not have yet are "
+                     "measured on the CPU reference only (no time).",
+                     parsed, exitCode))
+        return exitCode;
+    auto grid = cli::parseUnsigned(parsed.value("grid", "32"), 4, 128, "--grid");
+    auto steps = cli::parseUnsigned(parsed.value("steps", "20"), 1, 10000, "--steps");
+    auto targetGrid =
+        cli::parseUnsigned(parsed.value("target-grid", "64"), 0, 256, "--target-grid");
+    for (const Error* e :
+         {grid.ok() ? nullptr : &grid.error(), steps.ok() ? nullptr : &steps.error(),
+          targetGrid.ok() ? nullptr : &targetGrid.error()})
+        if (e) {
+            printError(e->message);
+            return kExitUsage;
+        }
+    std::vector<std::string> scenarios;
+    {
+        std::stringstream list(parsed.value("scenarios", "puff,jet"));
+        std::string item;
+        while (std::getline(list, item, ',')) {
+            if (auto made = fluid::makeScenario(item, glm::uvec3(4)); !made) {
+                printError("--scenarios: " + made.error().message);
+                return kExitUsage;
+            }
+            scenarios.push_back(item);
+        }
+    }
+    const std::string csvPath = parsed.value("csv", "out/bench_accuracy.csv");
+    const std::string plotPath = parsed.value("plot", "out/bench_accuracy.svg");
+    for (const std::string& path : {csvPath, plotPath}) {
+        const std::filesystem::path dir = std::filesystem::path(path).parent_path();
+        std::error_code error;
+        if (!dir.empty()) std::filesystem::create_directories(dir, error);
+    }
+    std::ofstream csvFile, plotFile, jsonFile;
+    if (!openOutputFile(csvPath, csvFile) || !openOutputFile(plotPath, plotFile) ||
+        !openOutputFile(parsed.value("json"), jsonFile))
+        return kExitFailure;
+    const std::unique_ptr<gpu::Context> context = createContext(parsed);
+    if (!context) return kExitFailure;
+    const gpu::Context& ctx = *context;
+    if (!ctx.features().timestamps) {
+        printError(ctx.info().name + " has no timestamp queries; the solver cannot be timed");
+        return kExitFailure;
+    }
+    const uint32_t n = grid.value(), K = steps.value();
+    std::printf("accuracy benchmark on %s (%s)\n%u^3 cells, %u steps per run; errors are relative "
+                "L2 after the last step\n\n",
+                ctx.info().name.c_str(), ctx.info().driverInfo.c_str(), n, K);
+
+    const std::vector<Config> all = configs();
+    std::vector<Row> rows;
+    Progress progress("configurations", uint32_t(all.size() * scenarios.size()));
+    uint32_t done = 0;
+    for (const std::string& name : scenarios) {
+        const fluid::Scenario scenario = fluid::makeScenario(name, glm::uvec3(n)).value();
+        const fluid::Scenario fineScenario = fluid::makeScenario(name, glm::uvec3(2 * n)).value();
+        // The yardsticks: exact pressure, fp32, semi-Lagrangian, on this grid and twice as fine.
+        const FieldState exact = referenceRun(scenario, scenario.options, K, true);
+        SolverOptions fineOptions = fineScenario.options;
+        fineOptions.dt = scenario.options.dt;
+        const FieldState fine = restrictToCoarse(referenceRun(fineScenario, fineOptions, K, true),
+                                                 scenario.options.grid);
+        for (const Config& config : all) {
+            Row row{name, config.name};
+            SolverOptions o = scenario.options;
+            config.apply(o);
+            FieldState result;
+            auto created = fluid::SmokeSolver::create(ctx, o);
+            if (created) {
+                fluid::SmokeSolver& solver = *created.value();
+                solver.setState(scenario.initial);
+                gpu::GpuTimer timer(ctx, solver.passesPerStep());
+                std::vector<double> stepMs, pressureMs;
+                for (uint32_t s = 0; s < K; ++s) {
+                    if (Status ok = solver.setEmitters(scenario.emitters(s)); !ok) {
+                        printError(ok.error().message);
+                        return kExitFailure;
+                    }
+                    gpu::submitOneShot(ctx, [&](VkCommandBuffer cmd) {
+                        timer.reset(cmd);
+                        solver.recordStep(cmd, &timer);
+                    });
+                    double total = 0.0, pressure = 0.0;
+                    for (const gpu::PassTime& p : timer.results()) {
+                        total += p.milliseconds;
+                        if (p.name == "solve_pressure") pressure += p.milliseconds;
+                    }
+                    // The first steps include the pipelines' compiles.
+                    if (s >= std::min(2u, K - 1)) {
+                        stepMs.push_back(total);
+                        pressureMs.push_back(pressure);
+                    }
+                }
+                result = solver.state();
+                row.gpu = true;
+                row.stepMs = median(stepMs);
+                row.pressureMs = median(pressureMs);
+            } else {
+                row.note = created.error().message;
+                result = referenceRun(scenario, o, K, false);
+            }
+            row.divergence = divergenceLeft(o, result);
+            row.velocityError = relativeL2(velocity(result), velocity(exact));
+            row.pigmentError = relativeL2(result.pigment, exact.pigment);
+            row.velocityFine = relativeL2(velocity(result), velocity(fine));
+            row.pigmentFine = relativeL2(result.pigment, fine.pigment);
+            rows.push_back(row);
+            progress.update(++done);
+        }
+    }
+    progress.finish();
+
+    std::printf("%-9s %-28s %9s %9s %10s %10s %10s %10s %10s\n", "scenario", "configuration",
+                "step ms", "p ms", "div left", "vel err", "pig err", "vel fine", "pig fine");
+    for (const Row& r : rows) {
+        char ms[32] = "   (cpu)", pms[32] = "";
+        if (r.gpu) {
+            std::snprintf(ms, sizeof ms, "%9.2f", r.stepMs);
+            std::snprintf(pms, sizeof pms, "%9.2f", r.pressureMs);
+        }
+        std::printf("%-9s %-28s %9s %9s %10.2e %10.2e %10.2e %10.2e %10.2e\n", r.scenario.c_str(),
+                    r.config.c_str(), ms, pms, r.divergence, r.velocityError, r.pigmentError,
+                    r.velocityFine, r.pigmentFine);
+    }
+    std::printf("(cpu): not on the GPU solver yet; errors from the CPU reference, no time.\n");
+
+    // Time to a relative residual of 1e-3 from a cold start, smooth divergence.
+    std::vector<TimeToTarget> targets;
+    const uint32_t tn = targetGrid.value();
+    if (tn > 0) {
+        std::printf("\ntime to a relative residual of 1e-3 at %u^3 (cold start, smooth "
+                    "divergence):\n",
+                    tn);
+        SolverOptions base;
+        base.grid = {tn, tn, tn, 1.0f / float(tn)};
+        const FieldState input = smoothDivergence(base);
+        struct Candidate {
+            std::string name;
+            PressureSolver solver;
+            uint32_t cap;
+        };
+        for (const Candidate& c : {Candidate{"jacobi", PressureSolver::Jacobi, 4000},
+                                   Candidate{"rbgs", PressureSolver::RedBlackGaussSeidel, 2000},
+                                   Candidate{"multigrid", PressureSolver::Multigrid, 20},
+                                   Candidate{"mgpcg", PressureSolver::MultigridPcg, 20}}) {
+            TimeToTarget t{c.name};
+            SolverOptions o = base;
+            o.pressureSolver = c.solver;
+            // The effort needed, from the reference's residual history (the same arithmetic).
+            fluid::ReferenceSolver ref(o);
+            if (c.solver == PressureSolver::Multigrid) o.multigrid.cycles = c.cap;
+            if (c.solver == PressureSolver::MultigridPcg) {
+                o.cgTolerance = 1e-3f;
+                o.cgMaxIterations = c.cap;
+            } else {
+                o.jacobiIterations = c.cap;
+            }
+            ref = fluid::ReferenceSolver(o);
+            ref.setState(input);
+            ref.setRecordResidualHistory(true);
+            ref.solvePressure();
+            const std::vector<double>& history = ref.residualHistory();
+            size_t hit = history.size();
+            for (size_t i = 0; i < history.size(); ++i)
+                if (history[i] <= 1e-3) {
+                    hit = i;
+                    break;
+                }
+            double rate = 1.0;
+            if (hit < history.size()) {
+                t.reached = true;
+                t.effort = uint32_t(hit);
+            } else if (history.size() > 100) {
+                // Extrapolated from the rate over the last quarter of the capped run.
+                const size_t a = history.size() * 3 / 4, b = history.size() - 1;
+                rate = std::pow(history[b] / history[a], 1.0 / double(b - a));
+                t.effort = uint32_t(double(b) + std::log(1e-3 / history[b]) / std::log(rate));
+                t.note = "extrapolated from the residual rate of the last " +
+                         std::to_string(b - a) + " of " + std::to_string(b) + " sweeps";
+            }
+            // The GPU's time for that effort (a capped effort timed as run, then scaled).
+            SolverOptions timed = o;
+            const uint32_t runEffort = t.reached ? t.effort : c.cap;
+            if (c.solver == PressureSolver::Multigrid) timed.multigrid.cycles = runEffort;
+            if (c.solver == PressureSolver::Jacobi ||
+                c.solver == PressureSolver::RedBlackGaussSeidel)
+                timed.jacobiIterations = runEffort;
+            auto created = fluid::SmokeSolver::create(ctx, timed);
+            if (!created) {
+                t.note = created.error().message;
+            } else if (runEffort > 0) {
+                fluid::SmokeSolver& solver = *created.value();
+                gpu::GpuTimer timer(ctx, 4);
+                std::vector<double> ms;
+                for (int repeat = 0; repeat < 4; ++repeat) {
+                    solver.setState(input);
+                    gpu::submitOneShot(ctx, [&](VkCommandBuffer cmd) {
+                        timer.reset(cmd);
+                        solver.recordStage(cmd, fluid::Stage::SolvePressure, &timer);
+                    });
+                    double total = 0.0;
+                    for (const gpu::PassTime& p : timer.results())
+                        total += p.milliseconds;
+                    if (repeat > 0) ms.push_back(total); // the first includes compiles
+                }
+                t.measured = true;
+                t.ms = median(ms) * (t.reached ? 1.0 : double(t.effort) / double(runEffort));
+                fluid::ReferenceSolver check(timed);
+                check.setState(solver.state());
+                t.gpuResidual = check.pressureResidual();
+            }
+            char ms[32] = "-", residual[64] = "";
+            if (t.measured) std::snprintf(ms, sizeof ms, "%.2f", t.ms);
+            if (t.measured && t.reached)
+                std::snprintf(residual, sizeof residual, " (GPU residual %.2e)", t.gpuResidual);
+            std::printf("  %-10s %6u %-10s %10s ms  %s%s\n", t.option.c_str(), t.effort,
+                        c.solver == PressureSolver::Multigrid      ? "V-cycles"
+                        : c.solver == PressureSolver::MultigridPcg ? "iterations"
+                                                                   : "sweeps",
+                        ms, t.note.c_str(), residual);
+            targets.push_back(t);
+        }
+    }
+
+    // CSV, plot and JSON.
+    csvFile << "scenario,configuration,gpu,step_ms,pressure_ms,divergence_left,velocity_error,"
+               "pigment_error,velocity_error_fine,pigment_error_fine\n";
+    for (const Row& r : rows)
+        csvFile << r.scenario << ",\"" << r.config << "\"," << (r.gpu ? 1 : 0) << ","
+                << (r.gpu ? std::to_string(r.stepMs) : "") << ","
+                << (r.gpu ? std::to_string(r.pressureMs) : "") << "," << r.divergence << ","
+                << r.velocityError << "," << r.pigmentError << "," << r.velocityFine << ","
+                << r.pigmentFine << "\n";
+    std::vector<PlotPanel> panels;
+    const char* colours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd"};
+    for (size_t si = 0; si < scenarios.size(); ++si) {
+        PlotPanel panel;
+        panel.title = scenarios[si] + ": velocity error vs exact pressure";
+        panel.xLabel = "GPU ms per step";
+        panel.yLabel = "relative L2 error";
+        panel.logX = panel.logY = true;
+        PlotSeries points{"configurations", colours[si % 4], {}, {}};
+        std::vector<std::pair<double, double>> timed;
+        for (const Row& r : rows)
+            if (r.scenario == scenarios[si] && r.gpu && r.velocityError > 0.0)
+                timed.push_back({r.stepMs, r.velocityError});
+        std::sort(timed.begin(), timed.end());
+        PlotSeries front{"Pareto front", "#000000", {}, {}};
+        double best = std::numeric_limits<double>::infinity();
+        for (const auto& [ms, err] : timed) {
+            points.x.push_back(ms);
+            points.y.push_back(err);
+            if (err < best) {
+                best = err;
+                front.x.push_back(ms);
+                front.y.push_back(err);
+            }
+        }
+        panel.series = {points, front};
+        panels.push_back(panel);
+    }
+    plotFile << svgPlot("accuracy against time on " + ctx.info().name, panels);
+    std::printf("\ntable in %s, plot in %s\n", csvPath.c_str(), plotPath.c_str());
+
+    if (jsonFile.is_open()) {
+        nlohmann::json results = nlohmann::json::array();
+        for (const Row& r : rows)
+            results.push_back(
+                {{"scenario", r.scenario},
+                 {"configuration", r.config},
+                 {"gpu", r.gpu},
+                 {"note", r.note},
+                 {"step_ms", r.gpu ? nlohmann::json(r.stepMs) : nlohmann::json()},
+                 {"pressure_ms", r.gpu ? nlohmann::json(r.pressureMs) : nlohmann::json()},
+                 {"divergence_left", r.divergence},
+                 {"velocity_error", r.velocityError},
+                 {"pigment_error", r.pigmentError},
+                 {"velocity_error_fine", r.velocityFine},
+                 {"pigment_error_fine", r.pigmentFine}});
+        nlohmann::json doc{
+            {"device", ctx.info().name}, {"grid", {n, n, n}}, {"steps", K}, {"results", results}};
+        if (!targets.empty()) {
+            nlohmann::json each = nlohmann::json::object();
+            const TimeToTarget* jacobi = nullptr;
+            const TimeToTarget* best = nullptr;
+            for (const TimeToTarget& t : targets) {
+                each[t.option] = {{"effort", t.effort},
+                                  {"ms", t.measured ? nlohmann::json(t.ms) : nlohmann::json()},
+                                  {"reached_within_cap", t.reached},
+                                  {"note", t.note}};
+                if (t.option == "jacobi") jacobi = &t;
+                if (t.measured && (!best || t.ms < best->ms)) best = &t;
+            }
+            doc["time_to_1e-3"] = {{"grid", {tn, tn, tn}},
+                                   {"jacobi_ms", jacobi && jacobi->measured
+                                                     ? nlohmann::json(jacobi->ms)
+                                                     : nlohmann::json()},
+                                   {"jacobi_extrapolated", jacobi && !jacobi->reached},
+                                   {"best_ms", best ? nlohmann::json(best->ms) : nlohmann::json()},
+                                   {"best_option", best ? best->option : ""},
+                                   {"options", each}};
+        }
+        jsonFile << doc.dump(2) << "\n";
+    }
+    return finishValidation(ctx, kExitOk);
+}
+
+} // namespace mfx::app
