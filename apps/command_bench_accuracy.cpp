@@ -100,7 +100,7 @@ FieldState restrictToCoarse(const FieldState& fine, const fluid::GridShape& coar
                 for (int c = 0; c < 4; ++c) {
                     double sum = 0.0;
                     for (uint32_t k = 0; k < 8; ++k)
-                        sum += fine.pigment[f.index(2 * x + (k & 1), 2 * y + (k >> 1 & 1),
+                        sum += double(fine.pigment[f.index(2 * x + (k & 1), 2 * y + (k >> 1 & 1),
                                                     2 * z + (k >> 2 & 1)) *
                                                 4 +
                                             size_t(c)];
@@ -122,7 +122,7 @@ FieldState restrictToCoarse(const FieldState& fine, const fluid::GridShape& coar
                         glm::uvec3 p = 2u * q;
                         p[a] += k & 1;
                         p[b] += k >> 1;
-                        sum += src[p.x + size_t(nf.x) * (p.y + size_t(nf.y) * p.z)];
+                        sum += double(src[p.x + size_t(nf.x) * (p.y + size_t(nf.y) * p.z)]);
                     }
                     dst[x + size_t(n.x) * (y + size_t(n.y) * z)] = float(sum / 4.0);
                 }

@@ -82,19 +82,10 @@ int runBenchFrame(std::span<const std::string> args) {
         printError(ctx.info().name + " has no timestamp queries; the passes cannot be timed");
         return kExitFailure;
     }
-    if (s.output.width > ctx.limits().maxImageDimension2D ||
-        s.output.height > ctx.limits().maxImageDimension2D) {
-        printError("--size " + std::to_string(s.output.width) + "x" +
-                   std::to_string(s.output.height) + " exceeds " + ctx.info().name +
-                   "'s largest image, " + std::to_string(ctx.limits().maxImageDimension2D));
-        return kExitUsage;
-    }
-    auto created = fluid::SceneSimulation::create(ctx, s, argument.character);
-    if (!created) {
-        printError(created.error().message);
-        return kExitFailure;
-    }
-    fluid::SceneSimulation& sim = *created.value();
+    const std::unique_ptr<fluid::SceneSimulation> created =
+        createSceneSimulation(ctx, argument, exitCode);
+    if (!created) return exitCode;
+    fluid::SceneSimulation& sim = *created;
     render::FrameRenderer renderer(ctx, sim, s.output.width, s.output.height,
                                    VkSampleCountFlagBits(samples.value()));
 

@@ -82,26 +82,6 @@ void onKey(GLFWwindow* window, int key, int, int action, int) {
     }
 }
 
-// Barrier for a swapchain image (not a gpu::Image: the swapchain owns it).
-void swapchainBarrier(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to,
-                      VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
-                      VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
-    VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-    b.srcStageMask = srcStage;
-    b.srcAccessMask = srcAccess;
-    b.dstStageMask = dstStage;
-    b.dstAccessMask = dstAccess;
-    b.oldLayout = from;
-    b.newLayout = to;
-    b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    b.image = image;
-    b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-    VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    dependency.imageMemoryBarrierCount = 1;
-    dependency.pImageMemoryBarriers = &b;
-    vkCmdPipelineBarrier2(cmd, &dependency);
-}
-
 // The viewer's state: a simulation that can only run forwards, so going back re-simulates.
 class Viewer {
 public:
@@ -246,12 +226,7 @@ int runView(std::span<const std::string> args) {
     }
     const gpu::Context& ctx = *createdContext.value();
     const scene::Scene& s = argument.scene;
-    if (s.output.width > ctx.limits().maxImageDimension2D ||
-        s.output.height > ctx.limits().maxImageDimension2D) {
-        printError("--size exceeds " + ctx.info().name + "'s largest image, " +
-                   std::to_string(ctx.limits().maxImageDimension2D));
-        return kExitUsage;
-    }
+    if (!checkOutputSize(ctx, s)) return kExitUsage;
 
     glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
     const std::string title = "motionfx view - " + s.file;
@@ -287,7 +262,7 @@ int runView(std::span<const std::string> args) {
     }
     std::printf("viewing %s on %s at %ux%u, %u frames at %g fps\n%s\n", s.file.c_str(),
                 ctx.info().name.c_str(), s.output.width, s.output.height, viewer.frameCount(),
-                s.output.fps, kKeysHelp);
+                double(s.output.fps), kKeysHelp);
     std::fflush(stdout);
 
     gpu::CommandBuffer commands = gpu::CommandBuffer::create(ctx, ctx.graphicsQueue());
@@ -334,7 +309,8 @@ int runView(std::span<const std::string> args) {
         } else if (!paused) {
             // Real time: the next frame once its time has come (every loop when slower).
             const auto now = std::chrono::steady_clock::now();
-            if (std::chrono::duration<double>(now - lastAdvance).count() >= 1.0 / viewer.fps() ||
+            if (std::chrono::duration<double>(now - lastAdvance).count() >=
+                    1.0 / double(viewer.fps()) ||
                 viewer.shown() < 0) {
                 lastAdvance = now;
                 advance = true;
@@ -372,9 +348,10 @@ int runView(std::span<const std::string> args) {
         render::RenderTarget& target = viewer.renderer().target();
         gpu::transitionImage(cmd, target.color, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
         const VkImage image = swapchain.image(index);
-        swapchainBarrier(cmd, image, VK_IMAGE_LAYOUT_UNDEFINED,
-                         VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
-                         0, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+        gpu::imageBarrier(cmd, image, VK_IMAGE_LAYOUT_UNDEFINED,
+                          VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                          VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, 0,
+                          VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
         // The picture scaled to the window, letterboxed to keep its shape.
         const float scale = std::min(float(extent.width) / float(target.width),
                                      float(extent.height) / float(target.height));
@@ -384,10 +361,10 @@ int runView(std::span<const std::string> args) {
         VkClearColorValue black{{0.0f, 0.0f, 0.0f, 1.0f}};
         VkImageSubresourceRange whole{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
         vkCmdClearColorImage(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &black, 1, &whole);
-        swapchainBarrier(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                         VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
-                         VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
-                         VK_ACCESS_2_TRANSFER_WRITE_BIT);
+        gpu::imageBarrier(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                          VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                          VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                          VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
         VkImageBlit blit{};
         blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
         blit.srcOffsets[1] = {int32_t(target.width), int32_t(target.height), 1};
@@ -396,11 +373,11 @@ int runView(std::span<const std::string> args) {
         blit.dstOffsets[1] = {x0 + w, y0 + h, 1};
         vkCmdBlitImage(cmd, target.color.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, image,
                        VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
-        swapchainBarrier(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                         VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                         VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                         VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                         VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+        gpu::imageBarrier(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                          VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                          VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                          VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                          VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
         // The status lines.
         VkRenderingAttachmentInfo colour{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
         colour.imageView = swapchain.view(index);
@@ -438,21 +415,21 @@ int runView(std::span<const std::string> args) {
             const VkDeviceSize bytes = VkDeviceSize(extent.width) * extent.height * 4;
             readback = gpu::createBuffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                          gpu::MemoryUsage::Readback, "view screenshot");
-            swapchainBarrier(cmd, image, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                             VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                             VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                             VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
-                             VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+            gpu::imageBarrier(cmd, image, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                              VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                              VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                              VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
+                              VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
             VkBufferImageCopy copy{};
             copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
             copy.imageExtent = {extent.width, extent.height, 1};
             vkCmdCopyImageToBuffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback.get(),
                                    1, &copy);
-            swapchainBarrier(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                             VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
-                             0, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0);
+            gpu::imageBarrier(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                              VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                              0, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0);
         } else {
-            swapchainBarrier(
+            gpu::imageBarrier(
                 cmd, image, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                 VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                 VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0);

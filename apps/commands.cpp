@@ -110,6 +110,30 @@ double median(std::vector<double> values) {
     return values.size() % 2 ? values[mid] : 0.5 * (values[mid - 1] + values[mid]);
 }
 
+bool checkOutputSize(const gpu::Context& ctx, const scene::Scene& scene) {
+    const uint32_t largest = ctx.limits().maxImageDimension2D;
+    if (scene.output.width <= largest && scene.output.height <= largest) return true;
+    printError("size " + std::to_string(scene.output.width) + "x" +
+               std::to_string(scene.output.height) + " exceeds " + ctx.info().name +
+               "'s largest image, " + std::to_string(largest));
+    return false;
+}
+
+std::unique_ptr<fluid::SceneSimulation>
+createSceneSimulation(const gpu::Context& ctx, const SceneArgument& argument, int& exitCode) {
+    if (!checkOutputSize(ctx, argument.scene)) {
+        exitCode = kExitUsage;
+        return nullptr;
+    }
+    auto created = fluid::SceneSimulation::create(ctx, argument.scene, argument.character);
+    if (!created) {
+        printError(created.error().message);
+        exitCode = kExitFailure;
+        return nullptr;
+    }
+    return std::move(created).value();
+}
+
 void printError(const std::string& message) {
     std::fprintf(stderr, "motionfx: error: %s\n", message.c_str());
 }

@@ -59,6 +59,14 @@ struct SceneArgument {
 };
 bool loadSceneArgument(const cli::ParsedArgs& parsed, SceneArgument& out, int& exitCode);
 
+// False (after printing why) when the scene's output size exceeds the device's largest image.
+bool checkOutputSize(const gpu::Context& ctx, const scene::Scene& scene);
+
+// The scene's simulation after checkOutputSize, or nullptr after printing why there is none
+// (`exitCode` set). `argument` must outlive it.
+std::unique_ptr<fluid::SceneSimulation>
+createSceneSimulation(const gpu::Context& ctx, const SceneArgument& argument, int& exitCode);
+
 // One frame's simulation statistics as JSON ({"frame", "time", "passes", "fluid_bytes", ...}).
 nlohmann::json statsJson(const fluid::SimulationFrameStats& stats);
 

@@ -174,6 +174,61 @@ TEST(Cli, BenchTrajectoryBadValuesAreOneLine) {
     }
 }
 
+TEST(Cli, BenchFramePrintsPassesAndWritesJson) {
+    const std::string json = std::string(MFX_TEST_OUTPUT_DIR) + "/cli/bench_frame.json";
+    std::filesystem::remove(json);
+    const RunResult r = runMotionfx("bench frame --size 160x90 --frames 3 --warmup 1 --samples 1 "
+                                    "--json \"" +
+                                    json + "\"");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    for (const char* row :
+         {"render/scene", "render/effects", "render/smoke", "smoke/solve_pressure", "trajectories",
+          "wall, whole frame", "frames per second"})
+        EXPECT_NE(r.out.find(row), std::string::npos) << row << " missing from " << r.out;
+    const nlohmann::json doc = nlohmann::json::parse(readFile(json));
+    EXPECT_EQ(doc["size"], nlohmann::json({160, 90}));
+    EXPECT_EQ(doc["grid"], nlohmann::json({48, 48, 48})); // the built-in scene's smoke grid
+    EXPECT_GT(doc["frame_ms"].get<double>(), 0.0);
+    EXPECT_NEAR(doc["fps"].get<double>(), 1000.0 / doc["frame_ms"].get<double>(), 1e-6);
+    for (const char* pass : {"render/skin", "render/shadow", "render/scene", "render/effects",
+                             "render/smoke", "smoke/advect_velocity"})
+        EXPECT_TRUE(doc["passes"].contains(pass)) << pass;
+    EXPECT_TRUE(doc.contains("device"));
+}
+
+TEST(Cli, BenchAccuracyWritesTableCsvPlotAndJson) {
+    const std::string dir = std::string(MFX_TEST_OUTPUT_DIR) + "/cli";
+    const std::string json = dir + "/bench_accuracy.json", csv = dir + "/bench_accuracy.csv",
+                      plot = dir + "/bench_accuracy.svg";
+    for (const std::string& f : {json, csv, plot})
+        std::filesystem::remove(f);
+    const RunResult r = runMotionfx("bench accuracy --grid 8 --steps 3 --scenarios puff "
+                                    "--target-grid 8 --json \"" +
+                                    json + "\" --csv \"" + csv + "\" --plot \"" + plot + "\"");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("jacobi 20"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("time to a relative residual of 1e-3"), std::string::npos) << r.out;
+    const nlohmann::json doc = nlohmann::json::parse(readFile(json));
+    EXPECT_TRUE(doc.contains("device"));
+    ASSERT_TRUE(doc.contains("time_to_1e-3"));
+    const nlohmann::json& t = doc["time_to_1e-3"];
+    EXPECT_EQ(t["grid"], nlohmann::json({8, 8, 8}));
+    EXPECT_GT(t["jacobi_ms"].get<double>(), 0.0);
+    EXPECT_GT(t["best_ms"].get<double>(), 0.0);
+    EXPECT_LE(t["best_ms"].get<double>(), t["jacobi_ms"].get<double>());
+    EXPECT_FALSE(t["best_option"].get<std::string>().empty());
+    // More effort, less divergence left: jacobi 10 leaves more than jacobi 160.
+    double left10 = -1.0, left160 = -1.0;
+    for (const nlohmann::json& row : doc["results"]) {
+        if (row["configuration"] == "jacobi 10") left10 = row["divergence_left"].get<double>();
+        if (row["configuration"] == "jacobi 160") left160 = row["divergence_left"].get<double>();
+    }
+    EXPECT_GT(left10, left160);
+    EXPECT_GT(left160, -0.5);
+    EXPECT_NE(readFile(csv).find("scenario,configuration,gpu,step_ms"), std::string::npos);
+    EXPECT_NE(readFile(plot).find("<svg"), std::string::npos);
+}
+
 TEST(Cli, BenchSolverBadValuesAreOneLine) {
     for (const char* args : {"--grids 0", "--grids 8x8", "--workgroups 8x8", "--workgroups 0x8x4",
                              "--jacobi -1", "--steps 0", "--scenario nope"}) {

@@ -201,25 +201,44 @@ Image createImage(const Context& ctx, const ImageDesc& desc) {
     return image;
 }
 
-void imageBarrier(VkCommandBuffer cmd, Image& image, VkImageLayout newLayout,
-                  VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
-                  VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
+namespace {
+
+void layoutBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect,
+                   VkImageLayout oldLayout, VkImageLayout newLayout, VkPipelineStageFlags2 srcStage,
+                   VkAccessFlags2 srcAccess, VkPipelineStageFlags2 dstStage,
+                   VkAccessFlags2 dstAccess) {
     VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
     barrier.srcStageMask = srcStage;
     barrier.srcAccessMask = srcAccess;
     barrier.dstStageMask = dstStage;
     barrier.dstAccessMask = dstAccess;
-    barrier.oldLayout = image.layout;
+    barrier.oldLayout = oldLayout;
     barrier.newLayout = newLayout;
     barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
     barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    barrier.image = image.get();
-    barrier.subresourceRange = {image.aspect, 0, 1, 0, 1};
+    barrier.image = image;
+    barrier.subresourceRange = {aspect, 0, 1, 0, 1};
     VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
     dependency.imageMemoryBarrierCount = 1;
     dependency.pImageMemoryBarriers = &barrier;
     vkCmdPipelineBarrier2(cmd, &dependency);
+}
+
+} // namespace
+
+void imageBarrier(VkCommandBuffer cmd, Image& image, VkImageLayout newLayout,
+                  VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                  VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
+    layoutBarrier(cmd, image.get(), image.aspect, image.layout, newLayout, srcStage, srcAccess,
+                  dstStage, dstAccess);
     image.layout = newLayout;
+}
+
+void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageLayout oldLayout,
+                  VkImageLayout newLayout, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                  VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
+    layoutBarrier(cmd, image, VK_IMAGE_ASPECT_COLOR_BIT, oldLayout, newLayout, srcStage, srcAccess,
+                  dstStage, dstAccess);
 }
 
 void transitionImage(VkCommandBuffer cmd, Image& image, VkImageLayout newLayout) {

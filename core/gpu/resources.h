@@ -98,6 +98,12 @@ void imageBarrier(VkCommandBuffer cmd, Image& image, VkImageLayout newLayout,
                   VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
                   VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
 
+// The same for an image the caller does not track (e.g. a swapchain's), colour aspect, from
+// `oldLayout`.
+void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageLayout oldLayout,
+                  VkImageLayout newLayout, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                  VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
+
 // Records a global memory barrier (buffers, and images that keep their layout).
 void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
                    VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
