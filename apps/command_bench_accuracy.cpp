@@ -101,9 +101,9 @@ FieldState restrictToCoarse(const FieldState& fine, const fluid::GridShape& coar
                     double sum = 0.0;
                     for (uint32_t k = 0; k < 8; ++k)
                         sum += double(fine.pigment[f.index(2 * x + (k & 1), 2 * y + (k >> 1 & 1),
-                                                    2 * z + (k >> 2 & 1)) *
-                                                4 +
-                                            size_t(c)];
+                                                           2 * z + (k >> 2 & 1)) *
+                                                       4 +
+                                                   size_t(c)]);
                     out.pigment[coarse.index(x, y, z) * 4 + size_t(c)] = float(sum / 8.0);
                 }
     for (int c = 0; c < 3; ++c) {
