@@ -64,10 +64,11 @@ std::string shapeLabel(const std::array<uint32_t, 3>& s) {
 // Times one grid with one workgroup shape: the median of `steps` steps after 3 warm-up steps.
 Result<GridResult> benchGrid(const gpu::Context& ctx, const std::string& scenarioName,
                              std::array<uint32_t, 3> cells, std::array<uint32_t, 3> workgroup,
-                             uint32_t jacobi, uint32_t steps) {
+                             uint32_t jacobi, fluid::PressureSolver pressure, uint32_t steps) {
     fluid::Scenario scenario =
         fluid::makeScenario(scenarioName, glm::uvec3(cells[0], cells[1], cells[2])).value();
     scenario.options.jacobiIterations = jacobi;
+    scenario.options.pressureSolver = pressure;
     scenario.options.workgroup = workgroup;
     auto solverResult = fluid::SmokeSolver::create(ctx, scenario.options);
     if (!solverResult) return solverResult.error();
@@ -114,7 +115,10 @@ int runBenchSolver(std::span<const std::string> args) {
     std::vector<cli::OptionSpec> options = deviceOptions();
     options.push_back(
         {"grids", "LIST", "comma-separated grids, N or NXxNYxNZ (default 32,64,96,128)"});
-    options.push_back({"jacobi", "N", "Jacobi sweeps per step (default 20)"});
+    options.push_back({"jacobi", "N", "Jacobi (or red-black) sweeps per step (default 20)"});
+    options.push_back({"pressure", "NAME",
+                       "pressure solver: jacobi, rbgs, multigrid or mgpcg (default jacobi; "
+                       "multigrid and mgpcg with their default options)"});
     options.push_back({"steps", "K", "timed steps per grid after 3 warm-up steps (default 10)"});
     options.push_back({"scenario", "NAME", "scenario whose stages are timed (default puff)"});
     options.push_back({"workgroups", "LIST",
@@ -142,6 +146,12 @@ int runBenchSolver(std::span<const std::string> args) {
             printError(e->message);
             return kExitUsage;
         }
+    const auto pressure = fluid::pressureSolverFromName(parsed.value("pressure", "jacobi"));
+    if (!pressure) {
+        printError("--pressure: no pressure solver \"" + parsed.value("pressure") +
+                   "\"; solvers are jacobi, rbgs, multigrid, mgpcg");
+        return kExitUsage;
+    }
     const std::string scenarioName = parsed.value("scenario", "puff");
     if (!fluid::makeScenario(scenarioName, {2, 2, 2})) {
         printError(fluid::makeScenario(scenarioName, {2, 2, 2}).error().message);
@@ -158,15 +168,17 @@ int runBenchSolver(std::span<const std::string> args) {
         printError(ctx.info().name + " has no timestamp queries; the solver cannot be timed");
         return kExitFailure;
     }
-    std::printf("smoke solver benchmark on %s (%s)\nscenario %s, %u Jacobi sweeps, median of %u "
-                "steps after 3 warm-up steps; GPU milliseconds from timestamp queries\n\n",
+    std::printf("smoke solver benchmark on %s (%s)\nscenario %s, pressure solver %s, %u Jacobi "
+                "sweeps, median of %u steps after 3 warm-up steps; GPU milliseconds from "
+                "timestamp queries\n\n",
                 ctx.info().name.c_str(), ctx.info().driverInfo.c_str(), scenarioName.c_str(),
-                jacobi.value(), steps.value());
+                fluid::pressureSolverName(*pressure), jacobi.value(), steps.value());
 
     std::vector<GridResult> results;
     for (const auto& cells : grids.value())
         for (const auto& workgroup : workgroups.value()) {
-            auto r = benchGrid(ctx, scenarioName, cells, workgroup, jacobi.value(), steps.value());
+            auto r = benchGrid(ctx, scenarioName, cells, workgroup, jacobi.value(), *pressure,
+                               steps.value());
             if (!r) {
                 printError(r.error().message);
                 return kExitFailure;
@@ -208,6 +220,7 @@ int runBenchSolver(std::span<const std::string> args) {
             list.push_back({{"grid", r.grid},
                             {"workgroup", r.workgroup},
                             {"jacobi", jacobi.value()},
+                            {"pressure", fluid::pressureSolverName(*pressure)},
                             {"step_ms", r.stepMs},
                             {"wall_ms", r.wallMs},
                             {"stages", r.stageMs}});

@@ -40,6 +40,9 @@ int runCompare(std::span<const std::string> args) {
     options.push_back({"steps", "K", "number of steps (default 20)"});
     options.push_back({"grid", "NXxNYxNZ", "grid cells (default 32x32x32)"});
     options.push_back({"stage", "NAME", "compare this stage alone, from the same input each step"});
+    options.push_back({"pressure", "NAME",
+                       "pressure solver of both sides: jacobi, rbgs, multigrid or mgpcg (default: "
+                       "the scenario's)"});
     options.push_back({"json", "FILE", "also write the comparison as JSON"});
     options.push_back(
         {"tolerance", "X", "exit with status 1 if any relative L2 difference exceeds X"});
@@ -92,6 +95,15 @@ int runCompare(std::span<const std::string> args) {
         printError(scenario.error().message);
         return kExitUsage;
     }
+    if (parsed.has("pressure")) {
+        const auto pressure = fluid::pressureSolverFromName(parsed.value("pressure"));
+        if (!pressure) {
+            printError("--pressure: no pressure solver \"" + parsed.value("pressure") +
+                       "\"; solvers are jacobi, rbgs, multigrid, mgpcg");
+            return kExitUsage;
+        }
+        scenario.value().options.pressureSolver = *pressure;
+    }
     const std::string jsonPath = parsed.value("json");
     std::ofstream jsonFile;
     if (!openOutputFile(jsonPath, jsonFile)) return kExitFailure;
@@ -110,9 +122,10 @@ int runCompare(std::span<const std::string> args) {
     gpu.setState(s.initial);
     cpu.setState(s.initial);
 
-    std::printf("device    %s\nscenario  %s: %s\ngrid      %ux%ux%u, %u steps, %s\n\n",
+    std::printf("device    %s\nscenario  %s: %s\ngrid      %ux%ux%u, %u steps, %s pressure "
+                "solve, %s\n\n",
                 ctx.info().name.c_str(), s.name.c_str(), s.description.c_str(), cells[0], cells[1],
-                cells[2], steps.value(),
+                cells[2], steps.value(), fluid::pressureSolverName(s.options.pressureSolver),
                 onlyStage ? ("stage " + std::string(fluid::stageName(*onlyStage)) +
                              " alone, from the reference's state at each step")
                                 .c_str()
@@ -174,6 +187,7 @@ int runCompare(std::span<const std::string> args) {
             {"scenario", s.name},
             {"grid", {cells[0], cells[1], cells[2]}},
             {"steps", steps.value()},
+            {"pressure", fluid::pressureSolverName(s.options.pressureSolver)},
             {"mode", onlyStage ? "stage" : "step"},
             {"stage_alone", onlyStage ? fluid::stageName(*onlyStage) : ""},
             {"stages", stages},

@@ -3,8 +3,11 @@
 // (fluid/reference/), written down in docs/fluid.md. One sub-step:
 //
 //   splatImpulses → advectVelocity → advectPigment → applyBuoyancy → vorticityConfinement →
-//   diffuseViscosity → applyBoundaries → computeDivergence → solvePressure (Jacobi) → project →
+//   diffuseViscosity → applyBoundaries → computeDivergence → solvePressure → project →
 //   applyBoundaries
+//
+// solvePressure runs Jacobi sweeps here (shaders/solve_pressure.comp), or red-black Gauss-Seidel,
+// multigrid or MGPCG (fluid/gpu_multigrid.h), as SolverOptions::pressureSolver asks.
 //
 // Fields live in r32f / rgba32f 3D storage images in GENERAL layout. A stage that rewrites a whole
 // field writes it into a storage buffer, which is then copied into the image (a CPU driver's image
@@ -15,6 +18,7 @@
 #include "core/gpu/program.h"
 #include "core/gpu/resources.h"
 #include "core/gpu/timer.h"
+#include "fluid/gpu_multigrid.h"
 #include "fluid/solver_options.h"
 
 #include <array>
@@ -72,6 +76,9 @@ public:
         return lastStepDispatches_;
     }
     uint64_t memoryBytes() const;
+    // Sweeps, V-cycles or CG iterations of the last pressure solve (MGPCG stops early on its
+    // tolerance: read back from the GPU, so the step must have finished).
+    uint32_t lastPressureIterations() const;
 
     // Records measure_activity: the largest pigment alpha and the largest cell-centre speed of
     // the current fields into `out` (two floats as uint bits, cleared first), for deciding whether
@@ -137,6 +144,7 @@ private:
     std::array<gpu::Buffer, 2> packedPressure_;
     gpu::Buffer packedDivergence_;
     bool packedSolve_ = true;
+    std::unique_ptr<GpuMultigrid> multigrid_; // every pressure solver but Jacobi
     int currentVelocity_ = 0;
     int currentPigment_ = 0;
     int currentPressure_ = 0;

@@ -61,13 +61,18 @@ public:
     void redBlackSweeps(Eigen::ArrayXd& p, const Eigen::ArrayXd& b, uint32_t sweeps,
                         bool blackFirst = false) const;
 
-private:
     // One side of a cell along one axis: the neighbour's index along that axis (-1: none, an open
     // ghost with p = 0 or a wall) and 1 / distance between the centres (0 across a wall).
     struct Side {
         int neighbour = -1;
         double inverseDistance = 0.0;
     };
+    // The low (high = false) or high side along `axis` of the cells whose index along it is `i`.
+    const Side& side(int axis, bool high, int i) const {
+        return sides_[size_t(axis)][high ? 1 : 0][size_t(i)];
+    }
+
+private:
     // sum_s c_s p_n(s) and sum_s c_s of cell q.
     void neighbourSums(const Eigen::ArrayXd& p, glm::ivec3 q, double& weighted,
                        double& total) const;
@@ -123,13 +128,20 @@ public:
     // The exact solution on the coarsest level (mean-free when singular).
     Eigen::ArrayXd solveCoarsest(const Eigen::ArrayXd& b) const;
 
-private:
     // How a fine cell's index along one axis interpolates from the coarse level: up to two coarse
     // indices (-1: an open ghost, value 0, or nothing) with their weights.
     struct Interpolation {
         int coarse[2] = {-1, -1};
         double weight[2] = {0.0, 0.0};
     };
+    // Along `axis`, per index of level l: how it interpolates from level l + 1, and the index of
+    // the level l + 1 cell covering it (the GPU solver's tables are made from these).
+    const std::vector<Interpolation>& interpolation(size_t l, int axis) const {
+        return interpolation_[l][size_t(axis)];
+    }
+    const std::vector<int>& parents(size_t l, int axis) const { return parent_[l][size_t(axis)]; }
+
+private:
     void cycle(size_t l, Eigen::ArrayXd& x, const Eigen::ArrayXd& b, uint32_t preSmooth,
                uint32_t postSmooth, Cycle kind) const;
 

@@ -1,0 +1,483 @@
+// The GPU pressure solvers beyond Jacobi (fluid/gpu_multigrid.h): red-black Gauss-Seidel,
+// multigrid V-cycles and MGPCG, each against the CPU reference from the same input (relative L2
+// of the pressure at most 1e-5, fp32 against fp64), on an even and an odd non-cubic grid with every
+// boundary set; the multigrid's convergence rate and MGPCG's iteration count at the sizes the
+// requirements name; and 100 whole steps of a scenario with each solver.
+#include "fluid/field_compare.h"
+#include "fluid/reference/reference_solver.h"
+#include "fluid/scenarios.h"
+#include "fluid/smoke_solver.h"
+#include "tests/fluid_test_util.h"
+#include "tests/gpu_test.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace mfx::test {
+namespace {
+
+using fluid::Boundary;
+using fluid::FieldState;
+using fluid::GridShape;
+using fluid::PressureSolver;
+using fluid::SolverOptions;
+
+enum class Boundaries { Walls, Open, Periodic, Mixed };
+constexpr Boundaries kAllBoundaries[] = {Boundaries::Walls, Boundaries::Open, Boundaries::Periodic,
+                                         Boundaries::Mixed};
+
+const char* boundariesName(Boundaries b) {
+    switch (b) {
+    case Boundaries::Walls:
+        return "walls";
+    case Boundaries::Open:
+        return "open";
+    case Boundaries::Periodic:
+        return "periodic";
+    case Boundaries::Mixed:
+        return "mixed";
+    }
+    return "?";
+}
+
+// Pressure-solve options: mixed is x periodic, y no-slip walls, z open below and a free-slip wall
+// above (mixedBoundaryOptions); the others put one kind on every face.
+SolverOptions pressureOptions(GridShape grid, Boundaries boundaries, PressureSolver solver) {
+    SolverOptions o = mixedBoundaryOptions(grid);
+    o.pressureSolver = solver;
+    o.warmStart = false;
+    const Boundary uniform = boundaries == Boundaries::Walls  ? Boundary::WallFreeSlip
+                             : boundaries == Boundaries::Open ? Boundary::Open
+                                                              : Boundary::Periodic;
+    if (boundaries != Boundaries::Mixed)
+        for (fluid::FaceBoundary& f : o.boundaries)
+            f = {uniform, glm::vec3(0.0f)};
+    return o;
+}
+
+std::vector<float>& component(FieldState& s, int c) {
+    return c == 0 ? s.velocityX : c == 1 ? s.velocityY : s.velocityZ;
+}
+
+// A smooth velocity field (low Fourier modes, no symmetry) far from divergence-free, with its
+// divergence (boundaries applied first, as a step does): the right-hand side multigrid's
+// convergence rate is quoted for (the same field as test_fluid_accuracy.cpp's).
+FieldState smoothState(const SolverOptions& options) {
+    const GridShape& g = options.grid;
+    FieldState s = FieldState::zero(g);
+    const double h = double(g.cellSize);
+    const glm::dvec3 size = glm::dvec3(g.cellsX, g.cellsY, g.cellsZ) * h;
+    for (int c = 0; c < 3; ++c) {
+        const glm::uvec3 n = fluid::faceExtent(g, c);
+        for (uint32_t k = 0; k < n.z; ++k)
+            for (uint32_t j = 0; j < n.y; ++j)
+                for (uint32_t i = 0; i < n.x; ++i) {
+                    glm::dvec3 x = (glm::dvec3(i, j, k) + 0.5) * h;
+                    x[c] -= 0.5 * h;
+                    const glm::dvec3 t = 2.0 * std::numbers::pi * x / size;
+                    const double value = std::sin(t.x + 0.3 * c) * std::cos(2.0 * t.y - 0.2) +
+                                         0.5 * std::cos(t.z + t.x + c) + 0.2 * (c + 1);
+                    component(s, c)[i + size_t(n.x) * (j + size_t(n.y) * k)] = float(value);
+                }
+    }
+    fluid::ReferenceSolver cpu(options);
+    cpu.setState(s);
+    cpu.applyBoundaries();
+    cpu.computeDivergence();
+    return cpu.state();
+}
+
+// ||b - A p|| / ||b|| of `state`'s pressure for its divergence, in double (the reference's
+// measure).
+double relativeResidual(const SolverOptions& options, const FieldState& state) {
+    fluid::ReferenceSolver cpu(options);
+    cpu.setState(state);
+    return cpu.pressureResidual();
+}
+
+class GpuPressureTest : public GpuTest {
+public:
+    // One solvePressure on the GPU and on the reference from `input`; returns the relative L2
+    // difference of the pressure (and checks that the solve moved it).
+    double solveBoth(const SolverOptions& options, const FieldState& input,
+                     uint32_t* gpuIterations = nullptr, uint32_t* cpuIterations = nullptr,
+                     FieldState* gpuState = nullptr) {
+        auto created = fluid::SmokeSolver::create(ctx(), options);
+        EXPECT_TRUE(created.ok()) << created.error().message;
+        if (!created.ok()) return 1.0;
+        fluid::SmokeSolver& gpu = *created.value();
+        gpu.setState(input);
+        gpu.runStage(fluid::Stage::SolvePressure);
+        fluid::ReferenceSolver cpu(options);
+        cpu.setState(input);
+        cpu.solvePressure();
+        if (gpuIterations) *gpuIterations = gpu.lastPressureIterations();
+        if (cpuIterations) *cpuIterations = cpu.pressureIterations();
+        const FieldState cpuState = cpu.state();
+        EXPECT_GT(fluid::difference(cpuState, input).pressure.relL2, 1e-3)
+            << "the solve left the pressure as it was";
+        const FieldState solved = gpu.state();
+        if (gpuState) *gpuState = solved;
+        return pressureDifference(options, solved, cpuState);
+    }
+
+    // The relative L2 difference of two pressures. Without an open face the pressure is defined
+    // up to a constant (A's null space), which neither solver controls: rounding moves it by a
+    // random walk (in a 37x22x19 periodic box, 8e-6 relative after two V-cycles, while the
+    // pressures less their means agree to 2e-7). There each pressure's mean is removed first.
+    static double pressureDifference(const SolverOptions& options, const FieldState& gpu,
+                                     const FieldState& cpu) {
+        const bool singular =
+            std::none_of(options.boundaries.begin(), options.boundaries.end(),
+                         [](const fluid::FaceBoundary& f) { return f.kind == Boundary::Open; });
+        auto mean = [&](const std::vector<float>& p) {
+            double sum = 0.0;
+            for (float v : p)
+                sum += double(v);
+            return singular && !p.empty() ? sum / double(p.size()) : 0.0;
+        };
+        const double gpuMean = mean(gpu.pressure), cpuMean = mean(cpu.pressure);
+        double difference = 0.0, norm = 0.0;
+        for (size_t i = 0; i < cpu.pressure.size(); ++i) {
+            const double c = double(cpu.pressure[i]) - cpuMean;
+            const double d = double(gpu.pressure[i]) - gpuMean - c;
+            difference += d * d;
+            norm += c * c;
+        }
+        return norm > 0.0 ? std::sqrt(difference / norm) : std::sqrt(difference);
+    }
+};
+
+// The solvers' variants: odd and even sweep counts, cold and warm starts.
+struct Variant {
+    const char* name;
+    void (*apply)(SolverOptions&);
+    // The random start pressure (warm start) scaled by h², to the solution's size. A start some
+    // hundred times the solution, as randomState's, makes the conjugate gradient's result the
+    // difference of two large vectors: fp32 and fp64 then part by up to 5e-5 in MGPCG's first
+    // iterations, where they part by 1e-6 at most from a start of the solution's size.
+    bool startOfSolutionSize = false;
+};
+
+// An even grid and an odd non-cubic one. On both, level 0 is smoothed, restricted and prolonged
+// by dispatches over the whole level and the coarser levels cycle in one workgroup
+// (cycle_coarse_levels); the small grids of the tests below cycle every level in one workgroup.
+constexpr GridShape kEvenGrid{24, 20, 16, 0.05f};
+constexpr GridShape kOddGrid{37, 22, 19, 0.05f};
+
+void matchesReference(GpuPressureTest& test, const GridShape& grid, PressureSolver solver,
+                      std::span<const Variant> variants) {
+    uint32_t seed = 700 + grid.cellsX;
+    for (Boundaries b : kAllBoundaries)
+        for (const Variant& variant : variants) {
+            SolverOptions options = pressureOptions(grid, b, solver);
+            variant.apply(options);
+            FieldState input = randomState(grid, ++seed);
+            if (variant.startOfSolutionSize)
+                for (float& p : input.pressure)
+                    p *= grid.cellSize * grid.cellSize;
+            const double d = test.solveBoth(options, input);
+            EXPECT_LE(d, 1e-5) << grid.cellsX << "x" << grid.cellsY << "x" << grid.cellsZ << " "
+                               << boundariesName(b) << " " << variant.name;
+        }
+}
+
+// =================================================================================================
+// GPU against the reference, from the same input
+// =================================================================================================
+
+const Variant kRedBlackVariants[] = {
+    {"3 sweeps cold", [](SolverOptions& o) { o.jacobiIterations = 3; }},
+    {"4 sweeps warm", [](SolverOptions& o) {
+         o.jacobiIterations = 4;
+         o.warmStart = true;
+     }}};
+
+const Variant kMultigridVariants[] = {{"2 cycles 2+2 cold",
+                                       [](SolverOptions& o) {
+                                           o.multigrid.cycles = 2;
+                                           o.multigrid.preSmooth = 2;
+                                           o.multigrid.postSmooth = 2;
+                                       }},
+                                      {"1 cycle 1+3 warm", [](SolverOptions& o) {
+                                           o.multigrid.cycles = 1;
+                                           o.multigrid.preSmooth = 1;
+                                           o.multigrid.postSmooth = 3;
+                                           o.warmStart = true;
+                                       }}};
+
+// A tolerance of 0 runs exactly cgMaxIterations iterations on both sides (a stop on a
+// tolerance is checked on its own below: near the tolerance, fp32 and fp64 could stop one
+// iteration apart).
+const Variant kMgpcgVariants[] = {{"3 iterations, 2+2 sweeps, cold",
+                                   [](SolverOptions& o) {
+                                       o.cgTolerance = 0.0f;
+                                       o.cgMaxIterations = 3;
+                                   }},
+                                  {"2 iterations, 1+1 sweeps, warm",
+                                   [](SolverOptions& o) {
+                                       o.cgTolerance = 0.0f;
+                                       o.cgMaxIterations = 2;
+                                       o.multigrid.preSmooth = 1;
+                                       o.multigrid.postSmooth = 1;
+                                       o.warmStart = true;
+                                   },
+                                   true}};
+
+TEST_F(GpuPressureTest, RedBlackMatchesReferenceEvenGrid) {
+    matchesReference(*this, kEvenGrid, PressureSolver::RedBlackGaussSeidel, kRedBlackVariants);
+}
+
+TEST_F(GpuPressureTest, RedBlackMatchesReferenceOddGrid) {
+    matchesReference(*this, kOddGrid, PressureSolver::RedBlackGaussSeidel, kRedBlackVariants);
+}
+
+TEST_F(GpuPressureTest, MultigridMatchesReferenceEvenGrid) {
+    matchesReference(*this, kEvenGrid, PressureSolver::Multigrid, kMultigridVariants);
+}
+
+TEST_F(GpuPressureTest, MultigridMatchesReferenceOddGrid) {
+    matchesReference(*this, kOddGrid, PressureSolver::Multigrid, kMultigridVariants);
+}
+
+TEST_F(GpuPressureTest, MgpcgMatchesReferenceEvenGrid) {
+    matchesReference(*this, kEvenGrid, PressureSolver::MultigridPcg, kMgpcgVariants);
+}
+
+TEST_F(GpuPressureTest, MgpcgMatchesReferenceOddGrid) {
+    matchesReference(*this, kOddGrid, PressureSolver::MultigridPcg, kMgpcgVariants);
+}
+
+// A hierarchy cut short by multigrid.levels: the coarsest level is larger (up to 480 cells here)
+// and still solved exactly, by both V-cycles.
+TEST_F(GpuPressureTest, FewerLevelsMatchReference) {
+    uint32_t seed = 800;
+    for (PressureSolver solver : {PressureSolver::Multigrid, PressureSolver::MultigridPcg})
+        for (uint32_t levels : {2u, 3u}) {
+            // 2 levels: a coarsest level of 12x10x4 = 480 cells.
+            const GridShape grid{24, 20, 8, 0.05f};
+            SolverOptions options = pressureOptions(grid, Boundaries::Mixed, solver);
+            options.multigrid.levels = levels;
+            options.multigrid.cycles = 2;
+            options.cgTolerance = 0.0f;
+            options.cgMaxIterations = 2;
+            const double d = solveBoth(options, randomState(grid, ++seed));
+            EXPECT_LE(d, 1e-5) << fluid::pressureSolverName(solver) << ", " << levels << " levels";
+        }
+}
+
+// A coarsest level too large to solve exactly is refused with a reason naming the option.
+TEST_F(GpuPressureTest, TooLargeCoarsestLevelIsRefused) {
+    SolverOptions options =
+        pressureOptions({32, 32, 32, 1.0f / 32}, Boundaries::Walls, PressureSolver::Multigrid);
+    options.multigrid.levels = 2;
+    auto created = fluid::SmokeSolver::create(ctx(), options);
+    ASSERT_FALSE(created.ok());
+    EXPECT_NE(created.error().message.find("levels"), std::string::npos) << created.error().message;
+}
+
+// Grids with axes of 1, 2 or 3 cells (a cell its own periodic neighbour, a level that cannot be
+// halved, a hierarchy of one level whose only level is solved exactly): every solver still
+// matches.
+void degenerateGridsMatch(GpuPressureTest& test, PressureSolver solver) {
+    const GridShape grids[] = {
+        {1, 1, 1, 0.1f}, {2, 1, 1, 0.1f}, {1, 3, 1, 0.1f}, {3, 2, 1, 0.1f}, {5, 1, 7, 0.1f}};
+    uint32_t seed = 900;
+    for (const GridShape& grid : grids)
+        for (Boundaries b : {Boundaries::Walls, Boundaries::Periodic, Boundaries::Mixed}) {
+            SolverOptions options = pressureOptions(grid, b, solver);
+            options.jacobiIterations = 3;
+            options.cgTolerance = 0.0f;
+            options.cgMaxIterations = 2;
+            // A 1x1x1 box of walls solves to 0 on both sides: then the difference is absolute.
+            EXPECT_LE(test.solveBoth(options, randomState(grid, ++seed)), 1e-5)
+                << grid.cellsX << "x" << grid.cellsY << "x" << grid.cellsZ << " "
+                << boundariesName(b);
+        }
+}
+
+TEST_F(GpuPressureTest, RedBlackDegenerateGridsMatchReference) {
+    degenerateGridsMatch(*this, PressureSolver::RedBlackGaussSeidel);
+}
+
+TEST_F(GpuPressureTest, MultigridDegenerateGridsMatchReference) {
+    degenerateGridsMatch(*this, PressureSolver::Multigrid);
+}
+
+TEST_F(GpuPressureTest, MgpcgDegenerateGridsMatchReference) {
+    degenerateGridsMatch(*this, PressureSolver::MultigridPcg);
+}
+
+// MGPCG stopping on its tolerance: the GPU stops within one iteration of the reference,
+// below the tolerance (measured in double from the GPU's pressure; CG's own fp32 residual
+// decides, hence the 5 % margin).
+TEST_F(GpuPressureTest, MgpcgStopsOnItsTolerance) {
+    for (Boundaries b : kAllBoundaries)
+        for (float tolerance : {1e-2f, 1e-4f}) {
+            SolverOptions options =
+                pressureOptions({13, 7, 9, 0.125f}, b, PressureSolver::MultigridPcg);
+            options.cgTolerance = tolerance;
+            options.cgMaxIterations = 30;
+            const FieldState input = randomState(options.grid, 77);
+            uint32_t gpuIterations = 0, cpuIterations = 0;
+            FieldState solved;
+            solveBoth(options, input, &gpuIterations, &cpuIterations, &solved);
+            const double residual = relativeResidual(options, solved);
+            std::printf("  %-8s tolerance %.0e: GPU %u iterations (residual %.3g), reference %u\n",
+                        boundariesName(b), double(tolerance), gpuIterations, residual,
+                        cpuIterations);
+            EXPECT_LE(residual, 1.05 * double(tolerance)) << boundariesName(b);
+            EXPECT_LE(gpuIterations, cpuIterations + 1) << boundariesName(b);
+            EXPECT_GE(gpuIterations + 1, cpuIterations) << boundariesName(b);
+        }
+}
+
+// Without a right-hand side (no divergence) MGPCG's solution is 0, as the reference's.
+TEST_F(GpuPressureTest, MgpcgWithoutRightHandSideGivesZero) {
+    SolverOptions options =
+        pressureOptions({8, 6, 5, 0.1f}, Boundaries::Walls, PressureSolver::MultigridPcg);
+    options.warmStart = true;
+    FieldState input = randomState(options.grid, 5);
+    std::fill(input.divergence.begin(), input.divergence.end(), 0.0f);
+    auto created = fluid::SmokeSolver::create(ctx(), options);
+    ASSERT_TRUE(created.ok());
+    created.value()->setState(input);
+    created.value()->runStage(fluid::Stage::SolvePressure);
+    for (float p : created.value()->state().pressure)
+        ASSERT_EQ(p, 0.0f);
+}
+
+// =================================================================================================
+// Convergence at the sizes the requirements name
+// =================================================================================================
+
+// The GPU multigrid's residual after each of `cycles` V-cycles (2 + 2 sweeps, the full
+// hierarchy) on the smooth divergence: one warm-started one-cycle solve per cycle, which
+// continues the previous solve's cycles exactly (the right-hand side does not change).
+std::vector<double> gpuMultigridResiduals(const gpu::Context& ctx, Boundaries b, GridShape grid,
+                                          uint32_t cycles) {
+    SolverOptions options = pressureOptions(grid, b, PressureSolver::Multigrid);
+    options.multigrid.cycles = 1;
+    options.warmStart = true;
+    const FieldState input = smoothState(options);
+    auto created = fluid::SmokeSolver::create(ctx, options);
+    EXPECT_TRUE(created.ok()) << created.error().message;
+    if (!created.ok()) return {};
+    fluid::SmokeSolver& gpu = *created.value();
+    gpu.setState(input);
+    std::vector<double> residuals{relativeResidual(options, input)};
+    for (uint32_t c = 0; c < cycles; ++c) {
+        gpu.runStage(fluid::Stage::SolvePressure);
+        residuals.push_back(relativeResidual(options, gpu.state()));
+    }
+    std::printf("  %ux%ux%u %s: residual", grid.cellsX, grid.cellsY, grid.cellsZ,
+                boundariesName(b));
+    for (double r : residuals)
+        std::printf(" %.3g", r);
+    std::printf("\n");
+    return residuals;
+}
+
+void expectFivefold(const gpu::Context& ctx, Boundaries b, GridShape grid, uint32_t cycles) {
+    const std::vector<double> r = gpuMultigridResiduals(ctx, b, grid, cycles);
+    ASSERT_EQ(r.size(), cycles + 1);
+    for (size_t i = 1; i < r.size(); ++i)
+        EXPECT_GE(r[i - 1] / r[i], 5.0) << boundariesName(b) << " cycle " << i;
+}
+
+TEST_F(GpuPressureTest, MultigridFivefoldPerCycle32) {
+    for (Boundaries b : kAllBoundaries)
+        expectFivefold(ctx(), b, {32, 32, 32, 1.0f / 32}, 3);
+}
+
+TEST_F(GpuPressureTest, MultigridFivefoldPerCycle64) {
+    for (Boundaries b : {Boundaries::Walls, Boundaries::Mixed})
+        expectFivefold(ctx(), b, {64, 64, 64, 1.0f / 64}, 3);
+}
+
+// 1e-3 at 64^3 on the smooth divergence within the reference's iteration count plus one:
+// the GPU runs with cgMaxIterations set to that, and its pressure's residual is measured in
+// double.
+TEST_F(GpuPressureTest, MgpcgReachesOneThousandthAt64) {
+    for (Boundaries b : {Boundaries::Walls, Boundaries::Mixed}) {
+        SolverOptions options =
+            pressureOptions({64, 64, 64, 1.0f / 64}, b, PressureSolver::MultigridPcg);
+        options.cgTolerance = 1e-3f;
+        options.cgMaxIterations = 50;
+        const FieldState input = smoothState(options);
+        fluid::ReferenceSolver cpu(options);
+        cpu.setState(input);
+        cpu.solvePressure();
+        const uint32_t referenceIterations = cpu.pressureIterations();
+        options.cgMaxIterations = referenceIterations + 1;
+        auto created = fluid::SmokeSolver::create(ctx(), options);
+        ASSERT_TRUE(created.ok()) << created.error().message;
+        fluid::SmokeSolver& gpu = *created.value();
+        gpu.setState(input);
+        gpu.runStage(fluid::Stage::SolvePressure);
+        const double residual = relativeResidual(options, gpu.state());
+        std::printf("  %s: GPU %u iterations, residual %.3g; reference %u iterations\n",
+                    boundariesName(b), gpu.lastPressureIterations(), residual, referenceIterations);
+        EXPECT_LE(residual, 1e-3) << boundariesName(b);
+        EXPECT_LE(gpu.lastPressureIterations(), referenceIterations + 1) << boundariesName(b);
+    }
+}
+
+// =================================================================================================
+// Whole steps
+// =================================================================================================
+
+// 100 steps of the puff scenario at 16^3 with each solver, GPU against the reference from the same
+// start. The bound is test_fluid_steps.cpp's for Jacobi (fp32 against fp64, the rounding of 11
+// stages accumulated over 100 steps; 1e-4 is ten times below what a wrong stage gives). Measured
+// on lavapipe: at most 2.2e-5 (the divergence, a difference of nearly equal face values), 4e-6 in
+// pressure, for every solver.
+class GpuPressureStepsTest : public GpuTest,
+                             public ::testing::WithParamInterface<PressureSolver> {};
+
+TEST_P(GpuPressureStepsTest, HundredStepsStayCloseToReference) {
+    auto scenario = fluid::makeScenario("puff", {16, 16, 16});
+    ASSERT_TRUE(scenario.ok()) << scenario.error().message;
+    const fluid::Scenario& s = scenario.value();
+    SolverOptions options = s.options;
+    options.pressureSolver = GetParam();
+    auto created = fluid::SmokeSolver::create(ctx(), options);
+    ASSERT_TRUE(created.ok()) << created.error().message;
+    fluid::SmokeSolver& gpu = *created.value();
+    fluid::ReferenceSolver cpu(options);
+    gpu.setState(s.initial);
+    cpu.setState(s.initial);
+    for (uint32_t step = 0; step < 100; ++step) {
+        const auto emitters = s.emitters(step);
+        ASSERT_TRUE(gpu.setEmitters(emitters).ok());
+        gpu.step();
+        cpu.step(emitters);
+    }
+    const FieldState cpuState = cpu.state();
+    const fluid::StateDifference d = fluid::difference(gpu.state(), cpuState);
+    std::printf("  %s: velocity %.3g, pressure %.3g, pigment %.3g, divergence %.3g\n",
+                fluid::pressureSolverName(GetParam()), d.velocity.relL2, d.pressure.relL2,
+                d.pigment.relL2, d.divergence.relL2);
+    EXPECT_LE(d.velocity.relL2, 1e-4);
+    EXPECT_LE(d.pressure.relL2, 1e-4);
+    EXPECT_LE(d.pigment.relL2, 1e-4);
+    EXPECT_LE(d.divergence.relL2, 1e-4);
+    const fluid::Diagnostics diagnostics = fluid::computeDiagnostics(options, cpuState);
+    EXPECT_GT(diagnostics.kineticEnergy, 1e-6);
+    EXPECT_EQ(fluid::computeDiagnostics(options, gpu.state()).nonFinite, 0u);
+}
+
+INSTANTIATE_TEST_SUITE_P(GpuPressure, GpuPressureStepsTest,
+                         ::testing::Values(PressureSolver::RedBlackGaussSeidel,
+                                           PressureSolver::Multigrid, PressureSolver::MultigridPcg),
+                         [](const auto& param) {
+                             return std::string(fluid::pressureSolverName(param.param));
+                         });
+
+} // namespace
+} // namespace mfx::test
