@@ -99,15 +99,15 @@ public:
     // The exit status, or -1 if still running after `limit`.
     int waitFor(std::chrono::seconds limit) {
         const auto end = std::chrono::steady_clock::now() + limit;
-        while (std::chrono::steady_clock::now() < end) {
+        for (;;) { // checked at least once, so waitFor(0s) polls
             int status = 0;
             if (::waitpid(pid_, &status, WNOHANG) == pid_) {
                 exited_ = true;
                 return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
             }
+            if (std::chrono::steady_clock::now() >= end) return -1;
             std::this_thread::sleep_for(50ms);
         }
-        return -1;
     }
 
 private:
@@ -118,29 +118,34 @@ private:
 // One Xvfb server for the suite, on the first free display from :91.
 class ViewTest : public ::testing::Test {
 protected:
+    // ctest runs each test in a process of its own, in parallel: each process tries displays
+    // from one of its own (by process id), and a server that cannot take its display exits.
     static void SetUpTestSuite() {
-        for (int n = 91; n < 120 && !server_; ++n) {
+        const int first = 100 + int(::getpid() % 800);
+        for (int n = first; n < first + 40 && !server_; ++n) {
             if (std::filesystem::exists("/tmp/.X" + std::to_string(n) + "-lock") ||
                 std::filesystem::exists("/tmp/.X11-unix/X" + std::to_string(n)))
                 continue;
             display_ = ":" + std::to_string(n);
-            const std::string log = outputDir() + "/xvfb.log";
+            const std::string log = outputDir() + "/xvfb_" + std::to_string(n) + ".log";
             server_ = std::make_unique<Child>(
                 std::vector<std::string>{"/usr/bin/Xvfb", display_, "-screen", "0", "1024x768x24",
                                          "-nolisten", "tcp"},
                 log, log, display_, true);
             const auto end = std::chrono::steady_clock::now() + 20s;
-            while (std::chrono::steady_clock::now() < end &&
-                   !std::filesystem::exists("/tmp/.X11-unix/X" + std::to_string(n)))
-                std::this_thread::sleep_for(50ms);
-            if (!std::filesystem::exists("/tmp/.X11-unix/X" + std::to_string(n))) server_.reset();
+            bool up = false;
+            while (!up && server_->waitFor(0s) == -1 && std::chrono::steady_clock::now() < end) {
+                up = std::filesystem::exists("/tmp/.X11-unix/X" + std::to_string(n));
+                if (!up) std::this_thread::sleep_for(50ms);
+            }
+            if (!up) server_.reset();
         }
     }
     static void TearDownTestSuite() { server_.reset(); }
     void SetUp() override {
         ASSERT_TRUE(std::filesystem::exists("/usr/bin/Xvfb"))
             << "Xvfb is not installed (Debian package xvfb; ./build.sh installs it)";
-        ASSERT_TRUE(server_) << "Xvfb did not start; see " << outputDir() << "/xvfb.log";
+        ASSERT_TRUE(server_) << "Xvfb did not start; see " << outputDir() << "/xvfb_*.log";
     }
 
     // motionfx view with `arguments`, its stdout and stderr in files named after the test.
