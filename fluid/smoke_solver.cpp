@@ -174,10 +174,10 @@ SmokeSolver::SmokeSolver(const gpu::Context& ctx, const SolverOptions& options)
                                      "fluid emitters");
     emitterBuffer_ = ownEmitters_.get();
     emitterBufferSize_ = ownEmitters_.size;
-    splatRegions_ = gpu::createBuffer(
-        ctx, 4 * sizeof(shared::SplatRegion),
-        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
-        gpu::MemoryUsage::DeviceLocal, "fluid splat regions");
+    splatRegions_ =
+        gpu::createBuffer(ctx, 4 * sizeof(shared::SplatRegion),
+                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
+                          gpu::MemoryUsage::DeviceLocal, "fluid splat regions");
 
     writeParameters();
 }
@@ -416,10 +416,10 @@ void SmokeSolver::splatImpulses(VkCommandBuffer cmd) {
                 }));
     ++dispatches_;
     vkCmdDispatch(cmd, 1, 1, 1);
-    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                       VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                       VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                       VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    gpu::memoryBarrier(
+        cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+        VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+        VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
     auto writes = [&](auto& w) {
         w.push_back(emitters);
         addVelocity(w, v, 2);

@@ -59,8 +59,7 @@ EffectPass::EffectPass(const gpu::Context& ctx, VkSampleCountFlagBits samples) :
 }
 
 uint32_t EffectPass::draw(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
-                          const SceneCamera& camera, float now,
-                          std::span<const uint8_t> shown) {
+                          const SceneCamera& camera, float now, std::span<const uint8_t> shown) {
     const shared::SceneFrame frame = sceneFrame(simulation.scene(), camera);
     std::memcpy(frame_.mapped, &frame, sizeof frame);
     uint32_t draws = 0;

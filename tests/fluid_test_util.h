@@ -4,6 +4,8 @@
 
 #include "fluid/solver_options.h"
 
+#include <cmath>
+#include <numbers>
 #include <random>
 #include <vector>
 
@@ -71,6 +73,71 @@ inline std::vector<shared::FluidEmitter> twoEmitters(const fluid::GridShape& g) 
                     {1.0f, 0.5f, 0.2f, 1.0f}),
             emitter(size * glm::vec3(0.7f, 0.6f, 0.4f), 0.25f * size.y, {-0.5f, 0.0f, 1.0f}, 20.0f,
                     {0.1f, 0.2f, 0.9f, 0.8f})};
+}
+
+// Velocity component c (0 x, 1 y, 2 z) of a state.
+inline std::vector<float>& component(fluid::FieldState& s, int c) {
+    return c == 0 ? s.velocityX : c == 1 ? s.velocityY : s.velocityZ;
+}
+inline const std::vector<float>& component(const fluid::FieldState& s, int c) {
+    return c == 0 ? s.velocityX : c == 1 ? s.velocityY : s.velocityZ;
+}
+
+// A smooth velocity field (a few low Fourier modes per component, no symmetry), far from
+// divergence-free: its divergence is smooth, the case multigrid's convergence rate is quoted for.
+inline fluid::FieldState smoothState(const fluid::GridShape& g) {
+    fluid::FieldState s = fluid::FieldState::zero(g);
+    const double h = double(g.cellSize);
+    const glm::dvec3 size = glm::dvec3(g.cellsX, g.cellsY, g.cellsZ) * h;
+    for (int c = 0; c < 3; ++c) {
+        const glm::uvec3 n = fluid::faceExtent(g, c);
+        for (uint32_t k = 0; k < n.z; ++k)
+            for (uint32_t j = 0; j < n.y; ++j)
+                for (uint32_t i = 0; i < n.x; ++i) {
+                    glm::dvec3 x = (glm::dvec3(i, j, k) + 0.5) * h;
+                    x[c] -= 0.5 * h;
+                    const glm::dvec3 t = 2.0 * std::numbers::pi * x / size;
+                    const double value = std::sin(t.x + 0.3 * c) * std::cos(2.0 * t.y - 0.2) +
+                                         0.5 * std::cos(t.z + t.x + c) + 0.2 * (c + 1);
+                    component(s, c)[i + size_t(n.x) * (j + size_t(n.y) * k)] = float(value);
+                }
+    }
+    return s;
+}
+
+// Boundary sets of the pressure-solver tests.
+enum class Boundaries { Walls, Open, Periodic, Mixed };
+inline constexpr Boundaries kAllBoundaries[] = {Boundaries::Walls, Boundaries::Open,
+                                                Boundaries::Periodic, Boundaries::Mixed};
+
+inline const char* boundariesName(Boundaries b) {
+    switch (b) {
+    case Boundaries::Walls:
+        return "walls";
+    case Boundaries::Open:
+        return "open";
+    case Boundaries::Periodic:
+        return "periodic";
+    case Boundaries::Mixed:
+        return "mixed";
+    }
+    return "?";
+}
+
+// Pressure-solve options on `grid`, cold start: mixed is mixedBoundaryOptions' faces (x periodic,
+// y no-slip walls, z open below and a free-slip wall above); the others put one kind on every face.
+inline fluid::SolverOptions pressureOptions(fluid::GridShape grid, Boundaries boundaries,
+                                            fluid::PressureSolver solver) {
+    fluid::SolverOptions o = mixedBoundaryOptions(grid);
+    o.pressureSolver = solver;
+    o.warmStart = false;
+    const fluid::Boundary uniform = boundaries == Boundaries::Walls  ? fluid::Boundary::WallFreeSlip
+                                    : boundaries == Boundaries::Open ? fluid::Boundary::Open
+                                                                     : fluid::Boundary::Periodic;
+    if (boundaries != Boundaries::Mixed)
+        for (fluid::FaceBoundary& f : o.boundaries)
+            f = {uniform, glm::vec3(0.0f)};
+    return o;
 }
 
 } // namespace mfx::test

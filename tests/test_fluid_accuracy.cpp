@@ -37,63 +37,6 @@ double rms(const std::vector<float>& values) {
     return values.empty() ? 0.0 : std::sqrt(sum / double(values.size()));
 }
 
-std::vector<float>& component(FieldState& s, int c) {
-    return c == 0 ? s.velocityX : c == 1 ? s.velocityY : s.velocityZ;
-}
-
-// A smooth velocity field (low Fourier modes, no symmetry) far from divergence-free: its
-// divergence is smooth, the case multigrid's convergence rate is quoted for.
-FieldState smoothState(const GridShape& g) {
-    FieldState s = FieldState::zero(g);
-    const double h = double(g.cellSize);
-    const glm::dvec3 size = glm::dvec3(g.cellsX, g.cellsY, g.cellsZ) * h;
-    for (int c = 0; c < 3; ++c) {
-        const glm::uvec3 n = fluid::faceExtent(g, c);
-        for (uint32_t k = 0; k < n.z; ++k)
-            for (uint32_t j = 0; j < n.y; ++j)
-                for (uint32_t i = 0; i < n.x; ++i) {
-                    glm::dvec3 x = (glm::dvec3(i, j, k) + 0.5) * h;
-                    x[c] -= 0.5 * h;
-                    const glm::dvec3 t = 2.0 * std::numbers::pi * x / size;
-                    const double value = std::sin(t.x + 0.3 * c) * std::cos(2.0 * t.y - 0.2) +
-                                         0.5 * std::cos(t.z + t.x + c) + 0.2 * (c + 1);
-                    component(s, c)[i + size_t(n.x) * (j + size_t(n.y) * k)] = float(value);
-                }
-    }
-    return s;
-}
-
-enum class Boundaries { Walls, Open, Periodic, Mixed };
-
-const char* boundariesName(Boundaries b) {
-    switch (b) {
-    case Boundaries::Walls:
-        return "walls";
-    case Boundaries::Open:
-        return "open";
-    case Boundaries::Periodic:
-        return "periodic";
-    case Boundaries::Mixed:
-        return "mixed";
-    }
-    return "?";
-}
-
-// Pressure-solve options on `grid` with the given boundaries (mixed: x periodic, y no-slip walls,
-// z open below and a free-slip wall above).
-SolverOptions pressureOptions(GridShape grid, Boundaries boundaries, PressureSolver solver) {
-    SolverOptions o = mixedBoundaryOptions(grid);
-    o.pressureSolver = solver;
-    o.warmStart = false;
-    const Boundary uniform = boundaries == Boundaries::Walls  ? Boundary::WallFreeSlip
-                             : boundaries == Boundaries::Open ? Boundary::Open
-                                                              : Boundary::Periodic;
-    if (boundaries != Boundaries::Mixed)
-        for (fluid::FaceBoundary& f : o.boundaries)
-            f = {uniform, glm::vec3(0.0f)};
-    return o;
-}
-
 struct Projection {
     double divergenceBefore = 0.0; // RMS
     double divergenceAfter = 0.0;  // RMS, recomputed from the projected faces

@@ -27,64 +27,11 @@ using fluid::GridShape;
 using fluid::PressureSolver;
 using fluid::SolverOptions;
 
-enum class Boundaries { Walls, Open, Periodic, Mixed };
-constexpr Boundaries kAllBoundaries[] = {Boundaries::Walls, Boundaries::Open, Boundaries::Periodic,
-                                         Boundaries::Mixed};
-
-const char* boundariesName(Boundaries b) {
-    switch (b) {
-    case Boundaries::Walls:
-        return "walls";
-    case Boundaries::Open:
-        return "open";
-    case Boundaries::Periodic:
-        return "periodic";
-    case Boundaries::Mixed:
-        return "mixed";
-    }
-    return "?";
-}
-
-// Pressure-solve options: mixed is x periodic, y no-slip walls, z open below and a free-slip wall
-// above (mixedBoundaryOptions); the others put one kind on every face.
-SolverOptions pressureOptions(GridShape grid, Boundaries boundaries, PressureSolver solver) {
-    SolverOptions o = mixedBoundaryOptions(grid);
-    o.pressureSolver = solver;
-    o.warmStart = false;
-    const Boundary uniform = boundaries == Boundaries::Walls  ? Boundary::WallFreeSlip
-                             : boundaries == Boundaries::Open ? Boundary::Open
-                                                              : Boundary::Periodic;
-    if (boundaries != Boundaries::Mixed)
-        for (fluid::FaceBoundary& f : o.boundaries)
-            f = {uniform, glm::vec3(0.0f)};
-    return o;
-}
-
-std::vector<float>& component(FieldState& s, int c) {
-    return c == 0 ? s.velocityX : c == 1 ? s.velocityY : s.velocityZ;
-}
-
 // A smooth velocity field (low Fourier modes, no symmetry) far from divergence-free, with its
 // divergence (boundaries applied first, as a step does): the right-hand side multigrid's
 // convergence rate is quoted for (the same field as test_fluid_accuracy.cpp's).
-FieldState smoothState(const SolverOptions& options) {
-    const GridShape& g = options.grid;
-    FieldState s = FieldState::zero(g);
-    const double h = double(g.cellSize);
-    const glm::dvec3 size = glm::dvec3(g.cellsX, g.cellsY, g.cellsZ) * h;
-    for (int c = 0; c < 3; ++c) {
-        const glm::uvec3 n = fluid::faceExtent(g, c);
-        for (uint32_t k = 0; k < n.z; ++k)
-            for (uint32_t j = 0; j < n.y; ++j)
-                for (uint32_t i = 0; i < n.x; ++i) {
-                    glm::dvec3 x = (glm::dvec3(i, j, k) + 0.5) * h;
-                    x[c] -= 0.5 * h;
-                    const glm::dvec3 t = 2.0 * std::numbers::pi * x / size;
-                    const double value = std::sin(t.x + 0.3 * c) * std::cos(2.0 * t.y - 0.2) +
-                                         0.5 * std::cos(t.z + t.x + c) + 0.2 * (c + 1);
-                    component(s, c)[i + size_t(n.x) * (j + size_t(n.y) * k)] = float(value);
-                }
-    }
+FieldState smoothDivergence(const SolverOptions& options) {
+    FieldState s = smoothState(options.grid);
     fluid::ReferenceSolver cpu(options);
     cpu.setState(s);
     cpu.applyBoundaries();
@@ -364,7 +311,7 @@ std::vector<double> gpuMultigridResiduals(const gpu::Context& ctx, Boundaries b,
     SolverOptions options = pressureOptions(grid, b, PressureSolver::Multigrid);
     options.multigrid.cycles = 1;
     options.warmStart = true;
-    const FieldState input = smoothState(options);
+    const FieldState input = smoothDivergence(options);
     auto created = fluid::SmokeSolver::create(ctx, options);
     EXPECT_TRUE(created.ok()) << created.error().message;
     if (!created.ok()) return {};
@@ -409,7 +356,7 @@ TEST_F(GpuPressureTest, MgpcgReachesOneThousandthAt64) {
             pressureOptions({64, 64, 64, 1.0f / 64}, b, PressureSolver::MultigridPcg);
         options.cgTolerance = 1e-3f;
         options.cgMaxIterations = 50;
-        const FieldState input = smoothState(options);
+        const FieldState input = smoothDivergence(options);
         fluid::ReferenceSolver cpu(options);
         cpu.setState(input);
         cpu.solvePressure();

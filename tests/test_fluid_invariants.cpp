@@ -50,13 +50,6 @@ size_t faceIndex(const GridShape& g, int c, glm::uvec3 q) {
     return q.x + size_t(n.x) * (q.y + size_t(n.y) * q.z);
 }
 
-std::vector<float>& component(FieldState& s, int c) {
-    return c == 0 ? s.velocityX : (c == 1 ? s.velocityY : s.velocityZ);
-}
-const std::vector<float>& component(const FieldState& s, int c) {
-    return c == 0 ? s.velocityX : (c == 1 ? s.velocityY : s.velocityZ);
-}
-
 std::unique_ptr<fluid::SmokeSolver> makeGpu(const gpu::Context& ctx, const SolverOptions& options) {
     auto created = fluid::SmokeSolver::create(ctx, options);
     if (!created.ok()) {
@@ -71,28 +64,6 @@ FieldState scaledVelocity(FieldState s, float scale) {
     for (int c = 0; c < 3; ++c)
         for (float& v : component(s, c))
             v *= scale;
-    return s;
-}
-
-// A smooth velocity field (a few low Fourier modes per component, no symmetry), far from
-// divergence-free.
-FieldState smoothState(const GridShape& g) {
-    FieldState s = fluid::FieldState::zero(g);
-    const double h = double(g.cellSize);
-    const glm::dvec3 size = glm::dvec3(g.cellsX, g.cellsY, g.cellsZ) * h;
-    for (int c = 0; c < 3; ++c) {
-        const glm::uvec3 n = fluid::faceExtent(g, c);
-        for (uint32_t k = 0; k < n.z; ++k)
-            for (uint32_t j = 0; j < n.y; ++j)
-                for (uint32_t i = 0; i < n.x; ++i) {
-                    glm::dvec3 x = (glm::dvec3(i, j, k) + 0.5) * h;
-                    x[c] -= 0.5 * h;
-                    const glm::dvec3 t = 2.0 * std::numbers::pi * x / size;
-                    const double value = std::sin(t.x + 0.3 * c) * std::cos(2.0 * t.y - 0.2) +
-                                         0.5 * std::cos(t.z + t.x + c) + 0.2 * (c + 1);
-                    component(s, c)[faceIndex(g, c, {i, j, k})] = float(value);
-                }
-    }
     return s;
 }
 
