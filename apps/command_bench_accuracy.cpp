@@ -381,7 +381,6 @@ int runBenchAccuracy(std::span<const std::string> args) {
             SolverOptions o = base;
             o.pressureSolver = c.solver;
             // The effort needed, from the reference's residual history (the same arithmetic).
-            fluid::ReferenceSolver ref(o);
             if (c.solver == PressureSolver::Multigrid) o.multigrid.cycles = c.cap;
             if (c.solver == PressureSolver::MultigridPcg) {
                 o.cgTolerance = 1e-3f;
@@ -389,7 +388,7 @@ int runBenchAccuracy(std::span<const std::string> args) {
             } else {
                 o.jacobiIterations = c.cap;
             }
-            ref = fluid::ReferenceSolver(o);
+            fluid::ReferenceSolver ref(o);
             ref.setState(input);
             ref.setRecordResidualHistory(true);
             ref.solvePressure();
