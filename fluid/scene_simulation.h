@@ -29,6 +29,7 @@
 #include "fluid/segment_emitters.h"
 #include "fluid/smoke_solver.h"
 
+#include <atomic>
 #include <memory>
 #include <string>
 #include <vector>
@@ -116,10 +117,17 @@ public:
     const std::vector<TrajectoryEffect>& trajectories() const { return trajectories_; }
     const std::vector<SmokeGrid>& smokeGrids() const { return grids_; }
     uint64_t fluidBytes() const;
+    // Different for every simulation this process creates (a renderer that caches descriptor
+    // sets of a simulation's images knows from it when they belong to one that is gone).
+    uint64_t serial() const { return serial_; }
 
 private:
     SceneSimulation(const gpu::Context& ctx, scene::Scene scene, const anim::Character& character)
         : ctx_(ctx), scene_(std::move(scene)), character_(character) {}
+    static uint64_t nextSerial() {
+        static std::atomic<uint64_t> counter{0};
+        return ++counter;
+    }
     void addPass(const std::string& name, uint32_t dispatches);
     void recordSmoke(VkCommandBuffer cmd, SmokeGrid& grid, uint32_t frame);
     bool effectLive(const scene::EffectSpec& e, float time) const;
@@ -128,6 +136,7 @@ private:
     const gpu::Context& ctx_;
     scene::Scene scene_;
     const anim::Character& character_;
+    uint64_t serial_ = nextSerial();
     uint32_t frames_ = 0;
     std::vector<TrajectoryEffect> trajectories_;
     std::vector<SmokeGrid> grids_;

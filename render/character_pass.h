@@ -49,7 +49,7 @@ private:
 
     const gpu::Context& ctx_;
     const anim::Character& character_;
-    const scene::Scene& scene_;
+    const scene::Scene scene_; // a copy: the pass may outlive the simulation that owned it
     anim::SkinVertices skinning_;
     gpu::Program program_, shadowProgram_;
     gpu::Buffer frame_;

@@ -22,7 +22,9 @@ inline constexpr const char* kFramePassNames[] = {"skin", "shadow", "scene", "ef
 class FrameRenderer {
 public:
     // A target of `width` × `height` with up to `wantedSamples` samples per pixel (fewer where the
-    // device allows fewer), for the scene and character of `simulation`.
+    // device allows fewer), for the scene and character of `simulation`. The character must
+    // outlive the renderer; the simulation need not: the renderer draws any later simulation of
+    // the same scene and character (a restarted view).
     FrameRenderer(const gpu::Context& ctx, const fluid::SceneSimulation& simulation, uint32_t width,
                   uint32_t height, VkSampleCountFlagBits wantedSamples = VK_SAMPLE_COUNT_4_BIT);
 

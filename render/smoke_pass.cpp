@@ -168,6 +168,10 @@ void SmokePass::findPigmentBounds(VkCommandBuffer cmd, std::span<const Volume> v
 uint32_t SmokePass::draw(VkCommandBuffer cmd, RenderTarget& target,
                          const fluid::SceneSimulation& simulation, const SceneCamera& camera,
                          std::span<const uint8_t> shown, const SmokeLook& look) {
+    if (simulation.serial() != simulation_) {
+        resetSets();
+        simulation_ = simulation.serial();
+    }
     std::vector<Volume> volumes;
     for (const fluid::SceneSimulation::SmokeGrid& grid : simulation.smokeGrids()) {
         bool visible = shown.empty();

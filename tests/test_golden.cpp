@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <memory>
 #include <string>
 
 namespace mfx::test {
@@ -85,7 +86,9 @@ render::RgbaImage sideBySide(const render::RgbaImage& made, const render::RgbaIm
 class GoldenImage : public GpuTest {
 protected:
     // The last frame of docs/scenes/NAME.json, rendered as `motionfx render --size 160x90` does.
-    static render::RgbaImage renderScene(const std::string& name) {
+    // With `restartAfter` > 0 the renderer first draws that many frames of another simulation of
+    // the scene, which is destroyed before the one drawn (as a restarted view does).
+    static render::RgbaImage renderScene(const std::string& name, uint32_t restartAfter = 0) {
         const std::string path = std::string(MFX_SOURCE_DIR) + "/docs/scenes/" + name + ".json";
         Result<scene::Scene> loaded = scene::loadScene(path);
         EXPECT_TRUE(loaded) << (loaded ? "" : loaded.error().message);
@@ -99,12 +102,24 @@ protected:
         auto sim = fluid::SceneSimulation::create(ctx(), s, character.value());
         EXPECT_TRUE(sim) << (sim ? "" : sim.error().message);
         if (!sim) return {};
-        render::FrameRenderer renderer(ctx(), *sim.value(), kWidth, kHeight);
-        for (uint32_t f = 0; f < sim.value()->frameCount(); ++f) {
-            gpu::submitOneShot(ctx(),
-                               [&](VkCommandBuffer cmd) { renderer.record(cmd, *sim.value(), f); });
-            sim.value()->finishFrame();
+        std::unique_ptr<fluid::SceneSimulation> simulation = std::move(sim).value();
+        render::FrameRenderer renderer(ctx(), *simulation, kWidth, kHeight);
+        auto play = [&](uint32_t frames) {
+            for (uint32_t f = 0; f < frames; ++f) {
+                gpu::submitOneShot(
+                    ctx(), [&](VkCommandBuffer cmd) { renderer.record(cmd, *simulation, f); });
+                simulation->finishFrame();
+            }
+        };
+        if (restartAfter > 0) {
+            play(std::min(restartAfter, simulation->frameCount()));
+            simulation.reset();
+            auto again = fluid::SceneSimulation::create(ctx(), s, character.value());
+            EXPECT_TRUE(again) << (again ? "" : again.error().message);
+            if (!again) return {};
+            simulation = std::move(again).value();
         }
+        play(simulation->frameCount());
         return {kWidth, kHeight, render::readColor(ctx(), renderer.target())};
     }
 
@@ -115,8 +130,8 @@ protected:
         return read ? std::move(read).value() : render::RgbaImage{};
     }
 
-    static void checkGolden(const std::string& name) {
-        const render::RgbaImage made = renderScene(name);
+    static void checkGolden(const std::string& name, uint32_t restartAfter = 0) {
+        const render::RgbaImage made = renderScene(name, restartAfter);
         const render::RgbaImage golden = expected(name);
         ASSERT_EQ(made.rgba.size(), size_t(kWidth) * kHeight * 4);
         ASSERT_EQ(golden.width, kWidth);
@@ -161,6 +176,13 @@ TEST_F(GoldenImage, AllEffects) {
 
 // The tolerance is tight enough to see any one effect: each effect's golden is outside it of the
 // character alone, and the combined shot is outside it of each effect alone.
+// A renderer outlives the simulation it was made for: after drawing a few frames of one that is
+// then destroyed, it draws a new simulation of the scene as a fresh renderer would (the view's
+// restart; it once kept the destroyed simulation's scene and smoke descriptor sets).
+TEST_F(GoldenImage, RendererDrawsARestartedSimulation) {
+    checkGolden("all", 5);
+}
+
 TEST_F(GoldenImage, ToleranceSeesEachEffect) {
     const render::RgbaImage alone = expected("none");
     const render::RgbaImage all = expected("all");
