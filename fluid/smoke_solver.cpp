@@ -74,10 +74,7 @@ Result<std::unique_ptr<SmokeSolver>> SmokeSolver::create(const gpu::Context& ctx
         !valid)
         return valid.error();
     // The accuracy options the GPU solver has so far (docs/fluid.md, "Accuracy options"): every
-    // pressure solver, semi-Lagrangian advection, fp32 storage.
-    if (options.advection != AdvectionScheme::SemiLagrangian)
-        return Error{std::string("advection \"") + advectionName(options.advection) +
-                     "\" is not available on the GPU solver yet (only \"semi-lagrangian\")"};
+    // pressure solver and advection scheme, fp32 storage.
     if (options.storage != Storage::Float32)
         return Error{"fp16 storage is not available on the GPU solver yet (only fp32)"};
     for (int axis = 0; axis < 3; ++axis)
@@ -195,12 +192,18 @@ gpu::Program& SmokeSolver::program(Stage stage, int part, uint32_t target) {
                          : makeProgram(ctx_, options_, "emitter_bounds", emitter_bounds_comp, 0, 3,
                                        1, {}, 1u << 2);
         break;
-    case Stage::AdvectVelocity:
-        slot = makeProgram(ctx_, options_, "advect_velocity", advect_velocity_comp, target, 5, 4);
+    case Stage::AdvectVelocity: { // part: the pass (MFX_ADVECT_*), constant id 11
+        const uint32_t pass[] = {uint32_t(part)};
+        slot = makeProgram(ctx_, options_, "advect_velocity", advect_velocity_comp, target, 6, 4,
+                           pass);
         break;
-    case Stage::AdvectPigment:
-        slot = makeProgram(ctx_, options_, "advect_pigment", advect_pigment_comp, target, 6, 5);
+    }
+    case Stage::AdvectPigment: {
+        const uint32_t pass[] = {uint32_t(part)};
+        slot =
+            makeProgram(ctx_, options_, "advect_pigment", advect_pigment_comp, target, 7, 5, pass);
         break;
+    }
     case Stage::ApplyBuoyancy:
         slot = makeProgram(ctx_, options_, "apply_buoyancy", apply_buoyancy_comp, target, 4, 3);
         break;
@@ -437,32 +440,53 @@ void SmokeSolver::splatImpulses(VkCommandBuffer cmd) {
     barrier(cmd);
 }
 
+// The advection passes of options().advection (shaders/shared/fluid.h, MFX_ADVECT_*): each
+// writes the next field's image set (`to`), the work field of the pass after it; the last pass
+// leaves the advected field there.
+std::vector<uint32_t> SmokeSolver::advectionPasses() const {
+    switch (options_.advection) {
+    case AdvectionScheme::SemiLagrangian:
+        break;
+    case AdvectionScheme::MacCormack:
+        return {MFX_ADVECT_PREDICT, MFX_ADVECT_MACCORMACK_CORRECT};
+    case AdvectionScheme::Bfecc:
+        return {MFX_ADVECT_PREDICT, MFX_ADVECT_BFECC_COMPENSATE, MFX_ADVECT_BFECC_FINAL};
+    }
+    return {MFX_ADVECT_SEMI_LAGRANGIAN};
+}
+
 void SmokeSolver::advectVelocity(VkCommandBuffer cmd) {
     const int from = currentVelocity_, to = 1 - currentVelocity_;
-    for (uint32_t c = 0; c < 3; ++c) {
-        gpu::Program& prog = program(Stage::AdvectVelocity, 0, c);
-        VkDescriptorSet s = set(prog, {from, 0, 0}, [&](auto& w) {
-            addVelocity(w, from, 1);
-            w.push_back(gpu::bindBuffer(4, scratch_[c]));
-        });
-        dispatch(cmd, prog, s, faceExtent(options_.grid, int(c)));
+    for (uint32_t pass : advectionPasses()) {
+        for (uint32_t c = 0; c < 3; ++c) {
+            gpu::Program& prog = program(Stage::AdvectVelocity, int(pass), c);
+            VkDescriptorSet s = set(prog, {from, 0, 0}, [&](auto& w) {
+                addVelocity(w, from, 1);
+                w.push_back(gpu::bindBuffer(4, scratch_[c]));
+                w.push_back(storage(5, velocity_[to][c]));
+            });
+            dispatch(cmd, prog, s, faceExtent(options_.grid, int(c)));
+        }
+        copyToImages(cmd, {{&scratch_[0], &velocity_[to][0]},
+                           {&scratch_[1], &velocity_[to][1]},
+                           {&scratch_[2], &velocity_[to][2]}});
     }
-    copyToImages(cmd, {{&scratch_[0], &velocity_[to][0]},
-                       {&scratch_[1], &velocity_[to][1]},
-                       {&scratch_[2], &velocity_[to][2]}});
     currentVelocity_ = to;
 }
 
 void SmokeSolver::advectPigment(VkCommandBuffer cmd) {
     const int v = currentVelocity_, from = currentPigment_, to = 1 - currentPigment_;
-    gpu::Program& prog = program(Stage::AdvectPigment, 0, MFX_TARGET_PIGMENT);
-    VkDescriptorSet s = set(prog, {v, from, 0}, [&](auto& w) {
-        addVelocity(w, v, 1);
-        w.push_back(storage(4, pigment_[from]));
-        w.push_back(gpu::bindBuffer(5, scratch_[0]));
-    });
-    dispatch(cmd, prog, s, cells_);
-    copyToImages(cmd, {{&scratch_[0], &pigment_[to]}});
+    for (uint32_t pass : advectionPasses()) {
+        gpu::Program& prog = program(Stage::AdvectPigment, int(pass), MFX_TARGET_PIGMENT);
+        VkDescriptorSet s = set(prog, {v, from, 0}, [&](auto& w) {
+            addVelocity(w, v, 1);
+            w.push_back(storage(4, pigment_[from]));
+            w.push_back(gpu::bindBuffer(5, scratch_[0]));
+            w.push_back(storage(6, pigment_[to]));
+        });
+        dispatch(cmd, prog, s, cells_);
+        copyToImages(cmd, {{&scratch_[0], &pigment_[to]}});
+    }
     currentPigment_ = to;
 }
 

@@ -113,6 +113,7 @@ private:
                      uint32_t firstBinding) const;
 
     void splatImpulses(VkCommandBuffer cmd);
+    std::vector<uint32_t> advectionPasses() const;
     void advectVelocity(VkCommandBuffer cmd);
     void advectPigment(VkCommandBuffer cmd);
     void applyBuoyancy(VkCommandBuffer cmd);

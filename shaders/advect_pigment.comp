@@ -1,6 +1,8 @@
-// advectPigment: semi-Lagrangian advection of the RGBA pigment, then the per-second fade
-// (docs/fluid.md). Twin: fluid/reference/advect_pigment.cpp. Writes a buffer that the solver copies
-// into the pigment image.
+// advectPigment: advection of the RGBA pigment through the velocity (semi-Lagrangian; MacCormack
+// or BFECC, both limited, in passes as advect_velocity.comp), then the per-second fade
+// (docs/fluid.md). Twins: fluid/reference/advect_pigment.cpp, semi_lagrangian.cpp, maccormack.cpp,
+// bfecc.cpp. Writes a buffer that the solver copies into an image: the work image for the next
+// pass, or the new pigment after the last one.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "fluid_common.glsl"
@@ -12,33 +14,79 @@ layout(binding = 4, rgba32f) uniform readonly image3D pigmentIn;
 layout(std430, binding = 5) writeonly buffer PigmentOut {
     vec4 pigmentOut[];
 };
+// The pass's intermediate pigment (unused by the semi-Lagrangian and predict passes).
+layout(binding = 6, rgba32f) uniform readonly image3D work;
 
-float loadVelocity(int c, ivec3 index) {
+layout(constant_id = 11) const uint kPass = MFX_ADVECT_SEMI_LAGRANGIAN;
+
+float loadFaceField(int field, int c, ivec3 index) {
     return c == 0 ? imageLoad(velocityX, index).r
                   : (c == 1 ? imageLoad(velocityY, index).r : imageLoad(velocityZ, index).r);
 }
 
 #include "fluid_sampling.glsl"
 
-vec4 fetchPigment(ivec3 index) {
-    return imageLoad(pigmentIn, resolveCell(index));
+const int kSourcePigment = 0;
+const int kWorkPigment = 1;
+
+vec4 fetchPigment(int field, ivec3 index) {
+    ivec3 cell = resolveCell(index);
+    return field == kWorkPigment ? imageLoad(work, cell) : imageLoad(pigmentIn, cell);
 }
 
-vec4 samplePigment(vec3 x) {
+vec4 samplePigment(int field, vec3 x) {
     vec3 g = gridCoordinate(x, vec3(0.5));
     vec3 base = floor(g);
     vec3 f = g - base;
     ivec3 i0 = ivec3(base);
-    vec4 c00 = lerpValue(fetchPigment(i0 + ivec3(0, 0, 0)), fetchPigment(i0 + ivec3(1, 0, 0)), f.x);
-    vec4 c10 = lerpValue(fetchPigment(i0 + ivec3(0, 1, 0)), fetchPigment(i0 + ivec3(1, 1, 0)), f.x);
-    vec4 c01 = lerpValue(fetchPigment(i0 + ivec3(0, 0, 1)), fetchPigment(i0 + ivec3(1, 0, 1)), f.x);
-    vec4 c11 = lerpValue(fetchPigment(i0 + ivec3(0, 1, 1)), fetchPigment(i0 + ivec3(1, 1, 1)), f.x);
+    vec4 c00 = lerpValue(fetchPigment(field, i0 + ivec3(0, 0, 0)),
+                         fetchPigment(field, i0 + ivec3(1, 0, 0)), f.x);
+    vec4 c10 = lerpValue(fetchPigment(field, i0 + ivec3(0, 1, 0)),
+                         fetchPigment(field, i0 + ivec3(1, 1, 0)), f.x);
+    vec4 c01 = lerpValue(fetchPigment(field, i0 + ivec3(0, 0, 1)),
+                         fetchPigment(field, i0 + ivec3(1, 0, 1)), f.x);
+    vec4 c11 = lerpValue(fetchPigment(field, i0 + ivec3(0, 1, 1)),
+                         fetchPigment(field, i0 + ivec3(1, 1, 1)), f.x);
     return lerpValue(lerpValue(c00, c10, f.y), lerpValue(c01, c11, f.y), f.z);
+}
+
+// Per channel, the smallest and largest of the eight source values samplePigment interpolates.
+void sourceRange(vec3 x, out vec4 low, out vec4 high) {
+    ivec3 i0 = ivec3(floor(gridCoordinate(x, vec3(0.5))));
+    low = fetchPigment(kSourcePigment, i0);
+    high = low;
+    for (int corner = 1; corner < 8; ++corner) {
+        vec4 v = fetchPigment(kSourcePigment,
+                              i0 + ivec3(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1));
+        low = min(low, v);
+        high = max(high, v);
+    }
 }
 
 void main() {
     ivec3 q = ivec3(gl_GlobalInvocationID);
     if (any(greaterThanEqual(q, cellCount()))) return;
-    float fade = exp(-params.rates.x * timeStep());
-    pigmentOut[cellElement(q)] = flushTiny(samplePigment(backTrace(cellCentre(q))) * fade);
+    vec3 x = cellCentre(q);
+    vec4 value;
+    if (kPass == MFX_ADVECT_BFECC_COMPENSATE) {
+        vec4 source = imageLoad(pigmentIn, q);
+        value = source + 0.5 * (source - samplePigment(kWorkPigment, backTrace(x, -timeStep())));
+    } else {
+        vec3 departure = backTrace(x);
+        if (kPass == MFX_ADVECT_SEMI_LAGRANGIAN || kPass == MFX_ADVECT_PREDICT) {
+            value = samplePigment(kSourcePigment, departure);
+        } else {
+            if (kPass == MFX_ADVECT_MACCORMACK_CORRECT) {
+                vec4 returned = samplePigment(kWorkPigment, backTrace(x, -timeStep()));
+                value = imageLoad(work, q) + 0.5 * (imageLoad(pigmentIn, q) - returned);
+            } else { // MFX_ADVECT_BFECC_FINAL
+                value = samplePigment(kWorkPigment, departure);
+            }
+            vec4 low, high;
+            sourceRange(departure, low, high);
+            value = clamp(value, low, high);
+        }
+        if (kPass != MFX_ADVECT_PREDICT) value = flushTiny(value * exp(-params.rates.x * timeStep()));
+    }
+    pigmentOut[cellElement(q)] = value;
 }

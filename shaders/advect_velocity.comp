@@ -1,6 +1,10 @@
-// advectVelocity: semi-Lagrangian advection of each MAC face component (docs/fluid.md; Stam 1999,
-// eq. 7), then the per-second drag, u *= exp(-drag * dt). Twin: fluid/reference/advect_velocity.cpp.
-// One dispatch per component, writing a buffer that the solver copies into the component's image.
+// advectVelocity: advection of each MAC face component through the velocity as it was on entry
+// (docs/fluid.md; Stam 1999, eq. 7 for the semi-Lagrangian step; MacCormack after Selle et al.
+// 2008 and BFECC after Kim et al. 2005, both limited), then the per-second drag,
+// u *= exp(-drag * dt). Twins: fluid/reference/advect_velocity.cpp, semi_lagrangian.cpp,
+// maccormack.cpp, bfecc.cpp. One dispatch per component and pass (kPass, MFX_ADVECT_*), writing a
+// buffer that the solver copies into an image: the component's work image for the next pass, or
+// its new velocity after the last one.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "fluid_common.glsl"
@@ -11,8 +15,15 @@ layout(binding = 3, r32f) uniform readonly image3D velocityZ;
 layout(std430, binding = 4) writeonly buffer Out {
     float outValues[];
 };
+// The component kTarget's intermediate field (unused by the semi-Lagrangian and predict passes).
+layout(binding = 5, r32f) uniform readonly image3D work;
 
-float loadVelocity(int c, ivec3 index) {
+layout(constant_id = 11) const uint kPass = MFX_ADVECT_SEMI_LAGRANGIAN;
+
+const int kWorkField = 1;
+
+float loadFaceField(int field, int c, ivec3 index) {
+    if (field == kWorkField) return imageLoad(work, index).r;
     return c == 0 ? imageLoad(velocityX, index).r
                   : (c == 1 ? imageLoad(velocityY, index).r : imageLoad(velocityZ, index).r);
 }
@@ -23,8 +34,33 @@ void main() {
     int c = int(kTarget);
     ivec3 q = ivec3(gl_GlobalInvocationID);
     if (any(greaterThanEqual(q, faceCount(c)))) return;
+    bool wallNormal = wallNormalFace(c, q);
+    vec3 x = facePosition(c, q);
     float value = 0.0;
-    if (!wallNormalFace(c, q))
-        value = sampleVelocity(c, backTrace(facePosition(c, q))) * exp(-params.cell.w * timeStep());
-    outValues[faceElement(c, q)] = flushTiny(value);
+    if (kPass == MFX_ADVECT_BFECC_COMPENSATE) {
+        // A wall-normal face samples as 0, as in every semi-Lagrangian pass.
+        float source = loadFaceField(kVelocityField, c, q);
+        float returned = wallNormal ? 0.0 : sampleFace(kWorkField, c, backTrace(x, -timeStep()));
+        value = source + 0.5 * (source - returned);
+    } else if (!wallNormal) {
+        vec3 departure = backTrace(x);
+        if (kPass == MFX_ADVECT_SEMI_LAGRANGIAN || kPass == MFX_ADVECT_PREDICT) {
+            value = sampleFace(kVelocityField, c, departure);
+        } else {
+            if (kPass == MFX_ADVECT_MACCORMACK_CORRECT) {
+                float source = loadFaceField(kVelocityField, c, q);
+                float returned = sampleFace(kWorkField, c, backTrace(x, -timeStep()));
+                value = imageLoad(work, q).r + 0.5 * (source - returned);
+            } else { // MFX_ADVECT_BFECC_FINAL
+                value = sampleFace(kWorkField, c, departure);
+            }
+            vec2 range = faceRange(kVelocityField, c, departure);
+            value = clamp(value, range.x, range.y);
+        }
+        if (kPass != MFX_ADVECT_PREDICT) value *= exp(-params.cell.w * timeStep());
+    }
+    outValues[faceElement(c, q)] = kPass == MFX_ADVECT_PREDICT ||
+                                           kPass == MFX_ADVECT_BFECC_COMPENSATE
+                                       ? value
+                                       : flushTiny(value);
 }

@@ -21,6 +21,21 @@
 #define MFX_INTEGRATOR_EULER 0u
 #define MFX_INTEGRATOR_RK2 1u
 
+// The passes of one field's advection (docs/fluid.md, "Accuracy options"), a specialization
+// constant of advect_velocity and advect_pigment. With A the semi-Lagrangian step over dt and A^R
+// the same step over -dt, source the field on entry and work the pass's intermediate field:
+//   SEMI_LAGRANGIAN     A(source), faded
+//   PREDICT             A(source)                                   (MacCormack, BFECC)
+//   MACCORMACK_CORRECT  limit(work + (source - A^R(work)) / 2), faded; work = A(source)
+//   BFECC_COMPENSATE    source + (source - A^R(work)) / 2;          work = A(source)
+//   BFECC_FINAL         limit(A(work)), faded;                       work = the compensated field
+// where limit clamps to the range of the source values A's sample at the same point reads.
+#define MFX_ADVECT_SEMI_LAGRANGIAN 0u
+#define MFX_ADVECT_PREDICT 1u
+#define MFX_ADVECT_MACCORMACK_CORRECT 2u
+#define MFX_ADVECT_BFECC_COMPENSATE 3u
+#define MFX_ADVECT_BFECC_FINAL 4u
+
 // Which field a dispatch works on (FluidDispatch.target).
 #define MFX_TARGET_VELOCITY_X 0u
 #define MFX_TARGET_VELOCITY_Y 1u
