@@ -358,7 +358,9 @@ gpu::Program& GpuMultigrid::program(Kernel kernel) {
         std::span<const uint32_t> spirv;
     };
     const Source sources[KernelCount] = {
-        {"load_pressure_system", load_pressure_system_comp},
+        {"load_pressure_system", options_.storage == Storage::Float16
+                                     ? load_pressure_system_comp_half
+                                     : load_pressure_system_comp},
         {"store_pressure", store_pressure_comp},
         {"relax_colour", relax_colour_comp},
         {"compute_residual", compute_residual_comp},

@@ -10,6 +10,10 @@
 
 namespace mfx::fluid {
 
+// The variant of a stage's shader for the solver's storage: binary16 images with fp16
+// (shaders/field_formats.glsl).
+#define MFX_FIELD_SHADER(name) (options_.storage == Storage::Float16 ? name##_half : name)
+
 namespace {
 
 // Sampled too: a renderer ray-marches the pigment (in GENERAL layout, as the solver keeps it).
@@ -63,6 +67,55 @@ gpu::DescriptorWrite storage(uint32_t binding, const gpu::Image& image) {
     return gpu::bindImage(binding, image, VK_IMAGE_LAYOUT_GENERAL);
 }
 
+// The formats of the stored fields (velocity and pressure; pigment) for the options' storage.
+VkFormat scalarFormat(const SolverOptions& options) {
+    return options.storage == Storage::Float16 ? VK_FORMAT_R16_SFLOAT : VK_FORMAT_R32_SFLOAT;
+}
+VkFormat rgbaFormat(const SolverOptions& options) {
+    return options.storage == Storage::Float16 ? VK_FORMAT_R16G16B16A16_SFLOAT
+                                               : VK_FORMAT_R32G32B32A32_SFLOAT;
+}
+
+bool isHalf(VkFormat format) {
+    return format == VK_FORMAT_R16_SFLOAT || format == VK_FORMAT_R16G16B16A16_SFLOAT;
+}
+
+// IEEE 754-2008 binary16 bits of `v`, rounded to nearest with ties to even (the rounding of
+// fluid/reference/half_storage.cpp); magnitudes that round above 65504 become infinite.
+uint16_t toHalfBits(float v) {
+    uint32_t bits = 0;
+    std::memcpy(&bits, &v, sizeof bits);
+    const uint16_t sign = uint16_t((bits >> 16) & 0x8000u);
+    const uint32_t magnitude = bits & 0x7fffffffu;
+    if (magnitude >= 0x7f800000u) // infinity, NaN (kept quiet)
+        return uint16_t(sign | 0x7c00u | (magnitude > 0x7f800000u ? 0x200u : 0u));
+    if (magnitude >= 0x477ff000u) return uint16_t(sign | 0x7c00u); // rounds to >= 65520
+    if (magnitude < 0x38800000u) { // below 2^-14: a subnormal half, in units of 2^-24
+        const float units = std::nearbyint(std::abs(v) * 16777216.0f); // exact scaling
+        return uint16_t(sign | uint16_t(units));
+    }
+    // Normal: drop 13 fraction bits, rounding to nearest even (a carry may bump the exponent).
+    const uint32_t rebased = magnitude - (112u << 23);
+    const uint32_t dropped = rebased & 0x1fffu;
+    uint32_t half = rebased >> 13;
+    if (dropped > 0x1000u || (dropped == 0x1000u && (half & 1u))) ++half;
+    return uint16_t(sign | half);
+}
+
+float fromHalfBits(uint16_t h) {
+    const uint32_t sign = uint32_t(h & 0x8000u) << 16;
+    const uint32_t exponent = (h >> 10) & 0x1fu, fraction = h & 0x3ffu;
+    if (exponent == 0) { // zero or subnormal
+        const float value = float(fraction) / 16777216.0f;
+        return sign ? -value : value;
+    }
+    const uint32_t bits = exponent == 31 ? sign | 0x7f800000u | (fraction << 13)
+                                         : sign | ((exponent + 112u) << 23) | (fraction << 13);
+    float value = 0.0f;
+    std::memcpy(&value, &bits, sizeof value);
+    return value;
+}
+
 } // namespace
 
 Result<std::unique_ptr<SmokeSolver>> SmokeSolver::create(const gpu::Context& ctx,
@@ -73,15 +126,23 @@ Result<std::unique_ptr<SmokeSolver>> SmokeSolver::create(const gpu::Context& ctx
                                        limits.maxComputeWorkGroupInvocations);
         !valid)
         return valid.error();
-    // The accuracy options the GPU solver has so far (docs/fluid.md, "Accuracy options"): every
-    // pressure solver and advection scheme, fp32 storage.
-    if (options.storage != Storage::Float32)
-        return Error{"fp16 storage is not available on the GPU solver yet (only fp32)"};
     for (int axis = 0; axis < 3; ++axis)
         if (options.workgroup[axis] > limits.maxComputeWorkGroupSize[axis])
             return Error{"workgroup size " + std::to_string(options.workgroup[axis]) + " along " +
                          std::string(1, "xyz"[axis]) + " exceeds the device's limit of " +
                          std::to_string(limits.maxComputeWorkGroupSize[axis])};
+    for (VkFormat format : {scalarFormat(options), rgbaFormat(options)}) {
+        VkFormatProperties properties{};
+        vkGetPhysicalDeviceFormatProperties(ctx.physicalDevice(), format, &properties);
+        const VkFormatFeatureFlags needed =
+            VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT |
+            VK_FORMAT_FEATURE_TRANSFER_SRC_BIT | VK_FORMAT_FEATURE_TRANSFER_DST_BIT;
+        if ((properties.optimalTilingFeatures & needed) != needed)
+            return Error{std::string("the device cannot keep ") +
+                         (format == rgbaFormat(options) ? "pigment" : "velocity and pressure") +
+                         " in " + storageName(options.storage) + " storage images (format " +
+                         std::to_string(int(format)) + ")"};
+    }
     // Red-black Gauss-Seidel, multigrid and MGPCG (fluid/gpu_multigrid.h).
     std::unique_ptr<GpuMultigrid> multigrid;
     if (options.pressureSolver != PressureSolver::Jacobi) {
@@ -109,10 +170,10 @@ SmokeSolver::SmokeSolver(const gpu::Context& ctx, const SolverOptions& options)
     for (int set = 0; set < 3; ++set)
         for (int c = 0; c < 3; ++c)
             velocity_[set][c] =
-                makeImage(faceExtent(options.grid, c), VK_FORMAT_R32_SFLOAT, "velocity");
+                makeImage(faceExtent(options.grid, c), scalarFormat(options), "velocity");
     for (int i = 0; i < 2; ++i) {
-        pigment_[i] = makeImage(cells_, VK_FORMAT_R32G32B32A32_SFLOAT, "pigment");
-        pressure_[i] = makeImage(cells_, VK_FORMAT_R32_SFLOAT, "pressure");
+        pigment_[i] = makeImage(cells_, rgbaFormat(options), "pigment");
+        pressure_[i] = makeImage(cells_, scalarFormat(options), "pressure");
     }
     divergence_ = makeImage(cells_, VK_FORMAT_R32_SFLOAT, "divergence");
     // Four x-consecutive cells per vec4 (shaders/solve_pressure.comp). A grid too large for one
@@ -187,54 +248,59 @@ gpu::Program& SmokeSolver::program(Stage stage, int part, uint32_t target) {
     if (slot.pipeline() != VK_NULL_HANDLE) return slot;
     switch (stage) {
     case Stage::SplatImpulses:
-        slot = part == 0 ? makeProgram(ctx_, options_, "splat_impulses", splat_impulses_comp,
-                                       target, 7, 1, {}, 1u << 6)
-                         : makeProgram(ctx_, options_, "emitter_bounds", emitter_bounds_comp, 0, 3,
-                                       1, {}, 1u << 2);
+        slot = part == 0
+                   ? makeProgram(ctx_, options_, "splat_impulses",
+                                 MFX_FIELD_SHADER(splat_impulses_comp), target, 7, 1, {}, 1u << 6)
+                   : makeProgram(ctx_, options_, "emitter_bounds", emitter_bounds_comp, 0, 3, 1, {},
+                                 1u << 2);
         break;
     case Stage::AdvectVelocity: { // part: the pass (MFX_ADVECT_*), constant id 11
         const uint32_t pass[] = {uint32_t(part)};
-        slot = makeProgram(ctx_, options_, "advect_velocity", advect_velocity_comp, target, 6, 4,
-                           pass);
+        slot = makeProgram(ctx_, options_, "advect_velocity",
+                           MFX_FIELD_SHADER(advect_velocity_comp), target, 6, 4, pass);
         break;
     }
     case Stage::AdvectPigment: {
         const uint32_t pass[] = {uint32_t(part)};
-        slot =
-            makeProgram(ctx_, options_, "advect_pigment", advect_pigment_comp, target, 7, 5, pass);
+        slot = makeProgram(ctx_, options_, "advect_pigment", MFX_FIELD_SHADER(advect_pigment_comp),
+                           target, 7, 5, pass);
         break;
     }
     case Stage::ApplyBuoyancy:
-        slot = makeProgram(ctx_, options_, "apply_buoyancy", apply_buoyancy_comp, target, 4, 3);
+        slot = makeProgram(ctx_, options_, "apply_buoyancy", MFX_FIELD_SHADER(apply_buoyancy_comp),
+                           target, 4, 3);
         break;
     case Stage::VorticityConfinement:
-        slot = part == 0 ? makeProgram(ctx_, options_, "compute_vorticity", compute_vorticity_comp,
-                                       target, 5, 4)
-               : part == 1 ? makeProgram(ctx_, options_, "confinement_force",
-                                         confinement_force_comp, target, 3, 2)
-                           : makeProgram(ctx_, options_, "apply_vorticity_force",
-                                         apply_vorticity_force_comp, target, 6, 5);
+        slot = part == 0 ? makeProgram(ctx_, options_, "compute_vorticity",
+                                       MFX_FIELD_SHADER(compute_vorticity_comp), target, 5, 4)
+               : part == 1
+                   ? makeProgram(ctx_, options_, "confinement_force", confinement_force_comp,
+                                 target, 3, 2)
+                   : makeProgram(ctx_, options_, "apply_vorticity_force",
+                                 MFX_FIELD_SHADER(apply_vorticity_force_comp), target, 6, 5);
         break;
     case Stage::DiffuseViscosity:
-        slot = makeProgram(ctx_, options_, "diffuse_viscosity", diffuse_viscosity_comp, target, 10);
+        slot = makeProgram(ctx_, options_, "diffuse_viscosity",
+                           MFX_FIELD_SHADER(diffuse_viscosity_comp), target, 10);
         break;
     case Stage::ApplyBoundaries:
-        slot = makeProgram(ctx_, options_, "apply_boundaries", apply_boundaries_comp, target, 4);
+        slot = makeProgram(ctx_, options_, "apply_boundaries",
+                           MFX_FIELD_SHADER(apply_boundaries_comp), target, 4);
         break;
     case Stage::ComputeDivergence:
-        slot = makeProgram(ctx_, options_, "compute_divergence", compute_divergence_comp, target, 5,
-                           4);
+        slot = makeProgram(ctx_, options_, "compute_divergence",
+                           MFX_FIELD_SHADER(compute_divergence_comp), target, 5, 4);
         break;
     case Stage::SolvePressure: {
         // Constant ids 11-13: which side is packed (part), the layers and rows of a brick;
         // bindings 4-7 are storage buffers.
         const uint32_t brick[] = {uint32_t(part), kPressureLayers, kPressureRows};
-        slot = makeProgram(ctx_, options_, "solve_pressure", solve_pressure_comp, target, 8, 0,
-                           brick, 0xf0u);
+        slot = makeProgram(ctx_, options_, "solve_pressure", MFX_FIELD_SHADER(solve_pressure_comp),
+                           target, 8, 0, brick, 0xf0u);
         break;
     }
     case Stage::Project:
-        slot = makeProgram(ctx_, options_, "project", project_comp, target, 6, 5);
+        slot = makeProgram(ctx_, options_, "project", MFX_FIELD_SHADER(project_comp), target, 6, 5);
         break;
     }
     return slot;
@@ -242,6 +308,13 @@ gpu::Program& SmokeSolver::program(Stage stage, int part, uint32_t target) {
 
 void SmokeSolver::setState(const FieldState& state) {
     auto upload = [&](gpu::Image& image, const std::vector<float>& values) {
+        if (isHalf(image.format)) { // rounded as every stage's store rounds
+            std::vector<uint16_t> half(values.size());
+            std::transform(values.begin(), values.end(), half.begin(), toHalfBits);
+            gpu::uploadImage(ctx_, image, std::as_bytes(std::span<const uint16_t>(half)),
+                             VK_IMAGE_LAYOUT_GENERAL);
+            return;
+        }
         gpu::uploadImage(ctx_, image, std::as_bytes(std::span<const float>(values)),
                          VK_IMAGE_LAYOUT_GENERAL);
     };
@@ -256,6 +329,13 @@ void SmokeSolver::setState(const FieldState& state) {
 FieldState SmokeSolver::state() {
     auto read = [&](gpu::Image& image) {
         const std::vector<std::byte> bytes = gpu::readImage(ctx_, image);
+        if (isHalf(image.format)) {
+            std::vector<uint16_t> half(bytes.size() / sizeof(uint16_t));
+            std::memcpy(half.data(), bytes.data(), half.size() * sizeof(uint16_t));
+            std::vector<float> values(half.size());
+            std::transform(half.begin(), half.end(), values.begin(), fromHalfBits);
+            return values;
+        }
         std::vector<float> values(bytes.size() / sizeof(float));
         std::memcpy(values.data(), bytes.data(), values.size() * sizeof(float));
         return values;
@@ -325,7 +405,34 @@ void SmokeSolver::dispatch(VkCommandBuffer cmd, gpu::Program& program, VkDescrip
 }
 
 void SmokeSolver::copyToImages(
-    VkCommandBuffer cmd, std::initializer_list<std::pair<const gpu::Buffer*, gpu::Image*>> copies) {
+    VkCommandBuffer cmd, std::initializer_list<std::pair<const gpu::Buffer*, gpu::Image*>> fields) {
+    // A copy cannot convert: binary16 images are stored into by store_half instead.
+    std::vector<std::pair<const gpu::Buffer*, gpu::Image*>> copies, converted;
+    for (const auto& pair : fields)
+        (isHalf(pair.second->format) ? converted : copies).push_back(pair);
+    if (!converted.empty()) {
+        barrier(cmd);
+        for (const auto& [buffer, image] : converted) {
+            const bool rgba = image->format == VK_FORMAT_R16G16B16A16_SFLOAT;
+            gpu::Program& prog = storeHalf_[rgba ? 1 : 0];
+            if (!prog.pipeline())
+                prog = makeProgram(ctx_, options_, "store_half",
+                                   rgba ? shaders::store_half_comp_rgba : shaders::store_half_comp,
+                                   0, 3, 1);
+            const auto key = std::make_pair(buffer->get(), image->get());
+            auto it = storeHalfSets_.find(key);
+            if (it == storeHalfSets_.end())
+                it = storeHalfSets_
+                         .emplace(key, prog.createSet(ctx_, {gpu::bindBuffer(0, parameters_),
+                                                             gpu::bindBuffer(1, *buffer),
+                                                             storage(2, *image)}))
+                         .first;
+            dispatch(cmd, prog, it->second,
+                     glm::uvec3(image->extent.width, image->extent.height, image->extent.depth));
+        }
+        barrier(cmd);
+    }
+    if (copies.empty()) return;
     // The dispatches that wrote the buffers → the copies, each image in TRANSFER_DST_OPTIMAL (its
     // contents are replaced whole) → every later command, the images back in GENERAL.
     auto transition = [&](VkImageLayout from, VkImageLayout to, VkPipelineStageFlags2 srcStage,
@@ -742,7 +849,7 @@ uint64_t SmokeSolver::memoryBytes() const {
 void SmokeSolver::recordMeasureActivity(VkCommandBuffer cmd, const gpu::Buffer& out) {
     if (!activityProgram_.pipeline())
         activityProgram_ = makeProgram(ctx_, options_, "measure_activity",
-                                       shaders::measure_activity_comp, 0, 6, 5);
+                                       MFX_FIELD_SHADER(shaders::measure_activity_comp), 0, 6, 5);
     vkCmdFillBuffer(cmd, out.get(), 0, 2 * sizeof(uint32_t), 0);
     gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,

@@ -101,7 +101,7 @@ private:
     // Records, after the dispatches that wrote them, copies of whole fields written x-fastest
     // into buffers into their images, and the barrier that makes them visible to what follows.
     void copyToImages(VkCommandBuffer cmd,
-                      std::initializer_list<std::pair<const gpu::Buffer*, gpu::Image*>> copies);
+                      std::initializer_list<std::pair<const gpu::Buffer*, gpu::Image*>> fields);
     void dispatch(VkCommandBuffer cmd, gpu::Program& program, VkDescriptorSet set,
                   glm::uvec3 extent, glm::uvec3 origin = glm::uvec3(0)) const;
     // Descriptor set of `program` for a combination of image-set indices `key`, made by
@@ -165,6 +165,9 @@ private:
     std::map<std::tuple<int, int, uint32_t>, gpu::Program> programs_; // node addresses are stable
     std::map<std::tuple<const gpu::Program*, int, int, int>, VkDescriptorSet> sets_;
     gpu::Program activityProgram_;
+    // fp16 storage: the programs storing a buffer into an r16f / rgba16f image, and their sets.
+    std::array<gpu::Program, 2> storeHalf_;
+    std::map<std::pair<VkBuffer, VkImage>, VkDescriptorSet> storeHalfSets_;
     std::map<std::tuple<int, int, VkBuffer>, VkDescriptorSet> activitySets_;
     mutable uint32_t dispatches_ = 0; // vkCmdDispatch calls recorded so far
     std::vector<std::pair<std::string, uint32_t>> lastStepDispatches_;

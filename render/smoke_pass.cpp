@@ -26,14 +26,17 @@ gpu::BindingDesc sampled(uint32_t binding) {
 } // namespace
 
 SmokePass::SmokePass(const gpu::Context& ctx) : ctx_(ctx) {
-    gpu::ComputeProgramDesc bounds;
-    bounds.name = "pigment_bounds";
-    bounds.spirv = shaders::pigment_bounds_comp;
-    bounds.bindings = {{0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
-                       {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}};
-    bounds.pushConstantSize = sizeof(shared::PigmentBoundsDispatch);
-    bounds.maxSets = kMaxSets;
-    boundsProgram_ = gpu::createComputeProgram(ctx, bounds);
+    // The pigment box search, for rgba32f pigment and for a solver's fp16 (rgba16f) pigment.
+    for (bool half : {false, true}) {
+        gpu::ComputeProgramDesc bounds;
+        bounds.name = "pigment_bounds";
+        bounds.spirv = half ? shaders::pigment_bounds_comp_half : shaders::pigment_bounds_comp;
+        bounds.bindings = {{0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
+                           {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}};
+        bounds.pushConstantSize = sizeof(shared::PigmentBoundsDispatch);
+        bounds.maxSets = kMaxSets;
+        boundsPrograms_[half ? 1 : 0] = gpu::createComputeProgram(ctx, bounds);
+    }
     volumeSampler_ =
         gpu::createSampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER);
     nearestSampler_ =
@@ -88,7 +91,8 @@ void SmokePass::prepareFluidBuffer(const RenderTarget& target, uint32_t divisor)
 }
 
 void SmokePass::resetSets() {
-    boundsProgram_.resetSets(ctx_);
+    for (gpu::Program& bounds : boundsPrograms_)
+        bounds.resetSets(ctx_);
     for (auto& [divisor, programs] : programs_) {
         programs.march.resetSets(ctx_);
         programs.composite.resetSets(ctx_);
@@ -115,9 +119,9 @@ std::vector<SmokePass::Sets> SmokePass::setsFor(std::span<const Volume> volumes,
             const gpu::Buffer& box = bounds_[i];
             const VkImageLayout read = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
             Sets sets;
-            sets.bounds =
-                boundsProgram_.createSet(ctx_, {gpu::bindImage(0, pigment, VK_IMAGE_LAYOUT_GENERAL),
-                                                gpu::bindBuffer(1, box)});
+            sets.bounds = boundsFor(pigment).createSet(
+                ctx_,
+                {gpu::bindImage(0, pigment, VK_IMAGE_LAYOUT_GENERAL), gpu::bindBuffer(1, box)});
             sets.march = programs.march.createSet(
                 ctx_,
                 {gpu::bindImage(0, pigment, VK_IMAGE_LAYOUT_GENERAL, volumeSampler_.get()),
@@ -154,8 +158,9 @@ void SmokePass::findPigmentBounds(VkCommandBuffer cmd, std::span<const Volume> v
         shared::PigmentBoundsDispatch d{};
         d.size = glm::uvec4(shape.cellsX, shape.cellsY, shape.cellsZ, 0u);
         d.threshold = look.pigmentThreshold;
-        boundsProgram_.bind(cmd, sets[i].bounds);
-        boundsProgram_.push(cmd, d);
+        gpu::Program& bounds = boundsFor(*volumes[i].pigment);
+        bounds.bind(cmd, sets[i].bounds);
+        bounds.push(cmd, d);
         vkCmdDispatch(cmd, gpu::groupCount(shape.cellsX, MFX_PIGMENT_BOUNDS_GROUP_X),
                       gpu::groupCount(shape.cellsY, MFX_PIGMENT_BOUNDS_GROUP_Y),
                       gpu::groupCount(shape.cellsZ, MFX_PIGMENT_BOUNDS_GROUP_Z));

@@ -19,6 +19,7 @@
 #include "render/render_target.h"
 #include "render/scene_camera.h"
 
+#include <array>
 #include <map>
 #include <span>
 #include <tuple>
@@ -103,8 +104,11 @@ private:
                            std::span<const Sets> sets, const SmokeLook& look);
 
     const gpu::Context& ctx_;
-    gpu::Program boundsProgram_;
-    std::map<uint32_t, Programs> programs_; // by divisor, made when first used
+    gpu::Program& boundsFor(const gpu::Image& pigment) {
+        return boundsPrograms_[pigment.format == VK_FORMAT_R16G16B16A16_SFLOAT ? 1 : 0];
+    }
+    std::array<gpu::Program, 2> boundsPrograms_; // for rgba32f and rgba16f pigment
+    std::map<uint32_t, Programs> programs_;      // by divisor, made when first used
     gpu::UniqueSampler volumeSampler_, nearestSampler_;
     FluidBuffer fluid_;
     std::vector<gpu::Buffer> bounds_; // shared::PigmentBounds of the i-th volume of a draw

@@ -7,15 +7,15 @@
 #extension GL_GOOGLE_include_directive : require
 #include "fluid_common.glsl"
 
-layout(binding = 1, r32f) uniform readonly image3D velocityX;
-layout(binding = 2, r32f) uniform readonly image3D velocityY;
-layout(binding = 3, r32f) uniform readonly image3D velocityZ;
-layout(binding = 4, rgba32f) uniform readonly image3D pigmentIn;
+layout(binding = 1, MFX_VELOCITY_FORMAT) uniform readonly image3D velocityX;
+layout(binding = 2, MFX_VELOCITY_FORMAT) uniform readonly image3D velocityY;
+layout(binding = 3, MFX_VELOCITY_FORMAT) uniform readonly image3D velocityZ;
+layout(binding = 4, MFX_PIGMENT_FORMAT) uniform readonly image3D pigmentIn;
 layout(std430, binding = 5) writeonly buffer PigmentOut {
     vec4 pigmentOut[];
 };
 // The pass's intermediate pigment (unused by the semi-Lagrangian and predict passes).
-layout(binding = 6, rgba32f) uniform readonly image3D work;
+layout(binding = 6, MFX_PIGMENT_FORMAT) uniform readonly image3D work;
 
 layout(constant_id = 11) const uint kPass = MFX_ADVECT_SEMI_LAGRANGIAN;
 

@@ -9,14 +9,14 @@
 #extension GL_GOOGLE_include_directive : require
 #include "fluid_common.glsl"
 
-layout(binding = 1, r32f) uniform readonly image3D velocityX;
-layout(binding = 2, r32f) uniform readonly image3D velocityY;
-layout(binding = 3, r32f) uniform readonly image3D velocityZ;
+layout(binding = 1, MFX_VELOCITY_FORMAT) uniform readonly image3D velocityX;
+layout(binding = 2, MFX_VELOCITY_FORMAT) uniform readonly image3D velocityY;
+layout(binding = 3, MFX_VELOCITY_FORMAT) uniform readonly image3D velocityZ;
 layout(std430, binding = 4) writeonly buffer Out {
     float outValues[];
 };
 // The component kTarget's intermediate field (unused by the semi-Lagrangian and predict passes).
-layout(binding = 5, r32f) uniform readonly image3D work;
+layout(binding = 5, MFX_VELOCITY_FORMAT) uniform readonly image3D work;
 
 layout(constant_id = 11) const uint kPass = MFX_ADVECT_SEMI_LAGRANGIAN;
 

@@ -4,9 +4,9 @@
 #extension GL_GOOGLE_include_directive : require
 #include "fluid_common.glsl"
 
-layout(binding = 1, r32f) uniform image3D velocityX;
-layout(binding = 2, r32f) uniform image3D velocityY;
-layout(binding = 3, r32f) uniform image3D velocityZ;
+layout(binding = 1, MFX_VELOCITY_FORMAT) uniform image3D velocityX;
+layout(binding = 2, MFX_VELOCITY_FORMAT) uniform image3D velocityY;
+layout(binding = 3, MFX_VELOCITY_FORMAT) uniform image3D velocityZ;
 
 void main() {
     int c = int(kTarget);
@@ -28,9 +28,9 @@ void main() {
                        : (c == 1 ? imageLoad(velocityY, first).r : imageLoad(velocityZ, first).r);
     }
     if (c == 0)
-        imageStore(velocityX, q, vec4(value));
+        imageStore(velocityX, q, vec4(MFX_STORED(value)));
     else if (c == 1)
-        imageStore(velocityY, q, vec4(value));
+        imageStore(velocityY, q, vec4(MFX_STORED(value)));
     else
-        imageStore(velocityZ, q, vec4(value));
+        imageStore(velocityZ, q, vec4(MFX_STORED(value)));
 }

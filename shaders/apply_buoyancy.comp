@@ -5,8 +5,8 @@
 #extension GL_GOOGLE_include_directive : require
 #include "fluid_common.glsl"
 
-layout(binding = 1, r32f) uniform readonly image3D velocityY;
-layout(binding = 2, rgba32f) uniform readonly image3D pigment;
+layout(binding = 1, MFX_VELOCITY_FORMAT) uniform readonly image3D velocityY;
+layout(binding = 2, MFX_PIGMENT_FORMAT) uniform readonly image3D pigment;
 layout(std430, binding = 3) writeonly buffer Out {
     float outValues[];
 };

@@ -6,9 +6,9 @@
 #extension GL_GOOGLE_include_directive : require
 #include "fluid_common.glsl"
 
-layout(binding = 1, r32f) uniform readonly image3D velocityX;
-layout(binding = 2, r32f) uniform readonly image3D velocityY;
-layout(binding = 3, r32f) uniform readonly image3D velocityZ;
+layout(binding = 1, MFX_VELOCITY_FORMAT) uniform readonly image3D velocityX;
+layout(binding = 2, MFX_VELOCITY_FORMAT) uniform readonly image3D velocityY;
+layout(binding = 3, MFX_VELOCITY_FORMAT) uniform readonly image3D velocityZ;
 layout(std430, binding = 4) writeonly buffer Vorticity {
     vec4 vorticity[];
 };

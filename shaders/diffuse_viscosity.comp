@@ -5,15 +5,15 @@
 #extension GL_GOOGLE_include_directive : require
 #include "fluid_common.glsl"
 
-layout(binding = 1, r32f) uniform readonly image3D sourceX;
-layout(binding = 2, r32f) uniform readonly image3D sourceY;
-layout(binding = 3, r32f) uniform readonly image3D sourceZ;
-layout(binding = 4, r32f) uniform readonly image3D guessX;
-layout(binding = 5, r32f) uniform readonly image3D guessY;
-layout(binding = 6, r32f) uniform readonly image3D guessZ;
-layout(binding = 7, r32f) uniform writeonly image3D outX;
-layout(binding = 8, r32f) uniform writeonly image3D outY;
-layout(binding = 9, r32f) uniform writeonly image3D outZ;
+layout(binding = 1, MFX_VELOCITY_FORMAT) uniform readonly image3D sourceX;
+layout(binding = 2, MFX_VELOCITY_FORMAT) uniform readonly image3D sourceY;
+layout(binding = 3, MFX_VELOCITY_FORMAT) uniform readonly image3D sourceZ;
+layout(binding = 4, MFX_VELOCITY_FORMAT) uniform readonly image3D guessX;
+layout(binding = 5, MFX_VELOCITY_FORMAT) uniform readonly image3D guessY;
+layout(binding = 6, MFX_VELOCITY_FORMAT) uniform readonly image3D guessZ;
+layout(binding = 7, MFX_VELOCITY_FORMAT) uniform writeonly image3D outX;
+layout(binding = 8, MFX_VELOCITY_FORMAT) uniform writeonly image3D outY;
+layout(binding = 9, MFX_VELOCITY_FORMAT) uniform writeonly image3D outZ;
 
 float fetchGuess(int c, ivec3 index) {
     FaceRef r = resolveFace(c, index);
@@ -37,9 +37,9 @@ void main() {
         value = (source + alpha * sum) / (1.0 + 6.0 * alpha);
     }
     if (c == 0)
-        imageStore(outX, q, vec4(value));
+        imageStore(outX, q, vec4(MFX_STORED(value)));
     else if (c == 1)
-        imageStore(outY, q, vec4(value));
+        imageStore(outY, q, vec4(MFX_STORED(value)));
     else
-        imageStore(outZ, q, vec4(value));
+        imageStore(outZ, q, vec4(MFX_STORED(value)));
 }

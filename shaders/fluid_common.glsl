@@ -5,6 +5,8 @@
 
 #include "shared/fluid.h"
 
+#include "field_formats.glsl"
+
 // The workgroup shape is given by specialization (SolverOptions::workgroup; constant ids 8-10),
 // the defaults being the shared header's.
 layout(local_size_x_id = 8, local_size_y_id = 9, local_size_z_id = 10) in;

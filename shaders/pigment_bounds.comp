@@ -9,6 +9,7 @@
 // to an empty box before the dispatch).
 #version 450
 #extension GL_GOOGLE_include_directive : require
+#include "field_formats.glsl"
 #include "shared/smoke_draw.h"
 
 layout(local_size_x = MFX_PIGMENT_BOUNDS_GROUP_X, local_size_y = MFX_PIGMENT_BOUNDS_GROUP_Y,
@@ -17,7 +18,7 @@ layout(local_size_x = MFX_PIGMENT_BOUNDS_GROUP_X, local_size_y = MFX_PIGMENT_BOU
 layout(push_constant) uniform Dispatch {
     PigmentBoundsDispatch dispatch;
 };
-layout(rgba32f, binding = 0) uniform readonly image3D pigment;
+layout(MFX_PIGMENT_FORMAT, binding = 0) uniform readonly image3D pigment;
 layout(std430, binding = 1) buffer Bounds {
     PigmentBounds bounds;
 };

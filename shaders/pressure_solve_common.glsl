@@ -12,6 +12,7 @@
 #ifndef MFX_PRESSURE_SOLVE_COMMON_GLSL
 #define MFX_PRESSURE_SOLVE_COMMON_GLSL
 
+#include "field_formats.glsl"
 #include "shared/pressure_solve.h"
 
 // The workgroup shape (SolverOptions::workgroup), by specialization.
@@ -51,7 +52,7 @@ layout(std430, binding = 8) buffer Arguments {
     uvec4 arguments[];
 };
 layout(binding = 9, r32f) uniform readonly image3D divergence;
-layout(binding = 10, r32f) uniform readonly image3D pressure;
+layout(binding = 10, MFX_PRESSURE_FORMAT) uniform readonly image3D pressure;
 layout(std430, binding = 11) writeonly buffer PressureOut {
     float pressureOut[];
 };

@@ -6,10 +6,10 @@
 #extension GL_GOOGLE_include_directive : require
 #include "fluid_common.glsl"
 
-layout(binding = 1, r32f) uniform readonly image3D velocityX;
-layout(binding = 2, r32f) uniform readonly image3D velocityY;
-layout(binding = 3, r32f) uniform readonly image3D velocityZ;
-layout(binding = 4, r32f) uniform readonly image3D pressure;
+layout(binding = 1, MFX_VELOCITY_FORMAT) uniform readonly image3D velocityX;
+layout(binding = 2, MFX_VELOCITY_FORMAT) uniform readonly image3D velocityY;
+layout(binding = 3, MFX_VELOCITY_FORMAT) uniform readonly image3D velocityZ;
+layout(binding = 4, MFX_PRESSURE_FORMAT) uniform readonly image3D pressure;
 layout(std430, binding = 5) writeonly buffer Out {
     float outValues[];
 };

@@ -18,8 +18,8 @@
 #include "fluid_common.glsl"
 
 layout(binding = 1, r32f) uniform readonly image3D divergence;
-layout(binding = 2, r32f) uniform readonly image3D pressureIn;
-layout(binding = 3, r32f) uniform writeonly image3D pressureOut;
+layout(binding = 2, MFX_PRESSURE_FORMAT) uniform readonly image3D pressureIn;
+layout(binding = 3, MFX_PRESSURE_FORMAT) uniform writeonly image3D pressureOut;
 layout(std430, binding = 4) buffer PackedDivergence {
     vec4 packedDivergence[];
 };
@@ -179,7 +179,7 @@ void main() {
                 } else {
                     for (int c = 0; c < 4; ++c)
                         if (cellX[c] < n.x)
-                            imageStore(pressureOut, ivec3(cellX[c], y, z), vec4(p[c]));
+                            imageStore(pressureOut, ivec3(cellX[c], y, z), vec4(MFX_STORED(p[c])));
                 }
             }
         }

@@ -10,10 +10,10 @@
 layout(std430, binding = 1) readonly buffer Emitters {
     FluidEmitter emitters[];
 };
-layout(binding = 2, r32f) uniform image3D velocityX;
-layout(binding = 3, r32f) uniform image3D velocityY;
-layout(binding = 4, r32f) uniform image3D velocityZ;
-layout(binding = 5, rgba32f) uniform image3D pigment;
+layout(binding = 2, MFX_VELOCITY_FORMAT) uniform image3D velocityX;
+layout(binding = 3, MFX_VELOCITY_FORMAT) uniform image3D velocityY;
+layout(binding = 4, MFX_VELOCITY_FORMAT) uniform image3D velocityZ;
+layout(binding = 5, MFX_PIGMENT_FORMAT) uniform image3D pigment;
 layout(std430, binding = 6) readonly buffer Regions {
     SplatRegion regions[4];
 };
@@ -111,11 +111,11 @@ void main() {
         }
     }
     if (pigmentTarget)
-        imageStore(pigment, q, value);
+        imageStore(pigment, q, MFX_STORED4(value));
     else if (c == 0)
-        imageStore(velocityX, q, vec4(value.x));
+        imageStore(velocityX, q, vec4(MFX_STORED(value.x)));
     else if (c == 1)
-        imageStore(velocityY, q, vec4(value.x));
+        imageStore(velocityY, q, vec4(MFX_STORED(value.x)));
     else
-        imageStore(velocityZ, q, vec4(value.x));
+        imageStore(velocityZ, q, vec4(MFX_STORED(value.x)));
 }

@@ -15,9 +15,14 @@ namespace mfx::fluid {
 Eigen::ArrayXd ReferenceSolver::advectBfecc(int field, const Eigen::ArrayXd& source) const {
     const std::vector<glm::dvec3> backward = departurePoints(field, dt());
     const std::vector<glm::dvec3> forward = departurePoints(field, -dt());
-    const Eigen::ArrayXd returned =
-        semiLagrangian(field, semiLagrangian(field, source, backward), forward);
-    const Eigen::ArrayXd compensated = source + 0.5 * (source - returned);
+    // With fp16 storage the two intermediate fields are rounded: the GPU keeps each in a work
+    // image.
+    const bool half = options_.storage == Storage::Float16;
+    Eigen::ArrayXd predicted = semiLagrangian(field, source, backward);
+    if (half) roundToHalf(predicted);
+    const Eigen::ArrayXd returned = semiLagrangian(field, predicted, forward);
+    Eigen::ArrayXd compensated = source + 0.5 * (source - returned);
+    if (half) roundToHalf(compensated);
     Eigen::ArrayXd result = semiLagrangian(field, compensated, backward);
     clampToSampleRange(field, source, backward, result);
     return result;

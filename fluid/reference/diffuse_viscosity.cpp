@@ -1,6 +1,7 @@
 // diffuseViscosity (docs/fluid.md): implicit diffusion (I - nu dt Laplacian) u_new = u, solved per
 // component with a fixed number of Jacobi sweeps, x <- (u + alpha * sum of 6 neighbours) / (1 + 6
-// alpha), alpha = nu dt / h². Unconditionally stable (Stam 1999, sec. 3). Off when nu is 0.
+// alpha), alpha = nu dt / h². Unconditionally stable (Stam 1999, sec. 3). Off when nu is 0. With
+// fp16 storage every sweep's result is rounded, as the GPU stores each in a velocity image.
 #include "fluid/reference/reference_solver.h"
 
 namespace mfx::fluid {
@@ -30,6 +31,8 @@ void ReferenceSolver::diffuseViscosity() {
                             sum += fetchFace(c, x, q + s);
                         next[index] = (source[index] + alpha * sum) / (1.0 + 6.0 * alpha);
                     }
+            if (options_.storage == Storage::Float16) // each sweep lands in a 16-bit image
+                roundToHalf(next);
             std::swap(x, next);
         }
         velocity_[c] = x;

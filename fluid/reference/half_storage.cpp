@@ -2,6 +2,8 @@
 // keep in 16-bit images between stages (velocity, pressure, pigment) are rounded to the nearest
 // IEEE 754-2008 binary16 value after every stage, while every stage still computes in double. The
 // divergence, produced and consumed within one sub-step's projection, keeps full precision.
+// Within a stage, what the GPU keeps in a 16-bit image between its passes is rounded too: each
+// viscosity sweep (diffuse_viscosity.cpp) and the work fields of MacCormack and BFECC.
 //
 // binary16: 1 sign bit, 5 exponent bits, 10 fraction bits. Normal values 2^-14 <= |v| <= 65504
 // are spaced 2^(e - 10) in the binade [2^e, 2^(e+1)); below 2^-14 the subnormals are spaced
@@ -28,11 +30,15 @@ double ReferenceSolver::roundToHalf(double v) {
     return rounded;
 }
 
+void ReferenceSolver::roundToHalf(Eigen::ArrayXd& values) {
+    for (double& v : values)
+        v = roundToHalf(v);
+}
+
 void ReferenceSolver::roundStoredFields() {
     for (Eigen::ArrayXd* field :
          {&velocity_[0], &velocity_[1], &velocity_[2], &pressure_, &pigment_})
-        for (double& v : *field)
-            v = roundToHalf(v);
+        roundToHalf(*field);
 }
 
 } // namespace mfx::fluid

@@ -14,7 +14,8 @@ namespace mfx::fluid {
 Eigen::ArrayXd ReferenceSolver::advectMacCormack(int field, const Eigen::ArrayXd& source) const {
     const std::vector<glm::dvec3> backward = departurePoints(field, dt());
     const std::vector<glm::dvec3> forward = departurePoints(field, -dt());
-    const Eigen::ArrayXd predicted = semiLagrangian(field, source, backward);
+    Eigen::ArrayXd predicted = semiLagrangian(field, source, backward);
+    if (options_.storage == Storage::Float16) roundToHalf(predicted); // the GPU's work image
     const Eigen::ArrayXd returned = semiLagrangian(field, predicted, forward);
     Eigen::ArrayXd corrected = predicted + 0.5 * (source - returned);
     clampToSampleRange(field, source, backward, corrected);

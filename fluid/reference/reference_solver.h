@@ -85,6 +85,7 @@ public:
     // The nearest IEEE binary16 value to v (round to nearest, ties to even; overflow to +-inf,
     // NaN stays NaN), as a double: what Storage::Float16 keeps of a value.
     static double roundToHalf(double v);
+    static void roundToHalf(Eigen::ArrayXd& values); // each value, in place
 
     // --- Grid access shared by the stages (fluid/reference/grid_access.cpp) ------------------
     // Advection's output rule (docs/fluid.md, steps 2 and 3): a magnitude below 1e-30 becomes 0.
