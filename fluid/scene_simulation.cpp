@@ -151,9 +151,11 @@ Result<std::unique_ptr<SceneSimulation>> SceneSimulation::create(const gpu::Cont
         uint32_t capacity = 0;
         for (size_t i : grid.effects)
             capacity += sim->trajectories_[i].spec->maxEmitters;
-        grid.emitters = gpu::createBuffer(ctx, capacity * sizeof(shared::FluidEmitter),
-                                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                          gpu::MemoryUsage::DeviceLocal, "smoke emitters");
+        // Transfer source for setCaptureEmitters' copies.
+        grid.emitters =
+            gpu::createBuffer(ctx, capacity * sizeof(shared::FluidEmitter),
+                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                              gpu::MemoryUsage::DeviceLocal, "smoke emitters");
         grid.activity =
             gpu::createBuffer(ctx, 2 * sizeof(uint32_t),
                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
@@ -271,6 +273,7 @@ glm::vec3 SceneSimulation::rootPosition(const anim::Pose& pose) const {
 void SceneSimulation::recordSmoke(VkCommandBuffer cmd, SmokeGrid& grid, uint32_t frame) {
     grid.measured = false;
     grid.emittersThisFrame = 0;
+    grid.capturedSteps.clear();
     if (grid.follow) {
         // Keep the grid where it was placed relative to the character's root, along the floor
         // (x, z), by whole cells. Awake, the fields move the other way, so the smoke stays put;
@@ -337,6 +340,7 @@ void SceneSimulation::recordSmoke(VkCommandBuffer cmd, SmokeGrid& grid, uint32_t
             addPass(name, 1);
         }
         grid.emittersThisFrame += emitters;
+        if (grid.captured) captureStep(cmd, grid, uint64_t(step), emitters);
         grid.solver->setEmitterBuffer(grid.emitters, emitters);
         timer_.setPrefix(grid.name + "/");
         grid.solver->recordStep(cmd, &timer_);
@@ -352,6 +356,52 @@ void SceneSimulation::recordSmoke(VkCommandBuffer cmd, SmokeGrid& grid, uint32_t
         addPass(name, 1);
         grid.measured = true;
     }
+}
+
+void SceneSimulation::setCaptureEmitters(bool capture) {
+    for (SmokeGrid& grid : grids_) {
+        grid.capturedSteps.clear();
+        grid.captured =
+            capture ? gpu::createBuffer(ctx_, grid.emitters.size * grid.stepsPerFrame,
+                                        VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                        gpu::MemoryUsage::Readback, "captured smoke emitters")
+                    : gpu::Buffer{};
+    }
+}
+
+// Copies the records segment_emitters just wrote into the step's slot of the capture buffer. The
+// splat reads them after this, and the next step's segment_emitters overwrites them only after
+// the copy has read them.
+void SceneSimulation::captureStep(VkCommandBuffer cmd, SmokeGrid& grid, uint64_t step,
+                                  uint32_t count) {
+    const uint32_t slot = uint32_t(grid.capturedSteps.size());
+    grid.capturedSteps.push_back({step, count});
+    if (count == 0) return;
+    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                       VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
+                       VK_ACCESS_2_TRANSFER_READ_BIT);
+    const VkBufferCopy region{0, VkDeviceSize(slot) * grid.emitters.size,
+                              VkDeviceSize(count) * sizeof(shared::FluidEmitter)};
+    vkCmdCopyBuffer(cmd, grid.emitters.get(), grid.captured.get(), 1, &region);
+    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_HOST_BIT,
+                       VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_HOST_READ_BIT);
+}
+
+std::vector<CapturedStep> SceneSimulation::capturedEmitters(size_t grid) const {
+    std::vector<CapturedStep> out;
+    if (grid >= grids_.size() || !grids_[grid].captured) return out;
+    const SmokeGrid& g = grids_[grid];
+    const auto* bytes = static_cast<const std::byte*>(g.captured.mapped);
+    for (size_t slot = 0; slot < g.capturedSteps.size(); ++slot) {
+        CapturedStep step;
+        step.step = g.capturedSteps[slot].first;
+        step.emitters.resize(g.capturedSteps[slot].second);
+        std::memcpy(step.emitters.data(), bytes + slot * g.emitters.size,
+                    step.emitters.size() * sizeof(shared::FluidEmitter));
+        out.push_back(std::move(step));
+    }
+    return out;
 }
 
 SimulationFrameStats SceneSimulation::finishFrame() {

@@ -51,6 +51,12 @@ struct GridFrameState {
     float largestSpeed = 0.0f; // when measured, world units per second
 };
 
+// The emitter records one smoke step splatted (SceneSimulation::capturedEmitters).
+struct CapturedStep {
+    uint64_t step = 0; // the grid's step number in the scene: it ends at step / steps per second
+    std::vector<shared::FluidEmitter> emitters; // in the grid's frame, as the splat read them
+};
+
 struct SimulationFrameStats {
     uint32_t frame = 0;
     float time = 0.0f;
@@ -86,6 +92,11 @@ public:
         glm::vec3 placedOrigin{0.0f};    // where placement put it
         glm::vec3 rootAtPlacement{0.0f}; // the root's position then (frame 0)
         uint32_t emittersThisFrame = 0;
+        // With setCaptureEmitters(true): a read-back copy of every step's emitter records, one
+        // slot of `emitters`' size per step of the frame, and the step and record count of each
+        // slot.
+        gpu::Buffer captured;
+        std::vector<std::pair<uint64_t, uint32_t>> capturedSteps;
     };
 
     static Result<std::unique_ptr<SceneSimulation>>
@@ -114,6 +125,17 @@ public:
     // The pose of the frame last recorded (what a renderer draws with it).
     const anim::Pose& framePose() const { return framePose_; }
 
+    // Emitter capture, for replaying a scene's impulses in another solver run (fluid/
+    // scene_scenario.h). A grid's emitter buffer is rewritten by every step, so when a frame takes
+    // several steps, reading it after the frame gives the last step's records only; with capture
+    // on, each step also copies its records into a read-back buffer. Off by default (it costs a
+    // copy per step and a buffer per grid). Takes effect from the next recordFrame.
+    void setCaptureEmitters(bool capture);
+    // After finishFrame, with capture on: what every step grid `grid` ran this frame splatted, in
+    // step order (steps skipped while the grid slept are absent; a step with no live effect has
+    // no records).
+    std::vector<CapturedStep> capturedEmitters(size_t grid) const;
+
     const std::vector<TrajectoryEffect>& trajectories() const { return trajectories_; }
     const std::vector<SmokeGrid>& smokeGrids() const { return grids_; }
     uint64_t fluidBytes() const;
@@ -130,6 +152,7 @@ private:
     }
     void addPass(const std::string& name, uint32_t dispatches);
     void recordSmoke(VkCommandBuffer cmd, SmokeGrid& grid, uint32_t frame);
+    void captureStep(VkCommandBuffer cmd, SmokeGrid& grid, uint64_t step, uint32_t count);
     bool effectLive(const scene::EffectSpec& e, float time) const;
     Status placeGrid(SmokeGrid& grid);
 

@@ -18,6 +18,8 @@ protected:
     void TearDown() override;
 
     static gpu::Context& ctx() { return *context_; }
+    // Whether the suite's Context exists (for SetUpTestSuite overrides that use it).
+    static bool hasContext() { return context_ != nullptr; }
 
     // Returns the recorded validation messages as one string, for failure output.
     static std::string describeMessages();
