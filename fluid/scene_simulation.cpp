@@ -26,6 +26,7 @@ trajectory::Kind kindOf(scene::EffectType type) {
         return trajectory::Kind::Volumes;
     case scene::EffectType::MotionParticles:
     case scene::EffectType::Smoke:
+    case scene::EffectType::AfterimageSmear: // no queue (render/afterimage_pass.h)
         return trajectory::Kind::Particles;
     }
     return trajectory::Kind::Lines;
@@ -91,6 +92,9 @@ Result<std::unique_ptr<SceneSimulation>> SceneSimulation::create(const gpu::Cont
                                                       &effect.surface)
                     : trajectory::selectSource(character, selection);
         if (!selected) return Error{where + selected.error().message};
+        // The afterimage smear keeps its own per-vertex history in the renderer (it deforms the
+        // mesh as drawn, render/afterimage_pass.h); it has no trajectory queue.
+        if (e.type == scene::EffectType::AfterimageSmear) continue;
         effect.source = e.type == scene::EffectType::MotionBlur || surface
                             ? std::move(selected).value()
                             : strided(selected.value(), e.stride);

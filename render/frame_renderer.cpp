@@ -7,8 +7,9 @@ FrameRenderer::FrameRenderer(const gpu::Context& ctx, const fluid::SceneSimulati
     : ctx_(ctx),
       target_(createRenderTarget(ctx, width, height, supportedSamples(ctx, wantedSamples))),
       scenePass_(ctx, simulation.character(), simulation.scene(), target_.samples),
-      effectPass_(ctx, target_.samples), smokePass_(ctx),
-      camera_(makeCamera(simulation.scene().camera, float(width) / float(height))),
+      effectPass_(ctx, target_.samples),
+      afterimagePass_(ctx, simulation.scene(), simulation.character(), target_.samples),
+      smokePass_(ctx), camera_(makeCamera(simulation.scene().camera, float(width) / float(height))),
       timer_(ctx, uint32_t(std::size(kFramePassNames))),
       shown_(simulation.scene().effects.size(), 1) {}
 
@@ -19,15 +20,21 @@ void FrameRenderer::setShown(size_t effect, bool shown) {
 void FrameRenderer::record(VkCommandBuffer cmd, fluid::SceneSimulation& simulation,
                            uint32_t frame) {
     simulation.recordFrame(cmd, frame);
-    recordDraw(cmd, simulation, simulation.frameTime(frame));
+    recordFrame(cmd, simulation, simulation.frameTime(frame), &frame);
 }
 
 void FrameRenderer::recordDraw(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
                                float time) {
+    recordFrame(cmd, simulation, time, nullptr);
+}
+
+void FrameRenderer::recordFrame(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
+                                float time, const uint32_t* frame) {
     timer_.reset(cmd);
     {
         gpu::ScopedPass pass(timer_, cmd, "skin");
         scenePass_.skin(cmd, simulation.framePose(), simulation.placement());
+        if (frame) afterimagePass_.advance(cmd, simulation, *frame);
     }
     {
         gpu::ScopedPass pass(timer_, cmd, "shadow");
@@ -40,7 +47,9 @@ void FrameRenderer::recordDraw(VkCommandBuffer cmd, const fluid::SceneSimulation
     }
     {
         gpu::ScopedPass pass(timer_, cmd, "effects");
-        draws_ = effectPass_.draw(cmd, simulation, camera_, time, shown_);
+        // The smear first: by default an opaque copy of the mesh, it writes depth.
+        draws_ = afterimagePass_.draw(cmd, simulation.scene(), camera_, shown_);
+        draws_ += effectPass_.draw(cmd, simulation, camera_, time, shown_);
         endRendering(cmd);
     }
     gpu::ScopedPass pass(timer_, cmd, "smoke");

@@ -6,6 +6,7 @@
 
 #include "core/gpu/timer.h"
 #include "fluid/scene_simulation.h"
+#include "render/afterimage_pass.h"
 #include "render/character_pass.h"
 #include "render/effect_pass.h"
 #include "render/render_target.h"
@@ -16,7 +17,8 @@
 
 namespace mfx::render {
 
-// The passes a frame records, in order, by the names their timings carry.
+// The passes a frame records, in order, by the names their timings carry ("skin" includes the
+// afterimage smears' skinning, history and geometry; "effects" their draws).
 inline constexpr const char* kFramePassNames[] = {"skin", "shadow", "scene", "effects", "smoke"};
 
 class FrameRenderer {
@@ -32,7 +34,8 @@ public:
     // drawing of it. The previous recording must have finished executing.
     void record(VkCommandBuffer cmd, fluid::SceneSimulation& simulation, uint32_t frame);
     // Records only the drawing of what the simulation holds now, at scene time `time` (a paused
-    // view redraws the same frame this way).
+    // view redraws the same frame this way). Afterimage smears are drawn as last built: their
+    // history advances with record() only, so a paused frame does not change.
     void recordDraw(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation, float time);
 
     // Which of the scene's effects are drawn, by their index in scene.effects (all by default).
@@ -46,13 +49,19 @@ public:
     uint32_t effectDraws() const { return draws_; }
 
     RenderTarget& target() { return target_; }
+    const AfterimagePass& afterimages() const { return afterimagePass_; }
     const SceneCamera& camera() const { return camera_; }
 
 private:
+    // recordDraw; with `frame`, the afterimage smears also advance to that simulation frame.
+    void recordFrame(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation, float time,
+                     const uint32_t* frame);
+
     const gpu::Context& ctx_;
     RenderTarget target_;
     CharacterPass scenePass_;
     EffectPass effectPass_;
+    AfterimagePass afterimagePass_;
     SmokePass smokePass_;
     SceneCamera camera_;
     gpu::GpuTimer timer_;

@@ -173,6 +173,9 @@ TEST_F(GoldenImage, Smoke) {
 TEST_F(GoldenImage, AllEffects) {
     checkGolden("all");
 }
+TEST_F(GoldenImage, AfterimageSmear) {
+    checkGolden("afterimage");
+}
 
 // The tolerance is tight enough to see any one effect: each effect's golden is outside it of the
 // character alone, and the combined shot is outside it of each effect alone.

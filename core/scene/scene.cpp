@@ -236,25 +236,108 @@ const std::vector<std::string> kSmokeKeys = {
     "grid",         "cell_size",    "jacobi",          "fade",   "drag",     "steps_per_second",
     "buoyancy",     "vorticity",    "impulse_k",       "radius", "strength", "emission",
     "surface_step", "max_emitters", "sleep_threshold", "follow"};
+// Smith 2016, Sec. 4.3 and 5.3: the afterimage smear's settings.
+const std::vector<std::string> kAfterimageKeys = {
+    "variant",     "strength_character", "strength_animation",
+    "random_min",  "random_max",         "random_threshold",
+    "taper",       "min_speed",          "relative_speed",
+    "afterimages", "influence_power"};
+
+void readCommonEffectKeys(const Object& o, size_t index, const std::string& type, EffectSpec& e) {
+    e.name = o.string("name", type + "#" + std::to_string(index));
+    e.bones = o.strings("bones");
+    e.meshes = o.strings("meshes");
+    e.minBoneWeight = float(o.number("min_bone_weight", e.minBoneWeight, 0.0, 1.0, true));
+    e.start = float(o.number("start", e.start, 0.0, 1e5));
+    e.end = o.optionalNumber("end", 0.0, 1e5);
+    if (e.end && *e.end <= e.start)
+        fail(o.at("end"),
+             formatNumber(*e.end) + " is not after start (" + formatNumber(e.start) + ")");
+}
+
+// An afterimage_smear effect (Smith 2016): the common keys, colour and alpha, and the smear's own.
+void readAfterimage(const Object& o, size_t index, const std::string& type, EffectSpec& e) {
+    std::vector<std::string> allowed = kCommonEffectKeys;
+    allowed.insert(allowed.end(),
+                   {"stride", "colour", "alpha_start", "alpha_end", "alpha_power", "width"});
+    allowed.insert(allowed.end(), kAfterimageKeys.begin(), kAfterimageKeys.end());
+    std::vector<std::string> elsewhere = kSmokeKeys;
+    elsewhere.insert(elsewhere.end(), {"sub_samples", "lifetime", "size"});
+    o.onlyKeys(allowed, elsewhere, "not a key of " + type + " effects");
+    readCommonEffectKeys(o, index, type, e);
+
+    AfterimageSpec& a = e.afterimage;
+    const std::string variant = o.choice("variant", "smear", {"smear", "speed_lines", "multi"});
+    a.variant = variant == "smear"         ? AfterimageVariant::Smear
+                : variant == "speed_lines" ? AfterimageVariant::SpeedLines
+                                           : AfterimageVariant::Multi;
+    for (const char* key : {"width", "stride"})
+        if (o.has(key) && a.variant != AfterimageVariant::SpeedLines)
+            fail(o.at(key),
+                 "only for \"variant\": \"speed_lines\" (the variant is \"" + variant + "\")");
+    for (const char* key : {"afterimages", "influence_power"})
+        if (o.has(key) && a.variant != AfterimageVariant::Multi)
+            fail(o.at(key), "only for \"variant\": \"multi\" (the variant is \"" + variant + "\")");
+
+    // Per-variant defaults: the smear is the mesh itself, opaque; lines and arcs fade out behind.
+    e.stride = 1;
+    e.alphaStart = 1.0f;
+    e.alphaEnd = a.variant == AfterimageVariant::Smear ? 1.0f : 0.0f;
+    e.width = 0.008f;
+    if (a.variant == AfterimageVariant::SpeedLines) {
+        e.colour = {1.0f, 0.95f, 0.8f, 1.0f};
+        e.useMeshColour = false;
+    }
+    if (o.has("colour")) {
+        e.colour = o.colour("colour", e.colour);
+        e.useMeshColour = false;
+    }
+    e.stride = o.integer("stride", e.stride, 1, 1000);
+    e.alphaStart = float(o.number("alpha_start", e.alphaStart, 0.0, 1.0));
+    e.alphaEnd = float(o.number("alpha_end", e.alphaEnd, 0.0, 1.0));
+    e.alphaPower = float(o.number("alpha_power", e.alphaPower, 0.0, 16.0, true));
+    e.width = float(o.number("width", e.width, 0.0, 1.0, true));
+
+    a.strengthCharacter = float(o.number("strength_character", a.strengthCharacter, 0.0, 1000.0));
+    a.strengthAnimation = float(o.number("strength_animation", a.strengthAnimation, 0.0, 1000.0));
+    a.randomMin = float(o.number("random_min", a.randomMin, 0.0, 1.0));
+    a.randomMax = float(o.number("random_max", a.randomMax, 0.0, 1.0));
+    if (a.randomMin > a.randomMax)
+        fail(o.at("random_min"), formatNumber(a.randomMin) + " is more than random_max (" +
+                                     formatNumber(a.randomMax) + ")");
+    a.randomThreshold = float(o.number("random_threshold", a.randomThreshold, 0.0, 1.0));
+    a.taper = float(o.number("taper", a.taper, 0.0, 64.0));
+    a.minSpeed = float(o.number("min_speed", a.minSpeed, 0.0, 1e4));
+    a.relativeSpeed = float(o.number("relative_speed", a.relativeSpeed, 0.0, 1.0));
+    a.afterimages = o.integer("afterimages", a.afterimages, 1, 16);
+    a.influencePower = float(o.number("influence_power", a.influencePower, 0.0, 64.0));
+}
 
 void readEffect(const Object& o, size_t index, EffectSpec& e) {
     if (!o.has("type"))
         fail(o.at("type"), "missing; every effect needs a type: speed_lines, motion_blur, "
-                           "motion_particles or smoke");
+                           "motion_particles, smoke or afterimage_smear");
     const std::string type =
-        o.choice("type", "", {"speed_lines", "motion_blur", "motion_particles", "smoke"});
+        o.choice("type", "",
+                 {"speed_lines", "motion_blur", "motion_particles", "smoke", "afterimage_smear"});
     e.type = type == "speed_lines"        ? EffectType::SpeedLines
              : type == "motion_blur"      ? EffectType::MotionBlur
              : type == "motion_particles" ? EffectType::MotionParticles
-                                          : EffectType::Smoke;
+             : type == "smoke"            ? EffectType::Smoke
+                                          : EffectType::AfterimageSmear;
     std::vector<std::string> allowed = kCommonEffectKeys;
     allowed.insert(allowed.end(), kTrajectoryKeys.begin(), kTrajectoryKeys.end());
     std::vector<std::string> elsewhere;
+    if (e.type == EffectType::AfterimageSmear) {
+        readAfterimage(o, index, type, e);
+        return;
+    }
+    elsewhere = kAfterimageKeys;
     if (e.type == EffectType::Smoke) {
         allowed.insert(allowed.end(), kSmokeKeys.begin(), kSmokeKeys.end());
-        elsewhere = {"width", "size"};
+        elsewhere.insert(elsewhere.end(), {"width", "size"});
     } else {
-        elsewhere = kSmokeKeys;
+        elsewhere.insert(elsewhere.end(), kSmokeKeys.begin(), kSmokeKeys.end());
         if (e.type == EffectType::SpeedLines)
             allowed.push_back("width");
         else
@@ -265,16 +348,7 @@ void readEffect(const Object& o, size_t index, EffectSpec& e) {
             elsewhere.push_back("size");
     }
     o.onlyKeys(allowed, elsewhere, "not a key of " + type + " effects");
-
-    e.name = o.string("name", type + "#" + std::to_string(index));
-    e.bones = o.strings("bones");
-    e.meshes = o.strings("meshes");
-    e.minBoneWeight = float(o.number("min_bone_weight", e.minBoneWeight, 0.0, 1.0, true));
-    e.start = float(o.number("start", e.start, 0.0, 1e5));
-    e.end = o.optionalNumber("end", 0.0, 1e5);
-    if (e.end && *e.end <= e.start)
-        fail(o.at("end"),
-             formatNumber(*e.end) + " is not after start (" + formatNumber(e.start) + ")");
+    readCommonEffectKeys(o, index, type, e);
 
     // Per-type defaults before the keys that override them.
     if (e.type == EffectType::SpeedLines) {
@@ -402,6 +476,8 @@ const char* effectTypeName(EffectType type) {
         return "motion_particles";
     case EffectType::Smoke:
         return "smoke";
+    case EffectType::AfterimageSmear:
+        return "afterimage_smear";
     }
     return "speed_lines";
 }

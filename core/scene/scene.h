@@ -57,8 +57,31 @@ struct OutputSpec {
     std::optional<uint32_t> frames; // default: the playback range at fps
 };
 
-enum class EffectType { SpeedLines, MotionBlur, MotionParticles, Smoke };
+enum class EffectType { SpeedLines, MotionBlur, MotionParticles, Smoke, AfterimageSmear };
 enum class Emission { Vertices, Surface };
+
+// Afterimage toon blur (Smith 2016, chapters 4 and 5): what is drawn from the rear-facing
+// vertices pushed back along their motion.
+enum class AfterimageVariant {
+    Smear,      // the bound mesh, its rear vertices moved (single afterimage, Sec. 4.1)
+    SpeedLines, // a line from each rear vertex to where it would be pushed (Sec. 4.3)
+    Multi,      // arcs through the recorded history (multi-afterimage, Sec. 5.1)
+};
+
+// The options of an afterimage_smear effect (Smith 2016, Sec. 4.3 and 5.3).
+struct AfterimageSpec {
+    AfterimageVariant variant = AfterimageVariant::Smear;
+    float strengthCharacter = 1.0f; // f^U: push per frame of the whole character's travel
+    float strengthAnimation = 2.0f; // f^V: push per frame of the animation's own motion
+    float randomMin = 0.0f;         // the per-vertex random value R lies in [min, max] ...
+    float randomMax = 1.0f;
+    float randomThreshold = 0.0f; // ... and is 0 below this (a sharper, more jagged smear)
+    float taper = 0.0f;           // push scaled by (-cos(normal, motion))^taper; 0: none
+    float minSpeed = 0.0f;        // world units per second a vertex must move to smear
+    float relativeSpeed = 0.0f;   // fraction of the fastest bound vertex's speed it must reach
+    uint32_t afterimages = 5;     // multi: recorded positions an arc runs through
+    float influencePower = 0.0f;  // multi: k of (1 - (1 - D/Dmax) j/n)^k (Sec. 5.3 b); 0: none
+};
 
 struct EffectSpec {
     EffectType type = EffectType::SpeedLines;
@@ -96,6 +119,8 @@ struct EffectSpec {
     float surfaceStep = 0.02f; // UV-space step of surface emission
     uint32_t maxEmitters = 256;
     float sleepThreshold = 1e-4f; // below this pigment and speed, the solver sleeps
+    // Afterimage smear.
+    AfterimageSpec afterimage;
 };
 
 struct Scene {

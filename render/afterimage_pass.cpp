@@ -1,0 +1,375 @@
+#include "render/afterimage_pass.h"
+
+#include "core/gpu/check.h"
+#include "core/gpu/context.h"
+#include "fluid/scene_simulation.h"
+#include "render/render_target.h"
+#include "shaders/embedded.h"
+#include "shaders/shared/effect_draw.h"
+
+#include <algorithm>
+#include <cstring>
+#include <set>
+#include <utility>
+
+namespace mfx::render {
+
+namespace {
+
+constexpr uint32_t kBindings = 8;
+
+gpu::Program computeProgram(const gpu::Context& ctx, const char* name,
+                            std::span<const uint32_t> spirv) {
+    gpu::ComputeProgramDesc desc;
+    desc.name = name;
+    desc.spirv = spirv;
+    for (uint32_t b = 0; b < kBindings; ++b)
+        desc.bindings.push_back(
+            {b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT});
+    desc.pushConstantSize = sizeof(shared::AfterimageConstants);
+    desc.maxSets = 64;
+    return gpu::createComputeProgram(ctx, desc);
+}
+
+// As the effect pass draws trajectory vertices (render/effect_pass.cpp), but the smear, an opaque
+// copy of the mesh by default, also writes depth.
+gpu::GraphicsProgramDesc drawDesc(const char* name, VkPrimitiveTopology topology,
+                                  VkSampleCountFlagBits samples, bool depthWrite) {
+    gpu::GraphicsProgramDesc desc;
+    desc.name = name;
+    desc.bindings = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_ALL_GRAPHICS}};
+    desc.pushConstantSize = sizeof(shared::EffectDraw);
+    desc.vertexStride = sizeof(shared::TrajectoryVertex);
+    desc.attributes = {{0, VK_FORMAT_R32G32B32A32_SFLOAT, 0},
+                       {1, VK_FORMAT_R32G32B32A32_SFLOAT, 16},
+                       {2, VK_FORMAT_R32G32B32A32_SFLOAT, 32}};
+    desc.topology = topology;
+    desc.colorFormats = {kColorFormat};
+    desc.depthFormat = kDepthFormat;
+    desc.depthTest = true;
+    desc.depthWrite = depthWrite;
+    desc.blend = gpu::BlendMode::PremultipliedAlpha;
+    desc.samples = samples;
+    return desc;
+}
+
+gpu::Buffer storage(const gpu::Context& ctx, VkDeviceSize bytes, VkBufferUsageFlags extra,
+                    const char* name) {
+    return gpu::createBuffer(ctx, std::max<VkDeviceSize>(bytes, 64),
+                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+                                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT | extra,
+                             gpu::MemoryUsage::DeviceLocal, name);
+}
+
+// The edges of a triangle list, each once (Smith 2016, Sec. 5.1.2: the adjacency the arcs'
+// quads are built on).
+std::vector<uint32_t> uniqueEdges(const std::vector<uint32_t>& triangles) {
+    std::set<std::pair<uint32_t, uint32_t>> edges;
+    for (size_t t = 0; t + 2 < triangles.size(); t += 3)
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t a = triangles[t + size_t(k)], b = triangles[t + size_t((k + 1) % 3)];
+            if (a != b) edges.emplace(std::min(a, b), std::max(a, b));
+        }
+    std::vector<uint32_t> out;
+    out.reserve(edges.size() * 2);
+    for (const auto& [a, b] : edges) {
+        out.push_back(a);
+        out.push_back(b);
+    }
+    return out;
+}
+
+void computeBarrier(VkCommandBuffer cmd) {
+    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                       VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+}
+
+} // namespace
+
+AfterimagePass::AfterimagePass(const gpu::Context& ctx, const scene::Scene& scene,
+                               const anim::Character& character, VkSampleCountFlagBits samples)
+    : ctx_(ctx), character_(character), skinning_(ctx) {
+    for (size_t i = 0; i < scene.effects.size(); ++i) {
+        const scene::EffectSpec& e = scene.effects[i];
+        if (e.type != scene::EffectType::AfterimageSmear) continue;
+        trajectory::Selection selection;
+        selection.meshes = e.meshes;
+        selection.bones = e.bones;
+        selection.minBoneWeight = e.minBoneWeight;
+        Result<trajectory::Source> selected = trajectory::selectSource(character, selection);
+        if (!selected || selected.value().vertices.empty()) continue;
+        Effect effect;
+        effect.index = i;
+        effect.spec = e;
+        effect.source = std::move(selected).value();
+        const trajectory::Source& source = effect.source;
+        const scene::AfterimageVariant variant = e.afterimage.variant;
+        effect.vertexCount = uint32_t(source.vertices.size());
+        // Smith 2016, Sec. 4.1.1: one afterimage needs the last frame only; an arc through n
+        // afterimages needs the n frames before this one.
+        effect.historySlots =
+            variant == scene::AfterimageVariant::Multi ? e.afterimage.afterimages + 1 : 2;
+        const uint32_t n = effect.vertexCount;
+        std::vector<uint32_t> primitives;
+        if (variant == scene::AfterimageVariant::Smear) {
+            primitives = source.triangles;
+            effect.primitiveCount = uint32_t(primitives.size() / 3);
+        } else if (variant == scene::AfterimageVariant::Multi) {
+            primitives = uniqueEdges(source.triangles);
+            effect.primitiveCount = uint32_t(primitives.size() / 2);
+        }
+        effect.outputCapacity = variant == scene::AfterimageVariant::SpeedLines ? 2 * n
+                                : variant == scene::AfterimageVariant::Multi
+                                    ? effect.primitiveCount * 6 * e.afterimage.afterimages
+                                    : 0;
+
+        effect.input = storage(ctx, n * sizeof(shared::SkinVertexIn), 0, "afterimage bind pose");
+        gpu::uploadBuffer(ctx, effect.input,
+                          std::span<const shared::SkinVertexIn>(source.vertices));
+        effect.palette = gpu::createBuffer(
+            ctx, std::max<size_t>(source.palette.size(), 1) * sizeof(shared::SkinJoint),
+            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload, "afterimage palette");
+        effect.skinned = storage(ctx, n * sizeof(shared::SkinVertexOut),
+                                 VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "afterimage skinned");
+        effect.history = storage(ctx, VkDeviceSize(n) * effect.historySlots * sizeof(glm::vec4), 0,
+                                 "afterimage history");
+        std::vector<glm::vec4> colours = source.colours;
+        if (!e.useMeshColour) std::fill(colours.begin(), colours.end(), e.colour);
+        effect.colours = storage(ctx, n * sizeof(glm::vec4), 0, "afterimage colours");
+        gpu::uploadBuffer(ctx, effect.colours, std::span<const glm::vec4>(colours));
+        effect.pushed = storage(ctx, n * sizeof(shared::TrajectoryVertex),
+                                VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "afterimage pushed");
+        effect.primitives =
+            storage(ctx, primitives.size() * sizeof(uint32_t), 0, "afterimage primitives");
+        if (!primitives.empty())
+            gpu::uploadBuffer(ctx, effect.primitives, std::span<const uint32_t>(primitives));
+        effect.output =
+            storage(ctx, VkDeviceSize(effect.outputCapacity) * sizeof(shared::TrajectoryVertex),
+                    VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "afterimage geometry");
+        effect.indices = storage(ctx,
+                                 variant == scene::AfterimageVariant::Smear
+                                     ? source.triangles.size() * sizeof(uint32_t)
+                                     : 0,
+                                 VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "afterimage indices");
+        effect.counters = gpu::createBuffer(
+            ctx, sizeof(shared::AfterimageCounters),
+            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
+                VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+            gpu::MemoryUsage::Readback, "afterimage counters");
+        std::memset(effect.counters.mapped, 0, sizeof(shared::AfterimageCounters));
+        effects_.push_back(std::move(effect));
+    }
+    if (effects_.empty()) return; // a scene without the effect pays for nothing
+
+    record_ = computeProgram(ctx, "afterimage_record", shaders::afterimage_record_comp);
+    smear_ = computeProgram(ctx, "afterimage_smear", shaders::afterimage_smear_comp);
+    build_ = computeProgram(ctx, "afterimage_build", shaders::afterimage_build_comp);
+    for (Effect& effect : effects_) {
+        const gpu::DescriptorWrite writes[kBindings] = {
+            gpu::bindBuffer(0, effect.skinned),    gpu::bindBuffer(1, effect.history),
+            gpu::bindBuffer(2, effect.colours),    gpu::bindBuffer(3, effect.pushed),
+            gpu::bindBuffer(4, effect.primitives), gpu::bindBuffer(5, effect.output),
+            gpu::bindBuffer(6, effect.indices),    gpu::bindBuffer(7, effect.counters)};
+        effect.recordSet = record_.createSet(ctx, writes);
+        effect.smearSet = smear_.createSet(ctx, writes);
+        effect.buildSet = build_.createSet(ctx, writes);
+    }
+
+    gpu::GraphicsProgramDesc smear =
+        drawDesc("afterimage_smear", VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, samples, true);
+    smear.vertex = shaders::effect_volume_vert;
+    smear.fragment = shaders::effect_volume_frag;
+    smearDraw_ = gpu::createGraphicsProgram(ctx, smear);
+    gpu::GraphicsProgramDesc lines =
+        drawDesc("afterimage_lines", VK_PRIMITIVE_TOPOLOGY_LINE_LIST, samples, false);
+    lines.vertex = shaders::effect_lines_vert;
+    lines.geometry = shaders::effect_lines_geom;
+    lines.fragment = shaders::effect_lines_frag;
+    lineDraw_ = gpu::createGraphicsProgram(ctx, lines);
+    gpu::GraphicsProgramDesc arcs =
+        drawDesc("afterimage_arcs", VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, samples, false);
+    arcs.vertex = shaders::effect_volume_vert;
+    arcs.fragment = shaders::effect_volume_frag;
+    arcDraw_ = gpu::createGraphicsProgram(ctx, arcs);
+    frame_ = gpu::createBuffer(ctx, sizeof(shared::SceneFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                               gpu::MemoryUsage::Upload, "afterimage frame");
+    smearDrawSet_ = smearDraw_.createSet(ctx, {gpu::bindBuffer(0, frame_)});
+    lineDrawSet_ = lineDraw_.createSet(ctx, {gpu::bindBuffer(0, frame_)});
+    arcDrawSet_ = arcDraw_.createSet(ctx, {gpu::bindBuffer(0, frame_)});
+}
+
+void AfterimagePass::advance(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
+                             uint32_t frame) {
+    if (effects_.empty()) return;
+    const bool sameRun = recorded_ && simulation.serial() == lastSerial_;
+    if (sameRun && frame == lastFrame_) return; // the same frame again: the ring stays as it is
+    const bool reset = !sameRun || frame != lastFrame_ + 1;
+    recorded_ = true;
+    lastSerial_ = simulation.serial();
+    lastFrame_ = frame;
+
+    const scene::Scene& scene = simulation.scene();
+    const float time = simulation.frameTime(frame);
+    const anim::Pose& pose = simulation.framePose();
+    // The whole character's motion (m^U of Smith 2016, Sec. 4.3): its root's travel this frame.
+    const glm::vec3 root = simulation.rootPosition(pose);
+    const glm::vec3 characterMotion = reset ? glm::vec3(0.0f) : root - lastRoot_;
+    lastRoot_ = root;
+
+    for (Effect& effect : effects_) {
+        const std::vector<shared::SkinJoint> palette = anim::packPalette(
+            trajectory::sourcePalette(character_, effect.source, pose, simulation.placement()));
+        std::memcpy(effect.palette.mapped, palette.data(),
+                    palette.size() * sizeof(shared::SkinJoint));
+        skinning_.record(cmd, effect.palette, uint32_t(palette.size()), effect.input,
+                         effect.skinned, effect.vertexCount);
+
+        effect.newest = reset ? 0 : (effect.newest + 1) % effect.historySlots;
+        effect.filled = reset ? 1 : std::min(effect.filled + 1, effect.historySlots);
+
+        shared::AfterimageCounters zero{};
+        zero.indexedInstanceCount = 1;
+        zero.instanceCount = 1;
+        vkCmdUpdateBuffer(cmd, effect.counters.get(), 0, sizeof zero, &zero);
+        gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                           VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                           VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
+                               VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+
+        const scene::EffectSpec& e = effect.spec;
+        const scene::AfterimageSpec& a = e.afterimage;
+        shared::AfterimageConstants c{};
+        c.characterMotion = glm::vec4(characterMotion, 0.0f);
+        c.vertexCount = effect.vertexCount;
+        c.primitiveCount = effect.primitiveCount;
+        c.historySlots = effect.historySlots;
+        c.newest = effect.newest;
+        c.filled = effect.filled;
+        c.reset = reset ? 1 : 0;
+        c.variant = a.variant == scene::AfterimageVariant::Smear        ? MFX_AFTERIMAGE_SMEAR
+                    : a.variant == scene::AfterimageVariant::SpeedLines ? MFX_AFTERIMAGE_SPEED_LINES
+                                                                        : MFX_AFTERIMAGE_MULTI;
+        c.afterimages = a.afterimages;
+        c.strengthCharacter = a.strengthCharacter;
+        c.strengthAnimation = a.strengthAnimation;
+        c.randomMin = a.randomMin;
+        c.randomMax = a.randomMax;
+        c.randomThreshold = a.randomThreshold;
+        c.taper = a.taper;
+        c.minSpeed = a.minSpeed / scene.output.fps; // per second → per frame
+        c.relativeSpeed = a.relativeSpeed;
+        c.alphaStart = e.alphaStart;
+        c.alphaEnd = e.alphaEnd;
+        c.alphaPower = e.alphaPower;
+        c.influencePower = a.influencePower;
+        c.stride = e.stride;
+
+        const uint32_t vertexGroups =
+            gpu::groupCount(effect.vertexCount, MFX_AFTERIMAGE_GROUP_SIZE);
+        record_.bind(cmd, effect.recordSet);
+        record_.push(cmd, c);
+        vkCmdDispatch(cmd, vertexGroups, 1, 1);
+        // Outside its window the effect records its history (so it enters the window with the
+        // right motion) but builds nothing.
+        const float slack = 0.5f / scene.output.fps;
+        const bool live = time + slack >= e.start && (!e.end || time <= *e.end + slack);
+        if (live) {
+            computeBarrier(cmd);
+            smear_.bind(cmd, effect.smearSet);
+            smear_.push(cmd, c);
+            vkCmdDispatch(cmd, vertexGroups, 1, 1);
+            if (effect.primitiveCount > 0) {
+                computeBarrier(cmd);
+                build_.bind(cmd, effect.buildSet);
+                build_.push(cmd, c);
+                vkCmdDispatch(
+                    cmd, gpu::groupCount(effect.primitiveCount, MFX_AFTERIMAGE_GROUP_SIZE), 1, 1);
+            }
+        }
+    }
+    gpu::memoryBarrier(
+        cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+        VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_VERTEX_INPUT_BIT |
+            VK_PIPELINE_STAGE_2_HOST_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+        VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT |
+            VK_ACCESS_2_INDEX_READ_BIT | VK_ACCESS_2_HOST_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
+}
+
+uint32_t AfterimagePass::draw(VkCommandBuffer cmd, const scene::Scene& scene,
+                              const SceneCamera& camera, std::span<const uint8_t> shown) {
+    if (effects_.empty() || !recorded_) return 0;
+    const shared::SceneFrame frame = sceneFrame(scene, camera);
+    std::memcpy(frame_.mapped, &frame, sizeof frame);
+    uint32_t draws = 0;
+    const VkDeviceSize offset = 0;
+    for (const Effect& effect : effects_) {
+        if (!shown.empty() && (effect.index >= shown.size() || shown[effect.index] == 0)) continue;
+        const scene::AfterimageVariant variant = effect.spec.afterimage.variant;
+        // Every vertex is drawn at time 0 with sample time 0: no age fade (effect_common.glsl);
+        // the alpha along the push or the arc is in the vertex colour.
+        shared::EffectDraw d{};
+        d.timing = glm::vec4(0.0f, 1.0f, effect.spec.width, 1.0f / scene.output.fps);
+        d.tint = glm::vec4(1.0f);
+        if (variant == scene::AfterimageVariant::Smear) {
+            smearDraw_.bind(cmd, smearDrawSet_);
+            smearDraw_.push(cmd, d);
+            VkBuffer vb = effect.pushed.get();
+            vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
+            vkCmdBindIndexBuffer(cmd, effect.indices.get(), 0, VK_INDEX_TYPE_UINT32);
+            vkCmdDrawIndexedIndirect(cmd, effect.counters.get(), 0, 1,
+                                     sizeof(VkDrawIndexedIndirectCommand));
+        } else {
+            gpu::Program& program =
+                variant == scene::AfterimageVariant::SpeedLines ? lineDraw_ : arcDraw_;
+            program.bind(cmd, variant == scene::AfterimageVariant::SpeedLines ? lineDrawSet_
+                                                                              : arcDrawSet_);
+            program.push(cmd, d);
+            VkBuffer vb = effect.output.get();
+            vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
+            vkCmdDrawIndirect(cmd, effect.counters.get(),
+                              offsetof(shared::AfterimageCounters, vertexCount), 1,
+                              sizeof(VkDrawIndirectCommand));
+        }
+        ++draws;
+    }
+    return draws;
+}
+
+const AfterimagePass::Effect* AfterimagePass::find(size_t effect) const {
+    for (const Effect& e : effects_)
+        if (e.index == effect) return &e;
+    return nullptr;
+}
+
+AfterimagePass::Counts AfterimagePass::counts(size_t effect) const {
+    const Effect* e = find(effect);
+    if (!e) return {};
+    shared::AfterimageCounters c{};
+    std::memcpy(&c, e->counters.mapped, sizeof c);
+    Counts out;
+    out.pushedVertices = c.pushedVertices;
+    out.triangles = c.indexCount / 3;
+    out.lineVertices = c.vertexCount;
+    std::memcpy(&out.fastest, &c.fastestBits, sizeof(float));
+    return out;
+}
+
+std::vector<shared::TrajectoryVertex> AfterimagePass::geometry(size_t effect) const {
+    const Effect* e = find(effect);
+    if (!e) return {};
+    const Counts c = counts(effect);
+    if (e->spec.afterimage.variant == scene::AfterimageVariant::Smear) {
+        const auto vertices = gpu::readBufferAs<shared::TrajectoryVertex>(ctx_, e->pushed);
+        const auto indices = gpu::readBufferAs<uint32_t>(ctx_, e->indices);
+        std::vector<shared::TrajectoryVertex> out;
+        for (uint32_t k = 0; k < c.triangles * 3 && k < indices.size(); ++k)
+            out.push_back(vertices[indices[k]]);
+        return out;
+    }
+    auto vertices = gpu::readBufferAs<shared::TrajectoryVertex>(ctx_, e->output);
+    vertices.resize(std::min<size_t>(vertices.size(), c.lineVertices));
+    return vertices;
+}
+
+} // namespace mfx::render

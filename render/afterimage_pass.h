@@ -1,0 +1,103 @@
+// The afterimage toon blur, on the GPU: Smith 2016, "Afterimage Toon Blur: Procedural Generation
+// of Cartoon Blur for 3D Models in Real Time" (chapter 4, single afterimage; chapter 5,
+// multi-afterimage). For each afterimage_smear effect of the scene:
+//   * its bound vertices (bones, meshes) are skinned for the frame (anim::SkinVertices) and their
+//     positions written into a ring of recorded positions, one slot per scene frame
+//     (afterimage_record.comp);
+//   * each vertex facing away from its motion is pushed back along it, by the strengths of the
+//     character's travel and of the animation's own motion times a per-vertex random value that
+//     depends on the vertex index alone, with the taper and speed thresholds of Sec. 4.3 and 5.3
+//     (afterimage_smear.comp);
+//   * the drawn geometry is built (afterimage_build.comp): the smeared copy of the bound mesh
+//     (its triangles with a pushed vertex), a speed-line from each pushed vertex to where it is
+//     pushed, or arcs through the recorded positions (multi);
+//   * it is drawn in the effects pass by indirect draws, with the effect shaders (lit triangles,
+//     camera-facing ribbons): nothing is read back to the CPU.
+// The ring advances only when a scene frame is recorded (FrameRenderer::record); redrawing a paused
+// frame draws the same geometry. A frame that does not follow the last one recorded (the first,
+// a jump, a new simulation) starts the ring again: no motion, no smear.
+#pragma once
+
+#include "core/anim/character.h"
+#include "core/anim/skin_vertices.h"
+#include "core/gpu/program.h"
+#include "core/gpu/resources.h"
+#include "core/scene/scene.h"
+#include "core/trajectory/trajectory_source.h"
+#include "render/scene_camera.h"
+#include "shaders/shared/afterimage.h"
+#include "shaders/shared/trajectory.h"
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace mfx::fluid {
+class SceneSimulation;
+}
+
+namespace mfx::render {
+
+class AfterimagePass {
+public:
+    // The scene's afterimage_smear effects on `character` (which must outlive the pass), drawn
+    // into targets of `samples` samples. Effects whose selection leaves no vertex are left out
+    // (the simulation refuses such scenes first).
+    AfterimagePass(const gpu::Context& ctx, const scene::Scene& scene,
+                   const anim::Character& character,
+                   VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT);
+
+    bool empty() const { return effects_.empty(); }
+
+    // Records frame `frame` of `simulation` (its pose is the frame's: after recordFrame): the
+    // skinning, the ring's advance and the geometry. The previous recording must have finished.
+    void advance(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation, uint32_t frame);
+    // Records the draws of the geometry last built (inside rendering; the effect pass's target
+    // formats). With `shown` non-empty, only effects whose entry (index in scene.effects) is
+    // non-zero. Returns the number of draws.
+    uint32_t draw(VkCommandBuffer cmd, const scene::Scene& scene, const SceneCamera& camera,
+                  std::span<const uint8_t> shown = {});
+
+    // After the recording has finished executing, what effect `effect` (its index in
+    // scene.effects) built: all zero for an effect that is not an afterimage_smear.
+    struct Counts {
+        uint32_t pushedVertices = 0; // rear vertices pushed back this frame
+        uint32_t triangles = 0;      // smear: triangles drawn
+        uint32_t lineVertices = 0;   // speed lines (2 a line) or arcs (3 a triangle)
+        float fastest = 0.0f;        // the fastest bound vertex's motion (world units per frame)
+    };
+    Counts counts(size_t effect) const;
+    // The geometry of effect `effect` as drawn (smear: the vertices of its drawn triangles, three
+    // a triangle; speed lines: two a line; multi: three a triangle). Reads back; waits.
+    std::vector<shared::TrajectoryVertex> geometry(size_t effect) const;
+
+private:
+    struct Effect {
+        size_t index = 0; // in scene.effects
+        scene::EffectSpec spec;
+        trajectory::Source source;
+        uint32_t vertexCount = 0, primitiveCount = 0, historySlots = 2, outputCapacity = 0;
+        gpu::Buffer input, palette, skinned, history, colours, pushed, primitives, output, indices,
+            counters;
+        VkDescriptorSet recordSet = VK_NULL_HANDLE, smearSet = VK_NULL_HANDLE,
+                        buildSet = VK_NULL_HANDLE;
+        uint32_t newest = 0, filled = 0;
+    };
+    const Effect* find(size_t effect) const;
+
+    const gpu::Context& ctx_;
+    const anim::Character& character_;
+    anim::SkinVertices skinning_;
+    gpu::Program record_, smear_, build_;
+    gpu::Program smearDraw_, lineDraw_, arcDraw_;
+    gpu::Buffer frame_;
+    VkDescriptorSet smearDrawSet_ = VK_NULL_HANDLE, lineDrawSet_ = VK_NULL_HANDLE,
+                    arcDrawSet_ = VK_NULL_HANDLE;
+    std::vector<Effect> effects_;
+    uint64_t lastSerial_ = 0;
+    uint32_t lastFrame_ = 0;
+    bool recorded_ = false;
+    glm::vec3 lastRoot_{0.0f};
+};
+
+} // namespace mfx::render
