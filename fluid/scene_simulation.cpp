@@ -27,6 +27,7 @@ trajectory::Kind kindOf(scene::EffectType type) {
     case scene::EffectType::MotionParticles:
     case scene::EffectType::Smoke:
     case scene::EffectType::AfterimageSmear: // no queue (render/afterimage_pass.h)
+    case scene::EffectType::SweptVolume:     // no queue (render/swept_volume_pass.h)
         return trajectory::Kind::Particles;
     }
     return trajectory::Kind::Lines;
@@ -94,7 +95,10 @@ Result<std::unique_ptr<SceneSimulation>> SceneSimulation::create(const gpu::Cont
         if (!selected) return Error{where + selected.error().message};
         // The afterimage smear keeps its own per-vertex history in the renderer (it deforms the
         // mesh as drawn, render/afterimage_pass.h); it has no trajectory queue.
-        if (e.type == scene::EffectType::AfterimageSmear) continue;
+        // So does the swept volume (render/swept_volume_pass.h).
+        if (e.type == scene::EffectType::AfterimageSmear ||
+            e.type == scene::EffectType::SweptVolume)
+            continue;
         effect.source = e.type == scene::EffectType::MotionBlur || surface
                             ? std::move(selected).value()
                             : strided(selected.value(), e.stride);

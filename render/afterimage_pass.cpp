@@ -3,6 +3,7 @@
 #include "core/gpu/check.h"
 #include "core/gpu/context.h"
 #include "fluid/scene_simulation.h"
+#include "render/effect_geometry.h"
 #include "render/render_target.h"
 #include "shaders/embedded.h"
 #include "shaders/shared/effect_draw.h"
@@ -20,45 +21,7 @@ constexpr uint32_t kBindings = 8;
 
 gpu::Program computeProgram(const gpu::Context& ctx, const char* name,
                             std::span<const uint32_t> spirv) {
-    gpu::ComputeProgramDesc desc;
-    desc.name = name;
-    desc.spirv = spirv;
-    for (uint32_t b = 0; b < kBindings; ++b)
-        desc.bindings.push_back(
-            {b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT});
-    desc.pushConstantSize = sizeof(shared::AfterimageConstants);
-    desc.maxSets = 64;
-    return gpu::createComputeProgram(ctx, desc);
-}
-
-// As the effect pass draws trajectory vertices (render/effect_pass.cpp), but the smear, an opaque
-// copy of the mesh by default, also writes depth.
-gpu::GraphicsProgramDesc drawDesc(const char* name, VkPrimitiveTopology topology,
-                                  VkSampleCountFlagBits samples, bool depthWrite) {
-    gpu::GraphicsProgramDesc desc;
-    desc.name = name;
-    desc.bindings = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_ALL_GRAPHICS}};
-    desc.pushConstantSize = sizeof(shared::EffectDraw);
-    desc.vertexStride = sizeof(shared::TrajectoryVertex);
-    desc.attributes = {{0, VK_FORMAT_R32G32B32A32_SFLOAT, 0},
-                       {1, VK_FORMAT_R32G32B32A32_SFLOAT, 16},
-                       {2, VK_FORMAT_R32G32B32A32_SFLOAT, 32}};
-    desc.topology = topology;
-    desc.colorFormats = {kColorFormat};
-    desc.depthFormat = kDepthFormat;
-    desc.depthTest = true;
-    desc.depthWrite = depthWrite;
-    desc.blend = gpu::BlendMode::PremultipliedAlpha;
-    desc.samples = samples;
-    return desc;
-}
-
-gpu::Buffer storage(const gpu::Context& ctx, VkDeviceSize bytes, VkBufferUsageFlags extra,
-                    const char* name) {
-    return gpu::createBuffer(ctx, std::max<VkDeviceSize>(bytes, 64),
-                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
-                                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT | extra,
-                             gpu::MemoryUsage::DeviceLocal, name);
+    return storageComputeProgram(ctx, name, spirv, kBindings, sizeof(shared::AfterimageConstants));
 }
 
 // The edges of a triangle list, each once (Smith 2016, Sec. 5.1.2: the adjacency the arcs'
@@ -77,12 +40,6 @@ std::vector<uint32_t> uniqueEdges(const std::vector<uint32_t>& triangles) {
         out.push_back(b);
     }
     return out;
-}
-
-void computeBarrier(VkCommandBuffer cmd) {
-    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                       VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
 }
 
 } // namespace
@@ -124,34 +81,36 @@ AfterimagePass::AfterimagePass(const gpu::Context& ctx, const scene::Scene& scen
                                     ? effect.primitiveCount * 6 * e.afterimage.afterimages
                                     : 0;
 
-        effect.input = storage(ctx, n * sizeof(shared::SkinVertexIn), 0, "afterimage bind pose");
+        effect.input =
+            effectStorage(ctx, n * sizeof(shared::SkinVertexIn), 0, "afterimage bind pose");
         gpu::uploadBuffer(ctx, effect.input,
                           std::span<const shared::SkinVertexIn>(source.vertices));
         effect.palette = gpu::createBuffer(
             ctx, std::max<size_t>(source.palette.size(), 1) * sizeof(shared::SkinJoint),
             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload, "afterimage palette");
-        effect.skinned = storage(ctx, n * sizeof(shared::SkinVertexOut),
-                                 VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "afterimage skinned");
-        effect.history = storage(ctx, VkDeviceSize(n) * effect.historySlots * sizeof(glm::vec4), 0,
-                                 "afterimage history");
+        effect.skinned = effectStorage(ctx, n * sizeof(shared::SkinVertexOut),
+                                       VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "afterimage skinned");
+        effect.history =
+            effectStorage(ctx, VkDeviceSize(n) * effect.historySlots * sizeof(glm::vec4), 0,
+                          "afterimage history");
         std::vector<glm::vec4> colours = source.colours;
         if (!e.useMeshColour) std::fill(colours.begin(), colours.end(), e.colour);
-        effect.colours = storage(ctx, n * sizeof(glm::vec4), 0, "afterimage colours");
+        effect.colours = effectStorage(ctx, n * sizeof(glm::vec4), 0, "afterimage colours");
         gpu::uploadBuffer(ctx, effect.colours, std::span<const glm::vec4>(colours));
-        effect.pushed = storage(ctx, n * sizeof(shared::TrajectoryVertex),
-                                VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "afterimage pushed");
+        effect.pushed = effectStorage(ctx, n * sizeof(shared::TrajectoryVertex),
+                                      VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "afterimage pushed");
         effect.primitives =
-            storage(ctx, primitives.size() * sizeof(uint32_t), 0, "afterimage primitives");
+            effectStorage(ctx, primitives.size() * sizeof(uint32_t), 0, "afterimage primitives");
         if (!primitives.empty())
             gpu::uploadBuffer(ctx, effect.primitives, std::span<const uint32_t>(primitives));
-        effect.output =
-            storage(ctx, VkDeviceSize(effect.outputCapacity) * sizeof(shared::TrajectoryVertex),
-                    VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "afterimage geometry");
-        effect.indices = storage(ctx,
-                                 variant == scene::AfterimageVariant::Smear
-                                     ? source.triangles.size() * sizeof(uint32_t)
-                                     : 0,
-                                 VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "afterimage indices");
+        effect.output = effectStorage(
+            ctx, VkDeviceSize(effect.outputCapacity) * sizeof(shared::TrajectoryVertex),
+            VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "afterimage geometry");
+        effect.indices = effectStorage(ctx,
+                                       variant == scene::AfterimageVariant::Smear
+                                           ? source.triangles.size() * sizeof(uint32_t)
+                                           : 0,
+                                       VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "afterimage indices");
         effect.counters = gpu::createBuffer(
             ctx, sizeof(shared::AfterimageCounters),
             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
@@ -177,18 +136,18 @@ AfterimagePass::AfterimagePass(const gpu::Context& ctx, const scene::Scene& scen
     }
 
     gpu::GraphicsProgramDesc smear =
-        drawDesc("afterimage_smear", VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, samples, true);
+        trajectoryDrawDesc("afterimage_smear", VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, samples, true);
     smear.vertex = shaders::effect_volume_vert;
     smear.fragment = shaders::effect_volume_frag;
     smearDraw_ = gpu::createGraphicsProgram(ctx, smear);
     gpu::GraphicsProgramDesc lines =
-        drawDesc("afterimage_lines", VK_PRIMITIVE_TOPOLOGY_LINE_LIST, samples, false);
+        trajectoryDrawDesc("afterimage_lines", VK_PRIMITIVE_TOPOLOGY_LINE_LIST, samples, false);
     lines.vertex = shaders::effect_lines_vert;
     lines.geometry = shaders::effect_lines_geom;
     lines.fragment = shaders::effect_lines_frag;
     lineDraw_ = gpu::createGraphicsProgram(ctx, lines);
     gpu::GraphicsProgramDesc arcs =
-        drawDesc("afterimage_arcs", VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, samples, false);
+        trajectoryDrawDesc("afterimage_arcs", VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, samples, false);
     arcs.vertex = shaders::effect_volume_vert;
     arcs.fragment = shaders::effect_volume_frag;
     arcDraw_ = gpu::createGraphicsProgram(ctx, arcs);
@@ -202,12 +161,9 @@ AfterimagePass::AfterimagePass(const gpu::Context& ctx, const scene::Scene& scen
 void AfterimagePass::advance(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
                              uint32_t frame) {
     if (effects_.empty()) return;
-    const bool sameRun = recorded_ && simulation.serial() == lastSerial_;
-    if (sameRun && frame == lastFrame_) return; // the same frame again: the ring stays as it is
-    const bool reset = !sameRun || frame != lastFrame_ + 1;
-    recorded_ = true;
-    lastSerial_ = simulation.serial();
-    lastFrame_ = frame;
+    const FrameHistory::Step step = history_.step(simulation.serial(), frame);
+    if (step == FrameHistory::Step::Same) return; // the same frame again: the ring stays as it is
+    const bool reset = step == FrameHistory::Step::Restart;
 
     const scene::Scene& scene = simulation.scene();
     const float time = simulation.frameTime(frame);
@@ -275,12 +231,12 @@ void AfterimagePass::advance(VkCommandBuffer cmd, const fluid::SceneSimulation& 
         const float slack = 0.5f / scene.output.fps;
         const bool live = time + slack >= e.start && (!e.end || time <= *e.end + slack);
         if (live) {
-            computeBarrier(cmd);
+            computeToComputeBarrier(cmd);
             smear_.bind(cmd, effect.smearSet);
             smear_.push(cmd, c);
             vkCmdDispatch(cmd, vertexGroups, 1, 1);
             if (effect.primitiveCount > 0) {
-                computeBarrier(cmd);
+                computeToComputeBarrier(cmd);
                 build_.bind(cmd, effect.buildSet);
                 build_.push(cmd, c);
                 vkCmdDispatch(
@@ -288,17 +244,12 @@ void AfterimagePass::advance(VkCommandBuffer cmd, const fluid::SceneSimulation& 
             }
         }
     }
-    gpu::memoryBarrier(
-        cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-        VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_VERTEX_INPUT_BIT |
-            VK_PIPELINE_STAGE_2_HOST_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
-        VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT |
-            VK_ACCESS_2_INDEX_READ_BIT | VK_ACCESS_2_HOST_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
+    computeToDrawBarrier(cmd);
 }
 
 uint32_t AfterimagePass::draw(VkCommandBuffer cmd, const scene::Scene& scene,
                               const SceneCamera& camera, std::span<const uint8_t> shown) {
-    if (effects_.empty() || !recorded_) return 0;
+    if (effects_.empty() || !history_.recorded()) return 0;
     const shared::SceneFrame frame = sceneFrame(scene, camera);
     std::memcpy(frame_.mapped, &frame, sizeof frame);
     uint32_t draws = 0;

@@ -24,6 +24,7 @@
 #include "core/gpu/resources.h"
 #include "core/scene/scene.h"
 #include "core/trajectory/trajectory_source.h"
+#include "render/effect_geometry.h"
 #include "render/scene_camera.h"
 #include "shaders/shared/afterimage.h"
 #include "shaders/shared/trajectory.h"
@@ -94,9 +95,7 @@ private:
     VkDescriptorSet smearDrawSet_ = VK_NULL_HANDLE, lineDrawSet_ = VK_NULL_HANDLE,
                     arcDrawSet_ = VK_NULL_HANDLE;
     std::vector<Effect> effects_;
-    uint64_t lastSerial_ = 0;
-    uint32_t lastFrame_ = 0;
-    bool recorded_ = false;
+    FrameHistory history_;
     glm::vec3 lastRoot_{0.0f};
 };
 

@@ -145,9 +145,12 @@ std::vector<shared::TrajectoryVertex> sortedLines(std::vector<shared::Trajectory
     std::vector<std::pair<shared::TrajectoryVertex, shared::TrajectoryVertex>> pairs;
     for (size_t k = 0; k + 1 < lines.size(); k += 2)
         pairs.emplace_back(lines[k], lines[k + 1]);
+    // By both ends: vertices at one place (a seam) start several lines, which the GPU's
+    // invocations append in any order.
     std::sort(pairs.begin(), pairs.end(), [](const auto& x, const auto& y) {
         const glm::vec4 &a = x.first.position, &b = y.first.position;
-        return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z);
+        const glm::vec4 &c = x.second.position, &d = y.second.position;
+        return std::tie(a.x, a.y, a.z, c.x, c.y, c.z) < std::tie(b.x, b.y, b.z, d.x, d.y, d.z);
     });
     std::vector<shared::TrajectoryVertex> out;
     for (const auto& [a, b] : pairs) {

@@ -176,6 +176,9 @@ TEST_F(GoldenImage, AllEffects) {
 TEST_F(GoldenImage, AfterimageSmear) {
     checkGolden("afterimage");
 }
+TEST_F(GoldenImage, SweptVolume) {
+    checkGolden("swept");
+}
 
 // The tolerance is tight enough to see any one effect: each effect's golden is outside it of the
 // character alone, and the combined shot is outside it of each effect alone.

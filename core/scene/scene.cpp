@@ -242,6 +242,8 @@ const std::vector<std::string> kAfterimageKeys = {
     "random_min",  "random_max",         "random_threshold",
     "taper",       "min_speed",          "relative_speed",
     "afterimages", "influence_power"};
+// Wloka and Zeleznik 1996, Sec. 3.4 and 4.2: the swept volume's settings.
+const std::vector<std::string> kSweptKeys = {"filter", "segments", "alpha_floor"};
 
 void readCommonEffectKeys(const Object& o, size_t index, const std::string& type, EffectSpec& e) {
     e.name = o.string("name", type + "#" + std::to_string(index));
@@ -263,6 +265,7 @@ void readAfterimage(const Object& o, size_t index, const std::string& type, Effe
     allowed.insert(allowed.end(), kAfterimageKeys.begin(), kAfterimageKeys.end());
     std::vector<std::string> elsewhere = kSmokeKeys;
     elsewhere.insert(elsewhere.end(), {"sub_samples", "lifetime", "size"});
+    elsewhere.insert(elsewhere.end(), kSweptKeys.begin(), kSweptKeys.end());
     o.onlyKeys(allowed, elsewhere, "not a key of " + type + " effects");
     readCommonEffectKeys(o, index, type, e);
 
@@ -313,18 +316,47 @@ void readAfterimage(const Object& o, size_t index, const std::string& type, Effe
     a.influencePower = float(o.number("influence_power", a.influencePower, 0.0, 64.0));
 }
 
+// A swept_volume effect (Wloka and Zeleznik 1996): the common keys, colour, quads per segment
+// and the volume's own.
+void readSweptVolume(const Object& o, size_t index, const std::string& type, EffectSpec& e) {
+    std::vector<std::string> allowed = kCommonEffectKeys;
+    allowed.insert(allowed.end(), {"colour", "sub_samples"});
+    allowed.insert(allowed.end(), kSweptKeys.begin(), kSweptKeys.end());
+    std::vector<std::string> elsewhere = kSmokeKeys;
+    elsewhere.insert(elsewhere.end(), kAfterimageKeys.begin(), kAfterimageKeys.end());
+    elsewhere.insert(elsewhere.end(), {"lifetime", "stride", "alpha_start", "alpha_end",
+                                       "alpha_power", "width", "size"});
+    o.onlyKeys(allowed, elsewhere, "not a key of " + type + " effects");
+    readCommonEffectKeys(o, index, type, e);
+
+    SweptVolumeSpec& v = e.swept;
+    const std::string filter = o.choice("filter", "ramp", {"box", "ramp", "triangle", "gaussian"});
+    v.filter = filter == "box"        ? SweptFilter::Box
+               : filter == "ramp"     ? SweptFilter::Ramp
+               : filter == "triangle" ? SweptFilter::Triangle
+                                      : SweptFilter::Gaussian;
+    v.segments = o.integer("segments", v.segments, 1, 16);
+    v.alphaFloor = float(o.number("alpha_floor", v.alphaFloor, 0.0, 1.0));
+    e.subSamples = o.integer("sub_samples", 4, 1, 16);
+    if (o.has("colour")) {
+        e.colour = o.colour("colour", e.colour);
+        e.useMeshColour = false;
+    }
+}
+
 void readEffect(const Object& o, size_t index, EffectSpec& e) {
     if (!o.has("type"))
         fail(o.at("type"), "missing; every effect needs a type: speed_lines, motion_blur, "
-                           "motion_particles, smoke or afterimage_smear");
-    const std::string type =
-        o.choice("type", "",
-                 {"speed_lines", "motion_blur", "motion_particles", "smoke", "afterimage_smear"});
+                           "motion_particles, smoke, afterimage_smear or swept_volume");
+    const std::string type = o.choice("type", "",
+                                      {"speed_lines", "motion_blur", "motion_particles", "smoke",
+                                       "afterimage_smear", "swept_volume"});
     e.type = type == "speed_lines"        ? EffectType::SpeedLines
              : type == "motion_blur"      ? EffectType::MotionBlur
              : type == "motion_particles" ? EffectType::MotionParticles
              : type == "smoke"            ? EffectType::Smoke
-                                          : EffectType::AfterimageSmear;
+             : type == "afterimage_smear" ? EffectType::AfterimageSmear
+                                          : EffectType::SweptVolume;
     std::vector<std::string> allowed = kCommonEffectKeys;
     allowed.insert(allowed.end(), kTrajectoryKeys.begin(), kTrajectoryKeys.end());
     std::vector<std::string> elsewhere;
@@ -332,7 +364,12 @@ void readEffect(const Object& o, size_t index, EffectSpec& e) {
         readAfterimage(o, index, type, e);
         return;
     }
+    if (e.type == EffectType::SweptVolume) {
+        readSweptVolume(o, index, type, e);
+        return;
+    }
     elsewhere = kAfterimageKeys;
+    elsewhere.insert(elsewhere.end(), kSweptKeys.begin(), kSweptKeys.end());
     if (e.type == EffectType::Smoke) {
         allowed.insert(allowed.end(), kSmokeKeys.begin(), kSmokeKeys.end());
         elsewhere.insert(elsewhere.end(), {"width", "size"});
@@ -478,6 +515,8 @@ const char* effectTypeName(EffectType type) {
         return "smoke";
     case EffectType::AfterimageSmear:
         return "afterimage_smear";
+    case EffectType::SweptVolume:
+        return "swept_volume";
     }
     return "speed_lines";
 }

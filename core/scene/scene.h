@@ -57,7 +57,14 @@ struct OutputSpec {
     std::optional<uint32_t> frames; // default: the playback range at fps
 };
 
-enum class EffectType { SpeedLines, MotionBlur, MotionParticles, Smoke, AfterimageSmear };
+enum class EffectType {
+    SpeedLines,
+    MotionBlur,
+    MotionParticles,
+    Smoke,
+    AfterimageSmear,
+    SweptVolume
+};
 enum class Emission { Vertices, Surface };
 
 // Afterimage toon blur (Smith 2016, chapters 4 and 5): what is drawn from the rear-facing
@@ -81,6 +88,18 @@ struct AfterimageSpec {
     float relativeSpeed = 0.0f;   // fraction of the fastest bound vertex's speed it must reach
     uint32_t afterimages = 5;     // multi: recorded positions an arc runs through
     float influencePower = 0.0f;  // multi: k of (1 - (1 - D/Dmax) j/n)^k (Sec. 5.3 b); 0: none
+};
+
+// The temporal filter whose weight over the exposure shapes a swept volume's alpha (Wloka and
+// Zeleznik 1996, Sec. 3.4).
+enum class SweptFilter { Box, Ramp, Triangle, Gaussian };
+
+// The options of a swept_volume effect (Wloka and Zeleznik 1996, Sec. 3.4 and 4.2). Its colour is
+// EffectSpec::colour (default the mesh's); EffectSpec::subSamples is the quads per segment.
+struct SweptVolumeSpec {
+    SweptFilter filter = SweptFilter::Ramp;
+    uint32_t segments = 1;   // n: recorded frames the sweep runs back through, one a segment
+    float alphaFloor = 0.1f; // the least alpha anywhere on the volume (the paper's 0.1)
 };
 
 struct EffectSpec {
@@ -121,6 +140,8 @@ struct EffectSpec {
     float sleepThreshold = 1e-4f; // below this pigment and speed, the solver sleeps
     // Afterimage smear.
     AfterimageSpec afterimage;
+    // Swept volume.
+    SweptVolumeSpec swept;
 };
 
 struct Scene {

@@ -1,0 +1,78 @@
+#include "render/effect_geometry.h"
+
+#include "render/render_target.h"
+#include "shaders/shared/effect_draw.h"
+#include "shaders/shared/trajectory.h"
+
+#include <algorithm>
+
+namespace mfx::render {
+
+gpu::Program storageComputeProgram(const gpu::Context& ctx, const char* name,
+                                   std::span<const uint32_t> spirv, uint32_t bindingCount,
+                                   uint32_t pushConstantSize) {
+    gpu::ComputeProgramDesc desc;
+    desc.name = name;
+    desc.spirv = spirv;
+    for (uint32_t b = 0; b < bindingCount; ++b)
+        desc.bindings.push_back(
+            {b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT});
+    desc.pushConstantSize = pushConstantSize;
+    desc.maxSets = 64;
+    return gpu::createComputeProgram(ctx, desc);
+}
+
+gpu::GraphicsProgramDesc trajectoryDrawDesc(const char* name, VkPrimitiveTopology topology,
+                                            VkSampleCountFlagBits samples, bool depthWrite) {
+    gpu::GraphicsProgramDesc desc;
+    desc.name = name;
+    desc.bindings = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_ALL_GRAPHICS}};
+    desc.pushConstantSize = sizeof(shared::EffectDraw);
+    desc.vertexStride = sizeof(shared::TrajectoryVertex);
+    desc.attributes = {{0, VK_FORMAT_R32G32B32A32_SFLOAT, 0},
+                       {1, VK_FORMAT_R32G32B32A32_SFLOAT, 16},
+                       {2, VK_FORMAT_R32G32B32A32_SFLOAT, 32}};
+    desc.topology = topology;
+    desc.colorFormats = {kColorFormat};
+    desc.depthFormat = kDepthFormat;
+    desc.depthTest = true;
+    desc.depthWrite = depthWrite;
+    desc.blend = gpu::BlendMode::PremultipliedAlpha;
+    desc.samples = samples;
+    return desc;
+}
+
+gpu::Buffer effectStorage(const gpu::Context& ctx, VkDeviceSize bytes, VkBufferUsageFlags extra,
+                          const char* name) {
+    return gpu::createBuffer(ctx, std::max<VkDeviceSize>(bytes, 64),
+                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+                                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT | extra,
+                             gpu::MemoryUsage::DeviceLocal, name);
+}
+
+void computeToComputeBarrier(VkCommandBuffer cmd) {
+    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                       VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+}
+
+void computeToDrawBarrier(VkCommandBuffer cmd) {
+    gpu::memoryBarrier(
+        cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+        VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_VERTEX_INPUT_BIT |
+            VK_PIPELINE_STAGE_2_HOST_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+        VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT |
+            VK_ACCESS_2_INDEX_READ_BIT | VK_ACCESS_2_HOST_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
+}
+
+FrameHistory::Step FrameHistory::step(uint64_t simulationSerial, uint32_t frame) {
+    const bool sameRun = recorded_ && simulationSerial == serial_;
+    if (sameRun && frame == frame_) return Step::Same;
+    const bool next = sameRun && frame == frame_ + 1;
+    recorded_ = true;
+    serial_ = simulationSerial;
+    frame_ = frame;
+    return next ? Step::Next : Step::Restart;
+}
+
+} // namespace mfx::render

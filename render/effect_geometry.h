@@ -1,0 +1,54 @@
+// What the passes that build effect geometry on the GPU and draw it by indirect draws share
+// (render/afterimage_pass.h, render/swept_volume_pass.h): compute programs over storage buffers,
+// the pipelines that draw trajectory vertices, the barriers between building and drawing, and
+// the rule that decides when a per-frame history starts again.
+#pragma once
+
+#include "core/gpu/program.h"
+#include "core/gpu/resources.h"
+
+#include <cstdint>
+#include <span>
+
+namespace mfx::render {
+
+// A compute program whose bindings 0..bindingCount-1 are all storage buffers.
+gpu::Program storageComputeProgram(const gpu::Context& ctx, const char* name,
+                                   std::span<const uint32_t> spirv, uint32_t bindingCount,
+                                   uint32_t pushConstantSize);
+
+// A pipeline drawing shared::TrajectoryVertex as the effect pass does (render/effect_pass.cpp):
+// the scene frame at binding 0, shared::EffectDraw as push constants, premultiplied alpha, depth
+// tested; shaders left for the caller to set.
+gpu::GraphicsProgramDesc trajectoryDrawDesc(const char* name, VkPrimitiveTopology topology,
+                                            VkSampleCountFlagBits samples, bool depthWrite);
+
+// A device-local storage buffer (at least 64 bytes, so an empty one is still valid) that can also
+// be copied to and from, with `extra` usage.
+gpu::Buffer effectStorage(const gpu::Context& ctx, VkDeviceSize bytes, VkBufferUsageFlags extra,
+                          const char* name);
+
+// One compute stage's writes made visible to the next.
+void computeToComputeBarrier(VkCommandBuffer cmd);
+// The built geometry and indirect arguments made visible to the draws, copies and the host.
+void computeToDrawBarrier(VkCommandBuffer cmd);
+
+// Which scene frames a per-frame history has seen. A frame that does not follow the last one
+// recorded of the same simulation (the first, a jump, a restarted simulation) starts it again.
+class FrameHistory {
+public:
+    enum class Step {
+        Same,    // the frame recorded last, again: the history stays as it is
+        Next,    // the frame after it: the history advances
+        Restart, // anything else: the history starts again, with no motion
+    };
+    Step step(uint64_t simulationSerial, uint32_t frame);
+    bool recorded() const { return recorded_; }
+
+private:
+    uint64_t serial_ = 0;
+    uint32_t frame_ = 0;
+    bool recorded_ = false;
+};
+
+} // namespace mfx::render

@@ -1,0 +1,282 @@
+#include "render/swept_volume_pass.h"
+
+#include "core/gpu/check.h"
+#include "core/gpu/context.h"
+#include "fluid/scene_simulation.h"
+#include "shaders/embedded.h"
+#include "shaders/shared/effect_draw.h"
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+#include <map>
+#include <utility>
+
+namespace mfx::render {
+
+namespace {
+
+constexpr uint32_t kBindings = 7;
+
+gpu::Program computeProgram(const gpu::Context& ctx, const char* name,
+                            std::span<const uint32_t> spirv) {
+    return storageComputeProgram(ctx, name, spirv, kBindings, sizeof(shared::SweptVolumeConstants));
+}
+
+uint32_t filterCode(scene::SweptFilter filter) {
+    switch (filter) {
+    case scene::SweptFilter::Box:
+        return MFX_SWEPT_BOX;
+    case scene::SweptFilter::Ramp:
+        return MFX_SWEPT_RAMP;
+    case scene::SweptFilter::Triangle:
+        return MFX_SWEPT_TRIANGLE;
+    case scene::SweptFilter::Gaussian:
+        return MFX_SWEPT_GAUSSIAN;
+    }
+    return MFX_SWEPT_RAMP;
+}
+
+} // namespace
+
+std::vector<uint32_t> sweptVolumeEdges(const std::vector<shared::SkinVertexIn>& vertices,
+                                       const std::vector<uint32_t>& triangles) {
+    // Weld by exact bind-pose position: the copies of a seam vertex are made from one point.
+    std::map<std::array<float, 3>, uint32_t> welded;
+    std::vector<uint32_t> weldedIndex(vertices.size());
+    for (size_t v = 0; v < vertices.size(); ++v) {
+        const glm::vec4& p = vertices[v].position;
+        weldedIndex[v] =
+            welded.emplace(std::array<float, 3>{p.x, p.y, p.z}, uint32_t(welded.size()))
+                .first->second;
+    }
+    struct Side {
+        uint32_t triangle, a, b;
+    };
+    std::map<std::pair<uint32_t, uint32_t>, std::vector<Side>> sides;
+    for (size_t t = 0; t + 2 < triangles.size(); t += 3)
+        for (size_t k = 0; k < 3; ++k) {
+            const uint32_t a = triangles[t + k], b = triangles[t + (k + 1) % 3];
+            const uint32_t wa = weldedIndex[a], wb = weldedIndex[b];
+            if (wa == wb) continue;
+            // Both sides list the edge's vertices in the same welded order.
+            const bool flip = wa > wb;
+            sides[{std::min(wa, wb), std::max(wa, wb)}].push_back(
+                {uint32_t(t / 3), flip ? b : a, flip ? a : b});
+        }
+    std::vector<uint32_t> out;
+    for (const auto& [edge, list] : sides) {
+        if (list.size() != 2) continue;
+        out.insert(out.end(), {list[0].triangle, list[1].triangle, list[0].a, list[0].b, list[1].a,
+                               list[1].b});
+    }
+    return out;
+}
+
+SweptVolumePass::SweptVolumePass(const gpu::Context& ctx, const scene::Scene& scene,
+                                 const anim::Character& character, VkSampleCountFlagBits samples)
+    : ctx_(ctx), character_(character), skinning_(ctx) {
+    for (size_t i = 0; i < scene.effects.size(); ++i) {
+        const scene::EffectSpec& e = scene.effects[i];
+        if (e.type != scene::EffectType::SweptVolume) continue;
+        trajectory::Selection selection;
+        selection.meshes = e.meshes;
+        selection.bones = e.bones;
+        selection.minBoneWeight = e.minBoneWeight;
+        Result<trajectory::Source> selected = trajectory::selectSource(character, selection);
+        if (!selected || selected.value().vertices.empty()) continue;
+        Effect effect;
+        effect.index = i;
+        effect.spec = e;
+        effect.source = std::move(selected).value();
+        const trajectory::Source& source = effect.source;
+        const uint32_t n = uint32_t(source.vertices.size());
+        effect.vertexCount = n;
+        effect.triangleCount = uint32_t(source.triangles.size() / 3);
+        const std::vector<uint32_t> edges = sweptVolumeEdges(source.vertices, source.triangles);
+        effect.edgeCount = uint32_t(edges.size() / 6);
+        // Sec. 4.2: an n-segment sweep needs the positions at n + 1 times.
+        effect.historySlots = e.swept.segments + 1;
+        // Every edge joined and every triangle trailing: the most one frame can build.
+        const VkDeviceSize outputCapacity =
+            VkDeviceSize(effect.edgeCount) * 6 * e.swept.segments * e.subSamples +
+            VkDeviceSize(effect.triangleCount) * 3;
+
+        effect.input = effectStorage(ctx, n * sizeof(shared::SkinVertexIn), 0, "swept bind pose");
+        gpu::uploadBuffer(ctx, effect.input,
+                          std::span<const shared::SkinVertexIn>(source.vertices));
+        effect.palette = gpu::createBuffer(
+            ctx, std::max<size_t>(source.palette.size(), 1) * sizeof(shared::SkinJoint),
+            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload, "swept palette");
+        effect.skinned = effectStorage(ctx, n * sizeof(shared::SkinVertexOut), 0, "swept skinned");
+        effect.history = effectStorage(
+            ctx, VkDeviceSize(n) * effect.historySlots * sizeof(glm::vec4), 0, "swept history");
+        std::vector<glm::vec4> colours = source.colours;
+        if (!e.useMeshColour) std::fill(colours.begin(), colours.end(), e.colour);
+        effect.colours = effectStorage(ctx, n * sizeof(glm::vec4), 0, "swept colours");
+        gpu::uploadBuffer(ctx, effect.colours, std::span<const glm::vec4>(colours));
+        effect.triangles =
+            effectStorage(ctx, source.triangles.size() * sizeof(uint32_t), 0, "swept triangles");
+        if (!source.triangles.empty())
+            gpu::uploadBuffer(ctx, effect.triangles, std::span<const uint32_t>(source.triangles));
+        effect.edges = effectStorage(ctx, edges.size() * sizeof(uint32_t), 0, "swept edges");
+        if (!edges.empty()) gpu::uploadBuffer(ctx, effect.edges, std::span<const uint32_t>(edges));
+        effect.output = effectStorage(ctx, outputCapacity * sizeof(shared::TrajectoryVertex),
+                                      VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "swept geometry");
+        effect.counters = gpu::createBuffer(
+            ctx, sizeof(shared::SweptVolumeCounters),
+            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
+                VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+            gpu::MemoryUsage::Readback, "swept counters");
+        std::memset(effect.counters.mapped, 0, sizeof(shared::SweptVolumeCounters));
+        effects_.push_back(std::move(effect));
+    }
+    if (effects_.empty()) return; // a scene without the effect pays for nothing
+
+    record_ = computeProgram(ctx, "swept_volume_record", shaders::swept_volume_record_comp);
+    motion_ = computeProgram(ctx, "swept_volume_motion", shaders::swept_volume_motion_comp);
+    build_ = computeProgram(ctx, "swept_volume_build", shaders::swept_volume_build_comp);
+    for (Effect& effect : effects_) {
+        const gpu::DescriptorWrite writes[kBindings] = {
+            gpu::bindBuffer(0, effect.skinned), gpu::bindBuffer(1, effect.history),
+            gpu::bindBuffer(2, effect.colours), gpu::bindBuffer(3, effect.triangles),
+            gpu::bindBuffer(4, effect.edges),   gpu::bindBuffer(5, effect.output),
+            gpu::bindBuffer(6, effect.counters)};
+        effect.recordSet = record_.createSet(ctx, writes);
+        effect.motionSet = motion_.createSet(ctx, writes);
+        effect.buildSet = build_.createSet(ctx, writes);
+    }
+
+    // Translucent and unsorted, as the paper draws it (Sec. 5.1: few of its polygons overlap), so
+    // it does not write depth.
+    gpu::GraphicsProgramDesc volume =
+        trajectoryDrawDesc("swept_volume", VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, samples, false);
+    volume.vertex = shaders::effect_volume_vert;
+    volume.fragment = shaders::effect_volume_frag;
+    volumeDraw_ = gpu::createGraphicsProgram(ctx, volume);
+    frame_ = gpu::createBuffer(ctx, sizeof(shared::SceneFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                               gpu::MemoryUsage::Upload, "swept frame");
+    drawSet_ = volumeDraw_.createSet(ctx, {gpu::bindBuffer(0, frame_)});
+}
+
+void SweptVolumePass::advance(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
+                              uint32_t frame) {
+    if (effects_.empty()) return;
+    const FrameHistory::Step step = history_.step(simulation.serial(), frame);
+    if (step == FrameHistory::Step::Same) return; // the same frame again: the ring stays
+    const bool reset = step == FrameHistory::Step::Restart;
+
+    const scene::Scene& scene = simulation.scene();
+    const float time = simulation.frameTime(frame);
+    const anim::Pose& pose = simulation.framePose();
+    for (Effect& effect : effects_) {
+        const std::vector<shared::SkinJoint> palette = anim::packPalette(
+            trajectory::sourcePalette(character_, effect.source, pose, simulation.placement()));
+        std::memcpy(effect.palette.mapped, palette.data(),
+                    palette.size() * sizeof(shared::SkinJoint));
+        skinning_.record(cmd, effect.palette, uint32_t(palette.size()), effect.input,
+                         effect.skinned, effect.vertexCount);
+
+        effect.newest = reset ? 0 : (effect.newest + 1) % effect.historySlots;
+        effect.filled = reset ? 1 : std::min(effect.filled + 1, effect.historySlots);
+
+        shared::SweptVolumeCounters zero{};
+        zero.instanceCount = 1;
+        vkCmdUpdateBuffer(cmd, effect.counters.get(), 0, sizeof zero, &zero);
+        gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                           VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                           VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
+                               VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+
+        const scene::EffectSpec& e = effect.spec;
+        shared::SweptVolumeConstants c{};
+        c.cameraPosition = glm::vec4(scene.camera.position, 1.0f);
+        c.vertexCount = effect.vertexCount;
+        c.triangleCount = effect.triangleCount;
+        c.edgeCount = effect.edgeCount;
+        c.historySlots = effect.historySlots;
+        c.newest = effect.newest;
+        c.filled = effect.filled;
+        c.reset = reset ? 1 : 0;
+        c.segments = e.swept.segments;
+        c.pieces = e.subSamples;
+        c.temporalFilter = filterCode(e.swept.filter);
+        c.alphaFloor = e.swept.alphaFloor;
+
+        record_.bind(cmd, effect.recordSet);
+        record_.push(cmd, c);
+        vkCmdDispatch(cmd, gpu::groupCount(effect.vertexCount, MFX_SWEPT_GROUP_SIZE), 1, 1);
+        // Outside its window the effect records its history (so it enters the window with the
+        // right motion) but builds nothing.
+        const float slack = 0.5f / scene.output.fps;
+        const bool live = time + slack >= e.start && (!e.end || time <= *e.end + slack);
+        if (!live) continue;
+        computeToComputeBarrier(cmd);
+        motion_.bind(cmd, effect.motionSet);
+        motion_.push(cmd, c);
+        vkCmdDispatch(cmd, 1, 1, 1);
+        computeToComputeBarrier(cmd);
+        build_.bind(cmd, effect.buildSet);
+        build_.push(cmd, c);
+        vkCmdDispatch(
+            cmd, gpu::groupCount(effect.edgeCount + effect.triangleCount, MFX_SWEPT_GROUP_SIZE), 1,
+            1);
+    }
+    computeToDrawBarrier(cmd);
+}
+
+uint32_t SweptVolumePass::draw(VkCommandBuffer cmd, const scene::Scene& scene,
+                               const SceneCamera& camera, std::span<const uint8_t> shown) {
+    if (effects_.empty() || !history_.recorded()) return 0;
+    const shared::SceneFrame frame = sceneFrame(scene, camera);
+    std::memcpy(frame_.mapped, &frame, sizeof frame);
+    uint32_t draws = 0;
+    const VkDeviceSize offset = 0;
+    for (const Effect& effect : effects_) {
+        if (!shown.empty() && (effect.index >= shown.size() || shown[effect.index] == 0)) continue;
+        // Every vertex is drawn at time 0 with sample time 0: no age fade (effect_common.glsl);
+        // the alpha along the sweep is in the vertex colour.
+        shared::EffectDraw d{};
+        d.timing = glm::vec4(0.0f, 1.0f, 0.0f, 1.0f / scene.output.fps);
+        d.tint = glm::vec4(1.0f);
+        volumeDraw_.bind(cmd, drawSet_);
+        volumeDraw_.push(cmd, d);
+        VkBuffer vb = effect.output.get();
+        vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
+        vkCmdDrawIndirect(cmd, effect.counters.get(), 0, 1, sizeof(VkDrawIndirectCommand));
+        ++draws;
+    }
+    return draws;
+}
+
+const SweptVolumePass::Effect* SweptVolumePass::find(size_t effect) const {
+    for (const Effect& e : effects_)
+        if (e.index == effect) return &e;
+    return nullptr;
+}
+
+SweptVolumePass::Counts SweptVolumePass::counts(size_t effect) const {
+    const Effect* e = find(effect);
+    if (!e) return {};
+    shared::SweptVolumeCounters c{};
+    std::memcpy(&c, e->counters.mapped, sizeof c);
+    Counts out;
+    out.vertices = c.vertexCount;
+    out.contourEdges = c.contourEdges;
+    out.trailingTriangles = c.trailingTriangles;
+    out.motion = glm::vec3(c.motion);
+    out.pathLength = c.motion.w;
+    out.extent = c.extent;
+    out.trailingAlpha = c.trailingAlpha;
+    return out;
+}
+
+std::vector<shared::TrajectoryVertex> SweptVolumePass::geometry(size_t effect) const {
+    const Effect* e = find(effect);
+    if (!e) return {};
+    auto vertices = gpu::readBufferAs<shared::TrajectoryVertex>(ctx_, e->output);
+    vertices.resize(std::min<size_t>(vertices.size(), counts(effect).vertices));
+    return vertices;
+}
+
+} // namespace mfx::render
