@@ -20,8 +20,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -453,7 +453,10 @@ int runBenchAccuracy(std::span<const std::string> args) {
             for (const Row& r : rows) {
                 if (r.scenario != name || !r.gpu) continue;
                 if (!(pick.fastest <= r.stepMs)) pick.fastest = r.stepMs;
-                if (r.stepMs <= budget && (!pick.best || r.velocityFine < pick.best->velocityFine))
+                // Equal errors (e.g. two MGPCG tolerances met by the same iteration): the faster.
+                if (r.stepMs <= budget &&
+                    (!pick.best || r.velocityFine < pick.best->velocityFine ||
+                     (r.velocityFine == pick.best->velocityFine && r.stepMs < pick.best->stepMs)))
                     pick.best = &r;
             }
             if (pick.best)
