@@ -239,14 +239,16 @@ int runBenchSolver(std::span<const std::string> args) {
 
 int runBench(std::span<const std::string> args) {
     const std::string usage =
-        "usage: motionfx bench solver|trajectory|frame|accuracy [options]   (see --help of each)";
+        "usage: motionfx bench solver|trajectory|frame|accuracy|effects [options]   (see --help of "
+        "each)";
     if (args.empty() || args[0] == "--help") {
         std::printf(
             "%s\n\nbenchmarks:\n  solver       GPU milliseconds per solver stage and per "
             "step, by grid size\n  trajectory   split trajectory against the unsplit "
             "baseline: skinning, vertices and GPU ms per frame, by lifetime\n  frame        GPU "
             "ms per pass and whole-frame time of a scene, simulated and drawn\n  accuracy     "
-            "error against GPU ms of the solver's accuracy options; time to 1e-3\n",
+            "error against GPU ms of the solver's accuracy options; time to 1e-3\n  effects      "
+            "extra GPU ms and triangles per frame of each effect technique\n",
             usage.c_str());
         return args.empty() ? kExitUsage : kExitOk;
     }
@@ -254,8 +256,9 @@ int runBench(std::span<const std::string> args) {
     if (args[0] == "trajectory") return runBenchTrajectory(args.subspan(1));
     if (args[0] == "frame") return runBenchFrame(args.subspan(1));
     if (args[0] == "accuracy") return runBenchAccuracy(args.subspan(1));
+    if (args[0] == "effects") return runBenchEffects(args.subspan(1));
     printError("unknown benchmark '" + args[0] +
-               "'; benchmarks are: solver, trajectory, frame, accuracy");
+               "'; benchmarks are: solver, trajectory, frame, accuracy, effects");
     return kExitUsage;
 }
 

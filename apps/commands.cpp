@@ -14,7 +14,8 @@ std::span<const Command> commands() {
          &runCompare},
         {"bench",
          "benchmarks (bench solver: GPU ms per stage and step; bench trajectory: split vs "
-         "unsplit trail by lifetime; bench frame: a scene's passes and frame time)",
+         "unsplit trail by lifetime; bench frame: a scene's passes and frame time; bench "
+         "effects: each effect's extra GPU ms and triangles per frame)",
          &runBench},
         {"inspect", "load a glTF character and summarise it (meshes, joints, clips, bounds)",
          &runInspect},

@@ -33,6 +33,7 @@ int runCompare(std::span<const std::string> args);
 int runBench(std::span<const std::string> args);
 int runBenchTrajectory(std::span<const std::string> args);
 int runBenchFrame(std::span<const std::string> args);
+int runBenchEffects(std::span<const std::string> args);
 int runBenchAccuracy(std::span<const std::string> args);
 int runInspect(std::span<const std::string> args);
 int runExportFighter(std::span<const std::string> args);

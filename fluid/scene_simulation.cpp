@@ -28,6 +28,7 @@ trajectory::Kind kindOf(scene::EffectType type) {
     case scene::EffectType::Smoke:
     case scene::EffectType::AfterimageSmear: // no queue (render/afterimage_pass.h)
     case scene::EffectType::SweptVolume:     // no queue (render/swept_volume_pass.h)
+    case scene::EffectType::SilhouetteShell: // no queue (render/silhouette_shell_pass.h)
         return trajectory::Kind::Particles;
     }
     return trajectory::Kind::Lines;
@@ -95,9 +96,11 @@ Result<std::unique_ptr<SceneSimulation>> SceneSimulation::create(const gpu::Cont
         if (!selected) return Error{where + selected.error().message};
         // The afterimage smear keeps its own per-vertex history in the renderer (it deforms the
         // mesh as drawn, render/afterimage_pass.h); it has no trajectory queue.
-        // So does the swept volume (render/swept_volume_pass.h).
+        // So do the swept volume (render/swept_volume_pass.h) and the silhouette shell
+        // (render/silhouette_shell_pass.h).
         if (e.type == scene::EffectType::AfterimageSmear ||
-            e.type == scene::EffectType::SweptVolume)
+            e.type == scene::EffectType::SweptVolume ||
+            e.type == scene::EffectType::SilhouetteShell)
             continue;
         effect.source = e.type == scene::EffectType::MotionBlur || surface
                             ? std::move(selected).value()

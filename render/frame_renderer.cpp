@@ -10,6 +10,7 @@ FrameRenderer::FrameRenderer(const gpu::Context& ctx, const fluid::SceneSimulati
       effectPass_(ctx, target_.samples),
       afterimagePass_(ctx, simulation.scene(), simulation.character(), target_.samples),
       sweptVolumePass_(ctx, simulation.scene(), simulation.character(), target_.samples),
+      silhouetteShellPass_(ctx, simulation.scene(), simulation.character(), target_.samples),
       smokePass_(ctx), camera_(makeCamera(simulation.scene().camera, float(width) / float(height))),
       timer_(ctx, uint32_t(std::size(kFramePassNames))),
       shown_(simulation.scene().effects.size(), 1) {}
@@ -37,6 +38,7 @@ void FrameRenderer::recordFrame(VkCommandBuffer cmd, const fluid::SceneSimulatio
         scenePass_.skin(cmd, simulation.framePose(), simulation.placement());
         if (frame) afterimagePass_.advance(cmd, simulation, *frame);
         if (frame) sweptVolumePass_.advance(cmd, simulation, *frame);
+        if (frame) silhouetteShellPass_.advance(cmd, simulation, *frame);
     }
     {
         gpu::ScopedPass pass(timer_, cmd, "shadow");
@@ -52,6 +54,7 @@ void FrameRenderer::recordFrame(VkCommandBuffer cmd, const fluid::SceneSimulatio
         // The smear first: by default an opaque copy of the mesh, it writes depth.
         draws_ = afterimagePass_.draw(cmd, simulation.scene(), camera_, shown_);
         draws_ += sweptVolumePass_.draw(cmd, simulation.scene(), camera_, shown_);
+        draws_ += silhouetteShellPass_.draw(cmd, simulation.scene(), camera_, shown_);
         draws_ += effectPass_.draw(cmd, simulation, camera_, time, shown_);
         endRendering(cmd);
     }

@@ -10,6 +10,7 @@
 #include "render/character_pass.h"
 #include "render/effect_pass.h"
 #include "render/render_target.h"
+#include "render/silhouette_shell_pass.h"
 #include "render/smoke_pass.h"
 #include "render/swept_volume_pass.h"
 
@@ -19,7 +20,8 @@
 namespace mfx::render {
 
 // The passes a frame records, in order, by the names their timings carry ("skin" includes the
-// afterimage smears' and swept volumes' skinning, history and geometry; "effects" their draws).
+// afterimage smears', swept volumes' and silhouette shells' skinning, history and geometry;
+// "effects" their draws).
 inline constexpr const char* kFramePassNames[] = {"skin", "shadow", "scene", "effects", "smoke"};
 
 class FrameRenderer {
@@ -35,8 +37,9 @@ public:
     // drawing of it. The previous recording must have finished executing.
     void record(VkCommandBuffer cmd, fluid::SceneSimulation& simulation, uint32_t frame);
     // Records only the drawing of what the simulation holds now, at scene time `time` (a paused
-    // view redraws the same frame this way). Afterimage smears and swept volumes are drawn as last
-    // built: their history advances with record() only, so a paused frame does not change.
+    // view redraws the same frame this way). Afterimage smears, swept volumes and silhouette shells
+    // are drawn as last built: their history advances with record() only, so a paused frame does
+    // not change.
     void recordDraw(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation, float time);
 
     // Which of the scene's effects are drawn, by their index in scene.effects (all by default).
@@ -52,6 +55,7 @@ public:
     RenderTarget& target() { return target_; }
     const AfterimagePass& afterimages() const { return afterimagePass_; }
     const SweptVolumePass& sweptVolumes() const { return sweptVolumePass_; }
+    const SilhouetteShellPass& silhouetteShells() const { return silhouetteShellPass_; }
     const SceneCamera& camera() const { return camera_; }
 
 private:
@@ -65,6 +69,7 @@ private:
     EffectPass effectPass_;
     AfterimagePass afterimagePass_;
     SweptVolumePass sweptVolumePass_;
+    SilhouetteShellPass silhouetteShellPass_;
     SmokePass smokePass_;
     SceneCamera camera_;
     gpu::GpuTimer timer_;

@@ -196,6 +196,38 @@ TEST(Cli, BenchFramePrintsPassesAndWritesJson) {
     EXPECT_TRUE(doc.contains("device"));
 }
 
+// bench effects on two demo scenes at a small size: extra triangles are exact counts (the blur's
+// volumes and the shell's strips add primitives; the character alone is the same in both scenes'
+// baselines), the extra milliseconds are whatever the run measured.
+TEST(Cli, BenchEffectsWritesExtraCostPerEffect) {
+    const std::string json = std::string(MFX_TEST_OUTPUT_DIR) + "/cli/bench_effects.json";
+    std::filesystem::remove(json);
+    const std::string scenes = std::string(MFX_SOURCE_DIR) + "/docs/scenes/";
+    const RunResult r =
+        runMotionfx("bench effects \"" + scenes + "blur.json\" \"" + scenes +
+                    "shell.json\" --size 64x36 --samples 1 --json \"" + json + "\"");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("extra tris"), std::string::npos) << r.out;
+    const nlohmann::json doc = nlohmann::json::parse(readFile(json));
+    EXPECT_TRUE(doc.contains("device"));
+    for (const char* effect : {"motion_blur", "silhouette_shell"}) {
+        ASSERT_TRUE(doc["effects"].contains(effect)) << effect;
+        const nlohmann::json& e = doc["effects"][effect];
+        EXPECT_TRUE(e["extra_ms"].is_number()) << effect;
+        EXPECT_GT(e["extra_triangles"].get<double>(), 0.0) << effect;
+        EXPECT_GT(e["alone_triangles"].get<double>(), 0.0) << effect;
+    }
+    EXPECT_EQ(doc["effects"]["motion_blur"]["alone_triangles"],
+              doc["effects"]["silhouette_shell"]["alone_triangles"]);
+}
+
+TEST(Cli, BenchEffectsRefusesASceneWithoutEffects) {
+    const RunResult r =
+        runMotionfx("bench effects \"" + std::string(MFX_SOURCE_DIR) + "/docs/scenes/none.json\"");
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.err.find("no effect to measure"), std::string::npos) << r.err;
+}
+
 TEST(Cli, BenchAccuracyWritesTableCsvPlotAndJson) {
     const std::string dir = std::string(MFX_TEST_OUTPUT_DIR) + "/cli";
     const std::string json = dir + "/bench_accuracy.json", csv = dir + "/bench_accuracy.csv",

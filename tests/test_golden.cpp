@@ -179,6 +179,9 @@ TEST_F(GoldenImage, AfterimageSmear) {
 TEST_F(GoldenImage, SweptVolume) {
     checkGolden("swept");
 }
+TEST_F(GoldenImage, SilhouetteShell) {
+    checkGolden("shell");
+}
 
 // The tolerance is tight enough to see any one effect: each effect's golden is outside it of the
 // character alone, and the combined shot is outside it of each effect alone.

@@ -244,6 +244,9 @@ const std::vector<std::string> kAfterimageKeys = {
     "afterimages", "influence_power"};
 // Wloka and Zeleznik 1996, Sec. 3.4 and 4.2: the swept volume's settings.
 const std::vector<std::string> kSweptKeys = {"filter", "segments", "alpha_floor"};
+// Jones 2004, Sec. 3.2.2, 3.2.4 and 3.3: the silhouette shell's settings.
+const std::vector<std::string> kShellKeys = {"subdivisions", "blur_time", "initial_alpha",
+                                             "fade_out", "edge_rule"};
 
 void readCommonEffectKeys(const Object& o, size_t index, const std::string& type, EffectSpec& e) {
     e.name = o.string("name", type + "#" + std::to_string(index));
@@ -266,6 +269,7 @@ void readAfterimage(const Object& o, size_t index, const std::string& type, Effe
     std::vector<std::string> elsewhere = kSmokeKeys;
     elsewhere.insert(elsewhere.end(), {"sub_samples", "lifetime", "size"});
     elsewhere.insert(elsewhere.end(), kSweptKeys.begin(), kSweptKeys.end());
+    elsewhere.insert(elsewhere.end(), kShellKeys.begin(), kShellKeys.end());
     o.onlyKeys(allowed, elsewhere, "not a key of " + type + " effects");
     readCommonEffectKeys(o, index, type, e);
 
@@ -324,6 +328,7 @@ void readSweptVolume(const Object& o, size_t index, const std::string& type, Eff
     allowed.insert(allowed.end(), kSweptKeys.begin(), kSweptKeys.end());
     std::vector<std::string> elsewhere = kSmokeKeys;
     elsewhere.insert(elsewhere.end(), kAfterimageKeys.begin(), kAfterimageKeys.end());
+    elsewhere.insert(elsewhere.end(), kShellKeys.begin(), kShellKeys.end());
     elsewhere.insert(elsewhere.end(), {"lifetime", "stride", "alpha_start", "alpha_end",
                                        "alpha_power", "width", "size"});
     o.onlyKeys(allowed, elsewhere, "not a key of " + type + " effects");
@@ -344,19 +349,47 @@ void readSweptVolume(const Object& o, size_t index, const std::string& type, Eff
     }
 }
 
+// A silhouette_shell effect (Jones 2004): the common keys, colour and the shell's own.
+void readSilhouetteShell(const Object& o, size_t index, const std::string& type, EffectSpec& e) {
+    std::vector<std::string> allowed = kCommonEffectKeys;
+    allowed.push_back("colour");
+    allowed.insert(allowed.end(), kShellKeys.begin(), kShellKeys.end());
+    std::vector<std::string> elsewhere = kSmokeKeys;
+    elsewhere.insert(elsewhere.end(), kAfterimageKeys.begin(), kAfterimageKeys.end());
+    elsewhere.insert(elsewhere.end(), kSweptKeys.begin(), kSweptKeys.end());
+    elsewhere.insert(elsewhere.end(), {"sub_samples", "lifetime", "stride", "alpha_start",
+                                       "alpha_end", "alpha_power", "width", "size"});
+    o.onlyKeys(allowed, elsewhere, "not a key of " + type + " effects");
+    readCommonEffectKeys(o, index, type, e);
+
+    SilhouetteShellSpec& s = e.shell;
+    s.subdivisions = o.integer("subdivisions", s.subdivisions, 1, 32);
+    if (o.has("blur_time")) s.blurTime = float(o.number("blur_time", 0.2, 0.0, 60.0, true));
+    s.initialAlpha = float(o.number("initial_alpha", s.initialAlpha, 0.0, 1.0));
+    s.fadeOut = o.integer("fade_out", s.fadeOut, 0, 1000);
+    const std::string rule = o.choice("edge_rule", "back", {"back", "front"});
+    s.edgeRule = rule == "back" ? ShellEdgeRule::Back : ShellEdgeRule::Front;
+    if (o.has("colour")) {
+        e.colour = o.colour("colour", e.colour);
+        e.useMeshColour = false;
+    }
+}
+
 void readEffect(const Object& o, size_t index, EffectSpec& e) {
     if (!o.has("type"))
         fail(o.at("type"), "missing; every effect needs a type: speed_lines, motion_blur, "
-                           "motion_particles, smoke, afterimage_smear or swept_volume");
+                           "motion_particles, smoke, afterimage_smear, swept_volume or "
+                           "silhouette_shell");
     const std::string type = o.choice("type", "",
                                       {"speed_lines", "motion_blur", "motion_particles", "smoke",
-                                       "afterimage_smear", "swept_volume"});
+                                       "afterimage_smear", "swept_volume", "silhouette_shell"});
     e.type = type == "speed_lines"        ? EffectType::SpeedLines
              : type == "motion_blur"      ? EffectType::MotionBlur
              : type == "motion_particles" ? EffectType::MotionParticles
              : type == "smoke"            ? EffectType::Smoke
              : type == "afterimage_smear" ? EffectType::AfterimageSmear
-                                          : EffectType::SweptVolume;
+             : type == "swept_volume"     ? EffectType::SweptVolume
+                                          : EffectType::SilhouetteShell;
     std::vector<std::string> allowed = kCommonEffectKeys;
     allowed.insert(allowed.end(), kTrajectoryKeys.begin(), kTrajectoryKeys.end());
     std::vector<std::string> elsewhere;
@@ -368,8 +401,13 @@ void readEffect(const Object& o, size_t index, EffectSpec& e) {
         readSweptVolume(o, index, type, e);
         return;
     }
+    if (e.type == EffectType::SilhouetteShell) {
+        readSilhouetteShell(o, index, type, e);
+        return;
+    }
     elsewhere = kAfterimageKeys;
     elsewhere.insert(elsewhere.end(), kSweptKeys.begin(), kSweptKeys.end());
+    elsewhere.insert(elsewhere.end(), kShellKeys.begin(), kShellKeys.end());
     if (e.type == EffectType::Smoke) {
         allowed.insert(allowed.end(), kSmokeKeys.begin(), kSmokeKeys.end());
         elsewhere.insert(elsewhere.end(), {"width", "size"});
@@ -517,6 +555,8 @@ const char* effectTypeName(EffectType type) {
         return "afterimage_smear";
     case EffectType::SweptVolume:
         return "swept_volume";
+    case EffectType::SilhouetteShell:
+        return "silhouette_shell";
     }
     return "speed_lines";
 }

@@ -63,7 +63,8 @@ enum class EffectType {
     MotionParticles,
     Smoke,
     AfterimageSmear,
-    SweptVolume
+    SweptVolume,
+    SilhouetteShell
 };
 enum class Emission { Vertices, Surface };
 
@@ -100,6 +101,21 @@ struct SweptVolumeSpec {
     SweptFilter filter = SweptFilter::Ramp;
     uint32_t segments = 1;   // n: recorded frames the sweep runs back through, one a segment
     float alphaFloor = 0.1f; // the least alpha anywhere on the volume (the paper's 0.1)
+};
+
+// Which edge of a polygon lies on the silhouette of motion (Jones 2004, Sec. 3.2.4): the one
+// between its two vertices facing away from their motion (the paper's figure), or between the two
+// facing it.
+enum class ShellEdgeRule { Back, Front };
+
+// The options of a silhouette_shell effect (Jones 2004, Sec. 3.2.2 and 3.3). Its colour is
+// EffectSpec::colour (default the mesh's).
+struct SilhouetteShellSpec {
+    uint32_t subdivisions = 6;     // silhouettes kept per polygon: quads in a full strip
+    std::optional<float> blurTime; // seconds the shell spans; default subdivisions / fps
+    float initialAlpha = 0.8f;     // alpha of each strip at the live mesh, falling to 0
+    uint32_t fadeOut = 3;          // updates a polygon off the silhouette fades its strip over
+    ShellEdgeRule edgeRule = ShellEdgeRule::Back;
 };
 
 struct EffectSpec {
@@ -142,6 +158,8 @@ struct EffectSpec {
     AfterimageSpec afterimage;
     // Swept volume.
     SweptVolumeSpec swept;
+    // Silhouette shell.
+    SilhouetteShellSpec shell;
 };
 
 struct Scene {

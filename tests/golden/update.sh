@@ -7,7 +7,7 @@ cd "$(dirname "$0")/../.."
 MOTIONFX=${1:-build/apps/motionfx}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-for name in none lines blur particles smoke all afterimage swept; do
+for name in none lines blur particles smoke all afterimage swept shell; do
     "$MOTIONFX" render "docs/scenes/$name.json" --size 160x90 --out "$work/$name" >/dev/null
     last=$(ls "$work/$name"/frame_*.png | sort | tail -n 1)
     cp "$last" "tests/golden/$name.png"

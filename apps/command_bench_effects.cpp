@@ -1,0 +1,236 @@
+// motionfx bench effects: what each motion-effect technique adds to a frame, measured the way the
+// afterimage thesis (Smith 2016) tabulates its techniques: the extra GPU milliseconds per frame and
+// the extra triangles per frame against the character alone on the same clip, and the share of the
+// frame's time the effect takes. Each technique runs in its demo scene (docs/scenes/<name>.json,
+// one effect each); the baseline is the same scene with its effects removed. Triangles are the
+// primitives that reach the clipper (a pipeline-statistics query around the whole frame), so every
+// pass counts: shadow, scene, effects and the smoke's proxy and composite.
+#include "apps/commands.h"
+#include "apps/progress.h"
+
+#include "core/gpu/commands.h"
+#include "core/gpu/context.h"
+#include "fluid/scene_simulation.h"
+#include "render/frame_renderer.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+namespace mfx::app {
+
+namespace {
+
+// The demo scene of every technique, relative to the project root.
+constexpr const char* kDefaultScenes[] = {"docs/scenes/lines.json",      "docs/scenes/blur.json",
+                                          "docs/scenes/particles.json",  "docs/scenes/smoke.json",
+                                          "docs/scenes/afterimage.json", "docs/scenes/swept.json",
+                                          "docs/scenes/shell.json"};
+
+struct Measure {
+    double gpuMs = 0.0;     // median GPU ms per timed frame (simulation and drawing)
+    double triangles = 0.0; // mean primitives reaching the clipper per timed frame
+    uint32_t frames = 0;    // timed
+};
+
+// A pipeline-statistics query counting clipping invocations.
+class PrimitiveQuery {
+public:
+    explicit PrimitiveQuery(const gpu::Context& ctx) : device_(ctx.device()) {
+        VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+        info.queryType = VK_QUERY_TYPE_PIPELINE_STATISTICS;
+        info.queryCount = 1;
+        info.pipelineStatistics = VK_QUERY_PIPELINE_STATISTIC_CLIPPING_INVOCATIONS_BIT;
+        if (vkCreateQueryPool(device_, &info, nullptr, &pool_) != VK_SUCCESS)
+            pool_ = VK_NULL_HANDLE;
+    }
+    ~PrimitiveQuery() {
+        if (pool_) vkDestroyQueryPool(device_, pool_, nullptr);
+    }
+    PrimitiveQuery(const PrimitiveQuery&) = delete;
+    PrimitiveQuery& operator=(const PrimitiveQuery&) = delete;
+    bool valid() const { return pool_ != VK_NULL_HANDLE; }
+    void begin(VkCommandBuffer cmd) const {
+        vkCmdResetQueryPool(cmd, pool_, 0, 1);
+        vkCmdBeginQuery(cmd, pool_, 0, 0);
+    }
+    void end(VkCommandBuffer cmd) const { vkCmdEndQuery(cmd, pool_, 0); }
+    uint64_t result() const {
+        uint64_t count = 0;
+        vkGetQueryPoolResults(device_, pool_, 0, 1, sizeof count, &count, sizeof count,
+                              VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT);
+        return count;
+    }
+
+private:
+    VkDevice device_;
+    VkQueryPool pool_ = VK_NULL_HANDLE;
+};
+
+// Runs `argument`'s scene through, timing every frame after the first `skip`.
+bool measure(const gpu::Context& ctx, const SceneArgument& argument, VkSampleCountFlagBits samples,
+             uint32_t skip, const PrimitiveQuery& query, Measure& out, int& exitCode) {
+    const std::unique_ptr<fluid::SceneSimulation> sim =
+        createSceneSimulation(ctx, argument, exitCode);
+    if (!sim) return false;
+    const scene::Scene& s = argument.scene;
+    render::FrameRenderer renderer(ctx, *sim, s.output.width, s.output.height, samples);
+    std::vector<double> gpuMs;
+    double triangles = 0.0;
+    for (uint32_t f = 0; f < sim->frameCount(); ++f) {
+        gpu::submitOneShot(ctx, [&](VkCommandBuffer cmd) {
+            query.begin(cmd);
+            renderer.record(cmd, *sim, f);
+            query.end(cmd);
+        });
+        const fluid::SimulationFrameStats stats = sim->finishFrame();
+        if (f < skip) continue; // pipeline compiles run inside the first frames on a CPU driver
+        double ms = 0.0;
+        for (const fluid::PassRecord& p : stats.passes)
+            ms += p.gpuMs;
+        for (const gpu::PassTime& p : renderer.passTimes())
+            ms += p.milliseconds;
+        gpuMs.push_back(ms);
+        triangles += double(query.result());
+    }
+    out.frames = uint32_t(gpuMs.size());
+    out.gpuMs = gpuMs.empty() ? 0.0 : median(gpuMs);
+    out.triangles = gpuMs.empty() ? 0.0 : triangles / double(gpuMs.size());
+    return true;
+}
+
+} // namespace
+
+int runBenchEffects(std::span<const std::string> args) {
+    std::vector<cli::OptionSpec> options = deviceOptions();
+    options.push_back({"size", "WxH", "image size (default 960x540)"});
+    options.push_back({"samples", "N",
+                       "MSAA samples per pixel: 1, 2, 4 or 8 (default 4; fewer where the device "
+                       "has fewer)"});
+    options.push_back({"skip", "N", "first frames of each run not timed (default 2)"});
+    options.push_back({"json", "FILE", "also write the results as JSON"});
+    cli::ParsedArgs parsed;
+    int exitCode = kExitOk;
+    if (!parseOrExit(
+            args, options, 64,
+            "usage: motionfx bench effects [SCENE...] [options]\n\nFor each scene (default: "
+            "the demo scene of every technique, docs/scenes/{lines,blur,particles,smoke,"
+            "afterimage,swept,shell}.json, from the project root), runs it simulated and "
+            "drawn as `motionfx render` does, and again with its effects removed, and "
+            "reports the extra GPU milliseconds and triangles per frame its effects cost "
+            "against the character alone, and their share of the frame's time.",
+            parsed, exitCode))
+        return exitCode;
+    auto samples = cli::parseUnsigned(parsed.value("samples", "4"), 1, 8, "--samples");
+    if (samples && (samples.value() & (samples.value() - 1)) != 0)
+        samples = Error{"--samples: expected 1, 2, 4 or 8, got " + parsed.value("samples")};
+    auto skip = cli::parseUnsigned(parsed.value("skip", "2"), 0, 1000, "--skip");
+    for (const Error* e :
+         {samples.ok() ? nullptr : &samples.error(), skip.ok() ? nullptr : &skip.error()})
+        if (e) {
+            printError(e->message);
+            return kExitUsage;
+        }
+    std::vector<std::string> files = parsed.positional;
+    if (files.empty())
+        for (const char* f : kDefaultScenes)
+            if (std::filesystem::exists(f)) files.push_back(f);
+    if (files.empty()) {
+        printError("no scene files: run from the project root (for docs/scenes/) or name the "
+                   "scenes");
+        return kExitUsage;
+    }
+    std::ofstream jsonFile;
+    if (!openOutputFile(parsed.value("json"), jsonFile)) return kExitFailure;
+
+    // Every scene loads before the GPU starts: a bad file fails at once.
+    std::vector<SceneArgument> withEffects(files.size());
+    for (size_t i = 0; i < files.size(); ++i) {
+        cli::ParsedArgs one = parsed;
+        one.positional = {files[i]};
+        if (!one.has("size")) one.values["size"] = "960x540";
+        if (!loadSceneArgument(one, withEffects[i], exitCode)) return exitCode;
+        if (withEffects[i].scene.effects.empty()) {
+            printError(files[i] + ": the scene has no effect to measure");
+            return kExitUsage;
+        }
+    }
+
+    const std::unique_ptr<gpu::Context> context = createContext(parsed);
+    if (!context) return kExitFailure;
+    const gpu::Context& ctx = *context;
+    if (!ctx.features().timestamps) {
+        printError(ctx.info().name + " has no timestamp queries; the frames cannot be timed");
+        return kExitFailure;
+    }
+    const PrimitiveQuery query(ctx);
+    if (!query.valid()) {
+        printError(ctx.info().name + " has no pipeline-statistics queries; triangles cannot be "
+                                     "counted");
+        return kExitFailure;
+    }
+    for (const SceneArgument& a : withEffects)
+        if (!checkOutputSize(ctx, a.scene)) return kExitFailure;
+
+    struct Row {
+        std::string effect, file;
+        Measure alone, with;
+    };
+    std::vector<Row> rows;
+    Progress progress("scenes", uint32_t(2 * files.size()));
+    for (size_t i = 0; i < files.size(); ++i) {
+        SceneArgument& with = withEffects[i];
+        std::string effect = scene::effectTypeName(with.scene.effects.front().type);
+        for (size_t e = 1; e < with.scene.effects.size(); ++e)
+            effect += std::string("+") + scene::effectTypeName(with.scene.effects[e].type);
+        SceneArgument alone{with.scene, with.character};
+        alone.scene.effects.clear();
+        Row row{effect, files[i]};
+        const VkSampleCountFlagBits wanted = VkSampleCountFlagBits(samples.value());
+        if (!measure(ctx, alone, wanted, skip.value(), query, row.alone, exitCode)) return exitCode;
+        progress.update(uint32_t(2 * i + 1));
+        if (!measure(ctx, with, wanted, skip.value(), query, row.with, exitCode)) return exitCode;
+        progress.update(uint32_t(2 * i + 2));
+        rows.push_back(row);
+    }
+    progress.finish();
+
+    const scene::Scene& first = withEffects.front().scene;
+    std::printf(
+        "effects benchmark on %s (%s), %ux%u, up to %u samples per pixel; GPU ms: median "
+        "per frame after %u untimed frames; triangles: mean primitives clipped per frame\n\n",
+        ctx.info().name.c_str(), ctx.info().driverInfo.c_str(), first.output.width,
+        first.output.height, samples.value(), skip.value());
+    std::printf("%-18s %-28s %6s %10s %10s %9s %8s %12s %12s\n", "effect", "scene", "frames",
+                "alone ms", "with ms", "extra ms", "share", "alone tris", "extra tris");
+    nlohmann::json effects = nlohmann::json::object();
+    for (const Row& r : rows) {
+        const double extraMs = r.with.gpuMs - r.alone.gpuMs;
+        const double extraTris = r.with.triangles - r.alone.triangles;
+        const double share = r.with.gpuMs > 0.0 ? 100.0 * extraMs / r.with.gpuMs : 0.0;
+        std::printf("%-18s %-28s %6u %10.2f %10.2f %9.2f %7.1f%% %12.0f %12.0f\n", r.effect.c_str(),
+                    r.file.c_str(), r.with.frames, r.alone.gpuMs, r.with.gpuMs, extraMs, share,
+                    r.alone.triangles, extraTris);
+        effects[r.effect] = {{"scene", r.file},
+                             {"frames", r.with.frames},
+                             {"alone_ms", r.alone.gpuMs},
+                             {"with_ms", r.with.gpuMs},
+                             {"extra_ms", extraMs},
+                             {"frame_share_percent", share},
+                             {"alone_triangles", r.alone.triangles},
+                             {"extra_triangles", extraTris}};
+    }
+    if (jsonFile.is_open())
+        jsonFile << nlohmann::json{{"device", ctx.info().name},
+                                   {"driver", ctx.info().driverInfo},
+                                   {"size", {first.output.width, first.output.height}},
+                                   {"samples", samples.value()},
+                                   {"effects", effects}}
+                        .dump(2)
+                 << "\n";
+    return finishValidation(ctx, kExitOk);
+}
+
+} // namespace mfx::app

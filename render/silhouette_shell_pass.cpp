@@ -1,0 +1,332 @@
+#include "render/silhouette_shell_pass.h"
+
+#include "core/gpu/check.h"
+#include "core/gpu/context.h"
+#include "fluid/scene_simulation.h"
+#include "shaders/embedded.h"
+#include "shaders/shared/effect_draw.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <utility>
+
+namespace mfx::render {
+
+namespace {
+
+constexpr uint32_t kBindings = 10;
+
+gpu::Program computeProgram(const gpu::Context& ctx, const char* name,
+                            std::span<const uint32_t> spirv) {
+    return storageComputeProgram(ctx, name, spirv, kBindings,
+                                 sizeof(shared::SilhouetteShellConstants));
+}
+
+void transferToCompute(VkCommandBuffer cmd) {
+    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+}
+
+void computeToTransfer(VkCommandBuffer cmd) {
+    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                       VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT,
+                       VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                       VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT);
+}
+
+} // namespace
+
+std::vector<uint32_t> shellVertexTriangles(const std::vector<shared::SkinVertexIn>& vertices,
+                                           const std::vector<uint32_t>& triangles) {
+    // Weld by exact bind-pose position: the copies of a seam vertex are made from one point.
+    std::map<std::array<float, 3>, uint32_t> welded;
+    std::vector<uint32_t> weldedIndex(vertices.size());
+    for (size_t v = 0; v < vertices.size(); ++v) {
+        const glm::vec4& p = vertices[v].position;
+        weldedIndex[v] =
+            welded.emplace(std::array<float, 3>{p.x, p.y, p.z}, uint32_t(welded.size()))
+                .first->second;
+    }
+    std::vector<std::vector<uint32_t>> around(welded.size());
+    for (size_t t = 0; t + 2 < triangles.size(); t += 3)
+        for (size_t k = 0; k < 3; ++k) {
+            std::vector<uint32_t>& list = around[weldedIndex[triangles[t + k]]];
+            // A degenerate polygon with two corners at one point counts once.
+            if (list.empty() || list.back() != uint32_t(t / 3)) list.push_back(uint32_t(t / 3));
+        }
+    std::vector<uint32_t> out(vertices.size() + 1);
+    uint32_t at = uint32_t(vertices.size() + 1);
+    for (size_t v = 0; v < vertices.size(); ++v) {
+        out[v] = at;
+        at += uint32_t(around[weldedIndex[v]].size());
+    }
+    out[vertices.size()] = at;
+    for (size_t v = 0; v < vertices.size(); ++v) {
+        const std::vector<uint32_t>& list = around[weldedIndex[v]];
+        out.insert(out.end(), list.begin(), list.end());
+    }
+    return out;
+}
+
+uint32_t shellUpdatesPerFrame(const scene::SilhouetteShellSpec& shell, float fps) {
+    if (!shell.blurTime || *shell.blurTime <= 0.0f || fps <= 0.0f) return 1;
+    const double perFrame = double(shell.subdivisions) / (double(*shell.blurTime) * double(fps));
+    return uint32_t(
+        std::clamp<double>(std::round(perFrame), 1.0, double(MFX_SHELL_MAX_UPDATES_PER_FRAME)));
+}
+
+SilhouetteShellPass::SilhouetteShellPass(const gpu::Context& ctx, const scene::Scene& scene,
+                                         const anim::Character& character,
+                                         VkSampleCountFlagBits samples)
+    : ctx_(ctx), character_(character), skinning_(ctx) {
+    for (size_t i = 0; i < scene.effects.size(); ++i) {
+        const scene::EffectSpec& e = scene.effects[i];
+        if (e.type != scene::EffectType::SilhouetteShell) continue;
+        trajectory::Selection selection;
+        selection.meshes = e.meshes;
+        selection.bones = e.bones;
+        selection.minBoneWeight = e.minBoneWeight;
+        Result<trajectory::Source> selected = trajectory::selectSource(character, selection);
+        if (!selected || selected.value().vertices.empty() || selected.value().triangles.empty())
+            continue;
+        Effect effect;
+        effect.index = i;
+        effect.spec = e;
+        effect.source = std::move(selected).value();
+        trajectory::Source& source = effect.source;
+        // A triangle with two corners at one point has no edge to sweep: its strip would be a
+        // line. Leaving such triangles out keeps every strip a surface.
+        std::vector<uint32_t> kept;
+        for (size_t t = 0; t + 2 < source.triangles.size(); t += 3) {
+            const glm::vec3 p0(source.vertices[source.triangles[t]].position);
+            const glm::vec3 p1(source.vertices[source.triangles[t + 1]].position);
+            const glm::vec3 p2(source.vertices[source.triangles[t + 2]].position);
+            if (p0 == p1 || p1 == p2 || p2 == p0) continue;
+            kept.insert(kept.end(), source.triangles.begin() + ptrdiff_t(t),
+                        source.triangles.begin() + ptrdiff_t(t + 3));
+        }
+        if (kept.empty()) continue;
+        source.triangles = std::move(kept);
+        const uint32_t n = uint32_t(source.vertices.size());
+        effect.vertexCount = n;
+        effect.triangleCount = uint32_t(source.triangles.size() / 3);
+        // Sec. 3.2.3: one ring slot a subdivision, and one for the latest update (the live mesh).
+        effect.historySlots = e.shell.subdivisions + 1;
+        effect.updatesPerFrame = shellUpdatesPerFrame(e.shell, scene.output.fps);
+        const std::vector<uint32_t> adjacency =
+            shellVertexTriangles(source.vertices, source.triangles);
+        // Every polygon drawing a full strip: the most one frame can build (Sec. 3.2.5).
+        const VkDeviceSize outputCapacity =
+            VkDeviceSize(effect.triangleCount) * 6 * e.shell.subdivisions;
+
+        effect.input = effectStorage(ctx, n * sizeof(shared::SkinVertexIn), 0, "shell bind pose");
+        gpu::uploadBuffer(ctx, effect.input,
+                          std::span<const shared::SkinVertexIn>(source.vertices));
+        effect.palette = gpu::createBuffer(
+            ctx, std::max<size_t>(source.palette.size(), 1) * sizeof(shared::SkinJoint),
+            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload, "shell palette");
+        effect.skinned = effectStorage(ctx, n * sizeof(shared::SkinVertexOut), 0, "shell skinned");
+        effect.adjacency =
+            effectStorage(ctx, adjacency.size() * sizeof(uint32_t), 0, "shell adjacency");
+        gpu::uploadBuffer(ctx, effect.adjacency, std::span<const uint32_t>(adjacency));
+        effect.triangles =
+            effectStorage(ctx, source.triangles.size() * sizeof(uint32_t), 0, "shell triangles");
+        gpu::uploadBuffer(ctx, effect.triangles, std::span<const uint32_t>(source.triangles));
+        effect.current = effectStorage(ctx, n * sizeof(shared::ShellVertex), 0, "shell current");
+        effect.last = effectStorage(ctx, n * sizeof(shared::ShellVertex), 0, "shell last frame");
+        effect.states = effectStorage(
+            ctx, VkDeviceSize(effect.triangleCount) * sizeof(shared::ShellTriangleState), 0,
+            "shell states");
+        effect.history = effectStorage(ctx,
+                                       VkDeviceSize(effect.triangleCount) * effect.historySlots *
+                                           sizeof(shared::ShellHistoryEdge),
+                                       0, "shell history");
+        std::vector<glm::vec4> colours = source.colours;
+        if (!e.useMeshColour) std::fill(colours.begin(), colours.end(), e.colour);
+        effect.colours = effectStorage(ctx, n * sizeof(glm::vec4), 0, "shell colours");
+        gpu::uploadBuffer(ctx, effect.colours, std::span<const glm::vec4>(colours));
+        effect.output = effectStorage(ctx, outputCapacity * sizeof(shared::TrajectoryVertex),
+                                      VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "shell geometry");
+        effect.counters = gpu::createBuffer(
+            ctx, sizeof(shared::SilhouetteShellCounters),
+            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
+                VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+            gpu::MemoryUsage::Readback, "shell counters");
+        std::memset(effect.counters.mapped, 0, sizeof(shared::SilhouetteShellCounters));
+        effects_.push_back(std::move(effect));
+    }
+    if (effects_.empty()) return; // a scene without the effect pays for nothing
+
+    normals_ =
+        computeProgram(ctx, "silhouette_shell_normals", shaders::silhouette_shell_normals_comp);
+    update_ = computeProgram(ctx, "silhouette_shell_update", shaders::silhouette_shell_update_comp);
+    build_ = computeProgram(ctx, "silhouette_shell_build", shaders::silhouette_shell_build_comp);
+    for (Effect& effect : effects_) {
+        const gpu::DescriptorWrite writes[kBindings] = {
+            gpu::bindBuffer(0, effect.skinned),   gpu::bindBuffer(1, effect.adjacency),
+            gpu::bindBuffer(2, effect.triangles), gpu::bindBuffer(3, effect.current),
+            gpu::bindBuffer(4, effect.last),      gpu::bindBuffer(5, effect.states),
+            gpu::bindBuffer(6, effect.history),   gpu::bindBuffer(7, effect.colours),
+            gpu::bindBuffer(8, effect.output),    gpu::bindBuffer(9, effect.counters)};
+        effect.normalsSet = normals_.createSet(ctx, writes);
+        effect.updateSet = update_.createSet(ctx, writes);
+        effect.buildSet = build_.createSet(ctx, writes);
+    }
+
+    // Translucent and unsorted, like the swept volume: the strips do not write depth.
+    gpu::GraphicsProgramDesc shell =
+        trajectoryDrawDesc("silhouette_shell", VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, samples, false);
+    shell.vertex = shaders::effect_volume_vert;
+    shell.fragment = shaders::effect_volume_frag;
+    shellDraw_ = gpu::createGraphicsProgram(ctx, shell);
+    frame_ = gpu::createBuffer(ctx, sizeof(shared::SceneFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                               gpu::MemoryUsage::Upload, "shell frame");
+    drawSet_ = shellDraw_.createSet(ctx, {gpu::bindBuffer(0, frame_)});
+}
+
+void SilhouetteShellPass::advance(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
+                                  uint32_t frame) {
+    if (effects_.empty()) return;
+    const FrameHistory::Step step = history_.step(simulation.serial(), frame);
+    if (step == FrameHistory::Step::Same) return; // the same frame again: the rings stay
+    const bool reset = step == FrameHistory::Step::Restart;
+
+    const scene::Scene& scene = simulation.scene();
+    const float time = simulation.frameTime(frame);
+    const anim::Pose& pose = simulation.framePose();
+    for (Effect& effect : effects_) {
+        const std::vector<shared::SkinJoint> palette = anim::packPalette(
+            trajectory::sourcePalette(character_, effect.source, pose, simulation.placement()));
+        std::memcpy(effect.palette.mapped, palette.data(),
+                    palette.size() * sizeof(shared::SkinJoint));
+        skinning_.record(cmd, effect.palette, uint32_t(palette.size()), effect.input,
+                         effect.skinned, effect.vertexCount);
+
+        shared::SilhouetteShellCounters zero{};
+        zero.instanceCount = 1;
+        vkCmdUpdateBuffer(cmd, effect.counters.get(), 0, sizeof zero, &zero);
+        if (reset) {
+            // A new start (first frame, a jump, a new simulation): no polygon has an edge yet and
+            // every slot is empty.
+            vkCmdFillBuffer(cmd, effect.states.get(), 0, VK_WHOLE_SIZE, 0);
+            vkCmdFillBuffer(cmd, effect.history.get(), 0, VK_WHOLE_SIZE, 0);
+            effect.newest = 0;
+        }
+        transferToCompute(cmd);
+
+        const scene::EffectSpec& e = effect.spec;
+        shared::SilhouetteShellConstants c{};
+        c.vertexCount = effect.vertexCount;
+        c.triangleCount = effect.triangleCount;
+        c.historySlots = effect.historySlots;
+        c.subdivisions = e.shell.subdivisions;
+        c.newest = effect.newest;
+        c.updatesPerFrame = effect.updatesPerFrame;
+        c.edgeRule = e.shell.edgeRule == scene::ShellEdgeRule::Back ? MFX_SHELL_EDGE_BACK
+                                                                    : MFX_SHELL_EDGE_FRONT;
+        c.initialAlpha = e.shell.initialAlpha;
+        c.fadeOut = e.shell.fadeOut;
+
+        normals_.bind(cmd, effect.normalsSet);
+        normals_.push(cmd, c);
+        vkCmdDispatch(cmd, gpu::groupCount(effect.vertexCount, MFX_SHELL_GROUP_SIZE), 1, 1);
+        computeToComputeBarrier(cmd);
+        // The first frame after a start only sets where the vertices were: a motion needs two.
+        if (!reset) {
+            for (uint32_t u = 0; u < effect.updatesPerFrame; ++u) {
+                effect.newest = (effect.newest + 1) % effect.historySlots;
+                c.newest = effect.newest;
+                c.update = u;
+                update_.bind(cmd, effect.updateSet);
+                update_.push(cmd, c);
+                vkCmdDispatch(cmd, gpu::groupCount(effect.triangleCount, MFX_SHELL_GROUP_SIZE), 1,
+                              1);
+                computeToComputeBarrier(cmd);
+            }
+        }
+        // This frame's vertices are where the next frame's updates start from.
+        computeToTransfer(cmd);
+        const VkBufferCopy copy{0, 0,
+                                VkDeviceSize(effect.vertexCount) * sizeof(shared::ShellVertex)};
+        vkCmdCopyBuffer(cmd, effect.current.get(), effect.last.get(), 1, &copy);
+        transferToCompute(cmd);
+
+        // Outside its window the effect keeps updating its rings (so it enters the window with
+        // the right history) but builds nothing.
+        const float slack = 0.5f / scene.output.fps;
+        const bool live = time + slack >= e.start && (!e.end || time <= *e.end + slack);
+        if (!live) continue;
+        build_.bind(cmd, effect.buildSet);
+        build_.push(cmd, c);
+        vkCmdDispatch(cmd, gpu::groupCount(effect.triangleCount, MFX_SHELL_GROUP_SIZE), 1, 1);
+    }
+    computeToDrawBarrier(cmd);
+}
+
+uint32_t SilhouetteShellPass::draw(VkCommandBuffer cmd, const scene::Scene& scene,
+                                   const SceneCamera& camera, std::span<const uint8_t> shown) {
+    if (effects_.empty() || !history_.recorded()) return 0;
+    const shared::SceneFrame frame = sceneFrame(scene, camera);
+    std::memcpy(frame_.mapped, &frame, sizeof frame);
+    uint32_t draws = 0;
+    const VkDeviceSize offset = 0;
+    for (const Effect& effect : effects_) {
+        if (!shown.empty() && (effect.index >= shown.size() || shown[effect.index] == 0)) continue;
+        // Every vertex is drawn at time 0 with sample time 0: no age fade (effect_common.glsl);
+        // the alpha along the strip is in the vertex colour.
+        shared::EffectDraw d{};
+        d.timing = glm::vec4(0.0f, 1.0f, 0.0f, 1.0f / scene.output.fps);
+        d.tint = glm::vec4(1.0f);
+        shellDraw_.bind(cmd, drawSet_);
+        shellDraw_.push(cmd, d);
+        VkBuffer vb = effect.output.get();
+        vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
+        vkCmdDrawIndirect(cmd, effect.counters.get(), 0, 1, sizeof(VkDrawIndirectCommand));
+        ++draws;
+    }
+    return draws;
+}
+
+const SilhouetteShellPass::Effect* SilhouetteShellPass::find(size_t effect) const {
+    for (const Effect& e : effects_)
+        if (e.index == effect) return &e;
+    return nullptr;
+}
+
+SilhouetteShellPass::Counts SilhouetteShellPass::counts(size_t effect) const {
+    const Effect* e = find(effect);
+    if (!e) return {};
+    shared::SilhouetteShellCounters c{};
+    std::memcpy(&c, e->counters.mapped, sizeof c);
+    Counts out;
+    out.vertices = c.vertexCount;
+    out.silhouetteTriangles = c.silhouetteTriangles;
+    out.strips = c.strips;
+    out.fadingStrips = c.fadingStrips;
+    out.updatesPerFrame = e->updatesPerFrame;
+    return out;
+}
+
+std::vector<shared::TrajectoryVertex> SilhouetteShellPass::geometry(size_t effect) const {
+    const Effect* e = find(effect);
+    if (!e) return {};
+    auto vertices = gpu::readBufferAs<shared::TrajectoryVertex>(ctx_, e->output);
+    vertices.resize(std::min<size_t>(vertices.size(), counts(effect).vertices));
+    return vertices;
+}
+
+std::vector<glm::vec3> SilhouetteShellPass::livePositions(size_t effect) const {
+    const Effect* e = find(effect);
+    if (!e) return {};
+    auto skinned = gpu::readBufferAs<shared::SkinVertexOut>(ctx_, e->skinned);
+    std::vector<glm::vec3> out;
+    for (size_t v = 0; v < std::min<size_t>(skinned.size(), e->vertexCount); ++v)
+        out.push_back(glm::vec3(skinned[v].position));
+    return out;
+}
+
+} // namespace mfx::render

@@ -1,0 +1,116 @@
+// The silhouette-of-motion blur shell of deforming meshes, on the GPU: Jones 2004, "Geometric
+// Motion Blur for Deforming Polygonal Models" (Sec. 3.2.2, the parameters and averaged normals;
+// 3.2.3, the per-polygon ring; 3.2.4, finding the silhouette of motion; 3.2.5, the quad strips;
+// 3.3, holes and popping). For each silhouette_shell effect of the scene:
+//   * its bound vertices (bones, meshes) are skinned for the frame (anim::SkinVertices) and given
+//     normals averaged over their polygons (silhouette_shell_normals.comp);
+//   * the silhouette of motion is updated `updatesPerFrame` times between two recorded frames,
+//     each polygon recording its edge on it, or its last such edge, in its ring of past edges
+//     (silhouette_shell_update.comp);
+//   * each polygon that had an edge on the silhouette within the fade-out count draws a quad strip
+//     from its edge on the live mesh back through its ring, alpha falling linearly from the
+//     initial value to 0, the whole strip fading while the polygon is off the silhouette
+//     (silhouette_shell_build.comp);
+//   * it is drawn in the effects pass by one indirect draw with the blur volume's shaders (lit,
+//     translucent triangles): nothing is read back to the CPU.
+// The rings advance only when a scene frame is recorded (FrameRenderer::record); a frame that does
+// not follow the last one recorded starts them again: no motion, no shell.
+#pragma once
+
+#include "core/anim/character.h"
+#include "core/anim/skin_vertices.h"
+#include "core/gpu/program.h"
+#include "core/gpu/resources.h"
+#include "core/scene/scene.h"
+#include "core/trajectory/trajectory_source.h"
+#include "render/effect_geometry.h"
+#include "render/scene_camera.h"
+#include "shaders/shared/silhouette_shell.h"
+#include "shaders/shared/trajectory.h"
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace mfx::fluid {
+class SceneSimulation;
+}
+
+namespace mfx::render {
+
+class SilhouetteShellPass {
+public:
+    // The scene's silhouette_shell effects on `character` (which must outlive the pass), drawn
+    // into targets of `samples` samples. Effects whose selection leaves no triangle are left out.
+    SilhouetteShellPass(const gpu::Context& ctx, const scene::Scene& scene,
+                        const anim::Character& character,
+                        VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT);
+
+    bool empty() const { return effects_.empty(); }
+
+    // Records frame `frame` of `simulation` (its pose is the frame's: after recordFrame): the
+    // skinning, the silhouette updates since the last frame and the shell. The previous recording
+    // must have finished.
+    void advance(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation, uint32_t frame);
+    // Records the draws of the shell last built (inside rendering; the effect pass's target
+    // formats). With `shown` non-empty, only effects whose entry (index in scene.effects) is
+    // non-zero. Returns the number of draws.
+    uint32_t draw(VkCommandBuffer cmd, const scene::Scene& scene, const SceneCamera& camera,
+                  std::span<const uint8_t> shown = {});
+
+    // After the recording has finished executing, what effect `effect` (its index in
+    // scene.effects) built: all zero for an effect that is not a silhouette_shell.
+    struct Counts {
+        uint32_t vertices = 0;            // triangle vertices drawn, 6 a quad
+        uint32_t silhouetteTriangles = 0; // polygons with an edge on the latest silhouette
+        uint32_t strips = 0;              // quad strips drawn
+        uint32_t fadingStrips = 0;        // of them, polygons off the silhouette fading out
+        uint32_t updatesPerFrame = 0;     // silhouette updates between two recorded frames
+    };
+    Counts counts(size_t effect) const;
+    // The triangles of effect `effect` as drawn: each strip's quads (6 vertices each, from the
+    // live mesh back; the first quad's vertices 0 and 1 are the live edge, 2 and 5 the next pair),
+    // strips in no fixed order. position.w is the place along the strip, pair k at
+    // k / subdivisions. Reads back; waits.
+    std::vector<shared::TrajectoryVertex> geometry(size_t effect) const;
+    // This frame's skinned positions of effect `effect`'s bound vertices (the live mesh). Reads
+    // back; waits.
+    std::vector<glm::vec3> livePositions(size_t effect) const;
+
+private:
+    struct Effect {
+        size_t index = 0; // in scene.effects
+        scene::EffectSpec spec;
+        trajectory::Source source;
+        uint32_t vertexCount = 0, triangleCount = 0, historySlots = 2, updatesPerFrame = 1;
+        gpu::Buffer input, palette, skinned, adjacency, triangles, current, last, states, history,
+            colours, output, counters;
+        VkDescriptorSet normalsSet = VK_NULL_HANDLE, updateSet = VK_NULL_HANDLE,
+                        buildSet = VK_NULL_HANDLE;
+        uint32_t newest = 0;
+    };
+    const Effect* find(size_t effect) const;
+
+    const gpu::Context& ctx_;
+    const anim::Character& character_;
+    anim::SkinVertices skinning_;
+    gpu::Program normals_, update_, build_, shellDraw_;
+    gpu::Buffer frame_;
+    VkDescriptorSet drawSet_ = VK_NULL_HANDLE;
+    std::vector<Effect> effects_;
+    FrameHistory history_;
+};
+
+// The polygons around each vertex as silhouette_shell_normals.comp reads them: vertexCount + 1
+// offsets, then the triangle lists they index. Vertices at the same bind-pose position count as
+// one, so a flat-shaded mesh (every polygon its own vertex copies) still gets normals averaged over
+// all the polygons that meet at a point (Jones 2004, Sec. 3.2.2).
+std::vector<uint32_t> shellVertexTriangles(const std::vector<shared::SkinVertexIn>& vertices,
+                                           const std::vector<uint32_t>& triangles);
+
+// Silhouette updates between two recorded frames: blur time / subdivisions apart (Jones 2004,
+// Sec. 3.2.2), at least one a frame (a longer blur time keeps one a frame), at most
+// MFX_SHELL_MAX_UPDATES_PER_FRAME.
+uint32_t shellUpdatesPerFrame(const scene::SilhouetteShellSpec& shell, float fps);
+
+} // namespace mfx::render

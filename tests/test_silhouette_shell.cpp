@@ -1,0 +1,322 @@
+// The silhouette-of-motion blur shell (render/silhouette_shell_pass.h; Jones 2004): geometry only
+// while the bound part moves, each strip attached to the live mesh, alpha falling linearly along
+// it, strips fading out when their polygon leaves the silhouette, several updates a frame, normals
+// averaged across seams, and the scene file's refusals. The scenes are small (the fighter's kicking
+// leg) and run a few frames.
+#include "core/gpu/commands.h"
+#include "core/scene/scene.h"
+#include "fluid/scene_simulation.h"
+#include "render/silhouette_shell_pass.h"
+#include "tests/gpu_test.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <set>
+#include <string>
+#include <tuple>
+
+namespace mfx::test {
+namespace {
+
+// The roundhouse kick (0.9 s) at 30 fps, held after its end; `effect` is the JSON of one effect.
+scene::Scene kickScene(const std::string& effect, uint32_t frames = 45) {
+    const std::string text = R"({"character": {"clip": "roundhouse_kick"},
+        "output": {"width": 64, "height": 36, "fps": 30, "frames": )" +
+                             std::to_string(frames) + R"(}, "effects": [)" + effect + "]}";
+    Result<scene::Scene> s = scene::parseScene(text, "test.json");
+    EXPECT_TRUE(s) << (s ? "" : s.error().message);
+    return s ? std::move(s).value() : scene::Scene{};
+}
+
+constexpr uint32_t kKickFrame = 12;  // the leg swinging fast (0.4 s)
+constexpr uint32_t kLastMoving = 27; // the clip ends at 0.9 s; the pose is held after it
+const std::string kLeg = R"("bones": ["thigh_r", "shin_r", "foot_r", "toe_r"])";
+
+class SilhouetteShellTest : public GpuTest {
+protected:
+    void start(const scene::Scene& s) {
+        scene_ = s;
+        Result<anim::Character> c = scene::loadCharacter(scene_);
+        ASSERT_TRUE(c) << c.error().message;
+        character_ = std::make_unique<anim::Character>(std::move(c).value());
+        auto sim = fluid::SceneSimulation::create(ctx(), scene_, *character_);
+        ASSERT_TRUE(sim) << sim.error().message;
+        sim_ = std::move(sim).value();
+        pass_ = std::make_unique<render::SilhouetteShellPass>(ctx(), scene_, *character_);
+        ASSERT_FALSE(pass_->empty());
+    }
+    // Records frames first..last in order (the rings advance once a frame).
+    void play(uint32_t first, uint32_t last) {
+        for (uint32_t f = first; f <= last; ++f) {
+            gpu::submitOneShot(ctx(), [&](VkCommandBuffer cmd) {
+                sim_->recordFrame(cmd, f);
+                pass_->advance(cmd, *sim_, f);
+            });
+            sim_->finishFrame();
+        }
+    }
+    render::SilhouetteShellPass::Counts counts() const { return pass_->counts(0); }
+
+    scene::Scene scene_;
+    std::unique_ptr<anim::Character> character_;
+    std::unique_ptr<fluid::SceneSimulation> sim_;
+    std::unique_ptr<render::SilhouetteShellPass> pass_;
+};
+
+// The drawn triangles split into strips: a strip starts with a quad whose first vertex is at
+// place 0 (the live mesh); each quad is 6 vertices.
+std::vector<std::vector<shared::TrajectoryVertex>>
+strips(const std::vector<shared::TrajectoryVertex>& vertices) {
+    std::vector<std::vector<shared::TrajectoryVertex>> out;
+    EXPECT_EQ(vertices.size() % 6, 0u);
+    for (size_t k = 0; k + 5 < vertices.size(); k += 6) {
+        if (vertices[k].position.w == 0.0f) out.emplace_back();
+        if (out.empty()) {
+            ADD_FAILURE() << "the geometry does not start with a strip's first quad";
+            return out;
+        }
+        out.back().insert(out.back().end(), vertices.begin() + ptrdiff_t(k),
+                          vertices.begin() + ptrdiff_t(k + 6));
+    }
+    return out;
+}
+
+TEST_F(SilhouetteShellTest, GeometryOnlyWhileTheBoundPartMoves) {
+    start(kickScene("{\"type\": \"silhouette_shell\", " + kLeg + ", \"fade_out\": 3}"));
+    play(0, 0);
+    EXPECT_EQ(counts().vertices, 0u) << "the first frame has no motion yet";
+    play(1, kKickFrame);
+    EXPECT_GT(counts().silhouetteTriangles, 0u) << "the kicking leg has a silhouette of motion";
+    EXPECT_GT(counts().strips, 0u);
+    EXPECT_GT(counts().vertices, 0u);
+    EXPECT_EQ(counts().vertices % 6, 0u);
+    // Held still: no silhouette at once, and no strip once the fade-out count has passed.
+    play(kKickFrame + 1, kLastMoving + 2);
+    EXPECT_EQ(counts().silhouetteTriangles, 0u);
+    play(kLastMoving + 3, kLastMoving + 3 + 4);
+    EXPECT_EQ(counts().strips, 0u);
+    EXPECT_EQ(counts().vertices, 0u) << "a still leg makes no shell";
+}
+
+TEST_F(SilhouetteShellTest, NothingOutsideTheEffectsWindow) {
+    start(kickScene("{\"type\": \"silhouette_shell\", " + kLeg + ", \"start\": 1.2}"));
+    play(0, kKickFrame);
+    EXPECT_EQ(counts().vertices, 0u);
+}
+
+// Each strip's first vertex pair is where two vertices of the live mesh are now (Jones 2004,
+// Sec. 3.2.5: the strip is connected to its polygon), with one update a frame and with several.
+TEST_F(SilhouetteShellTest, TheShellStaysAttachedToTheLiveMesh) {
+    for (const char* blurTime : {"", ", \"blur_time\": 0.1"}) {
+        SCOPED_TRACE(blurTime);
+        start(kickScene("{\"type\": \"silhouette_shell\", " + kLeg + ", \"subdivisions\": 6" +
+                        std::string(blurTime) + "}"));
+        play(0, kKickFrame);
+        EXPECT_EQ(counts().updatesPerFrame, *blurTime ? 2u : 1u);
+        std::set<std::tuple<float, float, float>> live;
+        for (const glm::vec3& p : pass_->livePositions(0))
+            live.insert({p.x, p.y, p.z});
+        const auto all = strips(pass_->geometry(0));
+        ASSERT_FALSE(all.empty());
+        EXPECT_EQ(all.size(), counts().strips);
+        for (const auto& strip : all) {
+            for (int k : {0, 1}) {
+                const glm::vec4& p = strip[size_t(k)].position;
+                EXPECT_EQ(p.w, 0.0f);
+                EXPECT_TRUE(live.count({p.x, p.y, p.z}))
+                    << "strip vertex " << k << " at (" << p.x << ", " << p.y << ", " << p.z
+                    << ") is not a vertex of the live mesh";
+            }
+            EXPECT_NE(glm::vec3(strip[0].position), glm::vec3(strip[1].position));
+        }
+    }
+}
+
+// Along each strip alpha starts at the initial value times the strip's fade, falls linearly with
+// the pair's place and never rises; a full strip ends at 0 (Sec. 3.2.5).
+TEST_F(SilhouetteShellTest, AlphaFallsLinearlyAlongEachStrip) {
+    start(kickScene("{\"type\": \"silhouette_shell\", " + kLeg +
+                    ", \"colour\": [1, 1, 1, 1], \"subdivisions\": 4, \"initial_alpha\": 0.6}"));
+    play(0, kKickFrame);
+    const auto all = strips(pass_->geometry(0));
+    ASSERT_FALSE(all.empty());
+    size_t full = 0;
+    for (const auto& strip : all) {
+        const float fade = strip[0].color.a / 0.6f;
+        EXPECT_GT(fade, 0.0f);
+        EXPECT_LE(fade, 1.0f + 1e-6f);
+        float previousPlace = -1.0f, previousAlpha = 2.0f;
+        for (size_t q = 0; q < strip.size(); q += 6)
+            for (size_t k : {0, 1, 2, 4, 5}) {
+                const shared::TrajectoryVertex& v = strip[q + k];
+                const float place = v.position.w;
+                EXPECT_NEAR(v.color.a, 0.6f * fade * (1.0f - place), 1e-5f);
+                if (place > previousPlace) {
+                    EXPECT_LE(v.color.a, previousAlpha + 1e-6f);
+                    previousPlace = place;
+                    previousAlpha = v.color.a;
+                }
+            }
+        EXPECT_LE(strip.size() / 6, 4u);
+        if (strip.size() / 6 == 4) {
+            ++full;
+            EXPECT_EQ(strip.back().position.w, 1.0f);
+            EXPECT_EQ(strip.back().color.a, 0.0f);
+        }
+    }
+    EXPECT_GT(full, 0u) << "after 12 frames of motion some strips run the whole history";
+}
+
+// A polygon that loses its silhouette edge keeps drawing its strip, faded as a whole, for the
+// fade-out count, then stops; with a count of 0 strips stop at once (Sec. 3.3).
+TEST_F(SilhouetteShellTest, StripsFadeOutInsteadOfPopping) {
+    start(kickScene("{\"type\": \"silhouette_shell\", " + kLeg +
+                    ", \"colour\": [1, 1, 1, 1], \"fade_out\": 4}"));
+    play(0, kKickFrame);
+    EXPECT_GT(counts().fadingStrips, 0u) << "the silhouette moves over the deforming leg";
+    size_t faded = 0;
+    for (const auto& strip : strips(pass_->geometry(0)))
+        if (strip[0].color.a < 0.8f - 1e-5f) ++faded;
+    EXPECT_EQ(faded, counts().fadingStrips);
+    // Held still, the strips fade together: the first pair's alpha steps down by 1/5 an update.
+    play(kKickFrame + 1, kLastMoving + 1);
+    const auto held = strips(pass_->geometry(0));
+    for (const auto& strip : held)
+        EXPECT_LE(strip[0].color.a, 0.8f * 4.0f / 5.0f + 1e-5f);
+
+    start(kickScene("{\"type\": \"silhouette_shell\", " + kLeg + ", \"fade_out\": 0}"));
+    play(0, kKickFrame);
+    EXPECT_GT(counts().strips, 0u);
+    EXPECT_EQ(counts().fadingStrips, 0u);
+    // A polygon on its first silhouette has one pair yet: no strip.
+    EXPECT_LE(counts().strips, counts().silhouetteTriangles);
+}
+
+// Either edge rule finds a silhouette on the moving leg (Sec. 3.2.4).
+TEST_F(SilhouetteShellTest, BothEdgeRulesFindASilhouette) {
+    for (const char* rule : {"back", "front"}) {
+        SCOPED_TRACE(rule);
+        start(kickScene("{\"type\": \"silhouette_shell\", " + kLeg + ", \"edge_rule\": \"" + rule +
+                        "\"}"));
+        play(0, kKickFrame);
+        EXPECT_GT(counts().silhouetteTriangles, 0u);
+        EXPECT_GT(counts().vertices, 0u);
+    }
+}
+
+TEST_F(SilhouetteShellTest, ASceneWithoutTheEffectHasNoPass) {
+    scene::Scene s = kickScene("{\"type\": \"speed_lines\", " + kLeg + "}");
+    Result<anim::Character> c = scene::loadCharacter(s);
+    ASSERT_TRUE(c);
+    EXPECT_TRUE(render::SilhouetteShellPass(ctx(), s, c.value()).empty());
+}
+
+// A cube whose faces have their own vertices (24, as a flat-shaded mesh has): every corner copy
+// lists the 6 triangles of the 3 faces meeting there, so its averaged normal points out of the
+// corner, not along one face (Sec. 3.2.2).
+TEST(SilhouetteShellNormals, AveragedAcrossFlatShadedSeams) {
+    std::vector<shared::SkinVertexIn> vertices;
+    std::vector<uint32_t> triangles;
+    for (int axis = 0; axis < 3; ++axis)
+        for (float side : {-1.0f, 1.0f}) {
+            const uint32_t base = uint32_t(vertices.size());
+            for (int corner = 0; corner < 4; ++corner) {
+                glm::vec3 p(0.0f);
+                p[axis] = side;
+                p[(axis + 1) % 3] = (corner & 1) ? 1.0f : -1.0f;
+                p[(axis + 2) % 3] = (corner & 2) ? 1.0f : -1.0f;
+                shared::SkinVertexIn v{};
+                v.position = glm::vec4(p, 1.0f);
+                vertices.push_back(v);
+            }
+            triangles.insert(triangles.end(), {base, base + 1, base + 3, base, base + 3, base + 2});
+        }
+    const std::vector<uint32_t> around = render::shellVertexTriangles(vertices, triangles);
+    ASSERT_EQ(around.size(), around[vertices.size()]) << "the last offset ends the lists";
+    for (size_t v = 0; v < vertices.size(); ++v) {
+        const uint32_t count = around[v + 1] - around[v];
+        // A corner touches 3 faces: 1 or 2 triangles of each (the diagonal's ends have 2).
+        EXPECT_GE(count, 3u);
+        EXPECT_LE(count, 6u);
+        std::set<int> faces;
+        for (uint32_t k = around[v]; k < around[v + 1]; ++k)
+            faces.insert(int(around[k] / 2));
+        EXPECT_EQ(faces.size(), 3u) << "vertex " << v;
+    }
+}
+
+TEST(SilhouetteShellUpdates, BlurTimeOverSubdivisionsApart) {
+    scene::SilhouetteShellSpec s;
+    s.subdivisions = 6;
+    EXPECT_EQ(render::shellUpdatesPerFrame(s, 30.0f), 1u) << "default: one update a frame";
+    s.blurTime = 0.2f;
+    EXPECT_EQ(render::shellUpdatesPerFrame(s, 30.0f), 1u);
+    s.blurTime = 0.1f;
+    EXPECT_EQ(render::shellUpdatesPerFrame(s, 30.0f), 2u);
+    s.blurTime = 1.0f;
+    EXPECT_EQ(render::shellUpdatesPerFrame(s, 30.0f), 1u) << "never fewer than one a frame";
+    s.blurTime = 0.001f;
+    EXPECT_EQ(render::shellUpdatesPerFrame(s, 30.0f), uint32_t(MFX_SHELL_MAX_UPDATES_PER_FRAME));
+}
+
+// The scene file's options and refusals: one line naming the effect's key.
+std::string sceneError(const std::string& effect) {
+    Result<scene::Scene> s = scene::parseScene(R"({"effects": [)" + effect + "]}", "s.json");
+    return s ? std::string() : s.error().message;
+}
+
+TEST(SilhouetteShellScene, DefaultsAndEveryOption) {
+    Result<scene::Scene> d =
+        scene::parseScene(R"({"effects": [{"type": "silhouette_shell"}]})", "s");
+    ASSERT_TRUE(d) << d.error().message;
+    const scene::EffectSpec& e = d.value().effects[0];
+    EXPECT_EQ(e.type, scene::EffectType::SilhouetteShell);
+    EXPECT_EQ(e.name, "silhouette_shell#0");
+    EXPECT_EQ(e.shell.subdivisions, 6u);
+    EXPECT_FALSE(e.shell.blurTime);
+    EXPECT_EQ(e.shell.initialAlpha, 0.8f);
+    EXPECT_EQ(e.shell.fadeOut, 3u);
+    EXPECT_EQ(e.shell.edgeRule, scene::ShellEdgeRule::Back);
+    EXPECT_TRUE(e.useMeshColour);
+
+    Result<scene::Scene> s = scene::parseScene(
+        R"({"effects": [{"type": "silhouette_shell", "subdivisions": 10, "blur_time": 0.2,
+        "initial_alpha": 0.5, "fade_out": 0, "edge_rule": "front", "colour": [1, 0, 0]}]})",
+        "s.json");
+    ASSERT_TRUE(s) << s.error().message;
+    const scene::EffectSpec& o = s.value().effects[0];
+    EXPECT_EQ(o.shell.subdivisions, 10u);
+    ASSERT_TRUE(o.shell.blurTime);
+    EXPECT_EQ(*o.shell.blurTime, 0.2f);
+    EXPECT_EQ(o.shell.initialAlpha, 0.5f);
+    EXPECT_EQ(o.shell.fadeOut, 0u);
+    EXPECT_EQ(o.shell.edgeRule, scene::ShellEdgeRule::Front);
+    EXPECT_FALSE(o.useMeshColour);
+}
+
+TEST(SilhouetteShellScene, RefusesBadValues) {
+    EXPECT_EQ(sceneError(R"({"type": "silhouette_shell", "subdivisions": 0})"),
+              "s.json: effects[0].subdivisions: 0 is outside 1..32");
+    EXPECT_EQ(sceneError(R"({"type": "silhouette_shell", "initial_alpha": 1.5})"),
+              "s.json: effects[0].initial_alpha: 1.5 is outside [0, 1]");
+    EXPECT_EQ(sceneError(R"({"type": "silhouette_shell", "edge_rule": "side"})"),
+              "s.json: effects[0].edge_rule: \"side\" is not one of: back, front");
+    EXPECT_EQ(sceneError(R"({"type": "silhouette_shell", "blur_time": 0})")
+                  .rfind("s.json: effects[0].blur_time: ", 0),
+              0u);
+}
+
+TEST(SilhouetteShellScene, RefusesKeysOfOtherEffects) {
+    EXPECT_EQ(sceneError(R"({"type": "silhouette_shell", "segments": 2})"),
+              "s.json: effects[0].segments: not a key of silhouette_shell effects");
+    EXPECT_EQ(sceneError(R"({"type": "silhouette_shell", "sub_samples": 2})"),
+              "s.json: effects[0].sub_samples: not a key of silhouette_shell effects");
+    EXPECT_EQ(sceneError(R"({"type": "swept_volume", "fade_out": 2})"),
+              "s.json: effects[0].fade_out: not a key of swept_volume effects");
+    EXPECT_EQ(sceneError(R"({"type": "speed_lines", "subdivisions": 2})"),
+              "s.json: effects[0].subdivisions: not a key of speed_lines effects");
+}
+
+} // namespace
+} // namespace mfx::test
