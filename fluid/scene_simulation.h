@@ -136,6 +136,10 @@ public:
     // no records).
     std::vector<CapturedStep> capturedEmitters(size_t grid) const;
 
+    // Whether scene time `time` is inside effect `e`'s window (half a frame of slack at each end,
+    // so a boundary on a frame time is inside it).
+    bool effectLive(const scene::EffectSpec& e, float time) const;
+
     const std::vector<TrajectoryEffect>& trajectories() const { return trajectories_; }
     const std::vector<SmokeGrid>& smokeGrids() const { return grids_; }
     uint64_t fluidBytes() const;
@@ -153,7 +157,6 @@ private:
     void addPass(const std::string& name, uint32_t dispatches);
     void recordSmoke(VkCommandBuffer cmd, SmokeGrid& grid, uint32_t frame);
     void captureStep(VkCommandBuffer cmd, SmokeGrid& grid, uint64_t step, uint32_t count);
-    bool effectLive(const scene::EffectSpec& e, float time) const;
     Status placeGrid(SmokeGrid& grid);
 
     const gpu::Context& ctx_;

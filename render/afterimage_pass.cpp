@@ -174,12 +174,8 @@ void AfterimagePass::advance(VkCommandBuffer cmd, const fluid::SceneSimulation& 
     lastRoot_ = root;
 
     for (Effect& effect : effects_) {
-        const std::vector<shared::SkinJoint> palette = anim::packPalette(
-            trajectory::sourcePalette(character_, effect.source, pose, simulation.placement()));
-        std::memcpy(effect.palette.mapped, palette.data(),
-                    palette.size() * sizeof(shared::SkinJoint));
-        skinning_.record(cmd, effect.palette, uint32_t(palette.size()), effect.input,
-                         effect.skinned, effect.vertexCount);
+        skinSource(cmd, skinning_, character_, effect.source, pose, simulation.placement(),
+                   effect.palette, effect.input, effect.skinned, effect.vertexCount);
 
         effect.newest = reset ? 0 : (effect.newest + 1) % effect.historySlots;
         effect.filled = reset ? 1 : std::min(effect.filled + 1, effect.historySlots);
@@ -188,10 +184,7 @@ void AfterimagePass::advance(VkCommandBuffer cmd, const fluid::SceneSimulation& 
         zero.indexedInstanceCount = 1;
         zero.instanceCount = 1;
         vkCmdUpdateBuffer(cmd, effect.counters.get(), 0, sizeof zero, &zero);
-        gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
-                           VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                           VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
-                               VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+        transferToComputeBarrier(cmd);
 
         const scene::EffectSpec& e = effect.spec;
         const scene::AfterimageSpec& a = e.afterimage;
@@ -228,8 +221,7 @@ void AfterimagePass::advance(VkCommandBuffer cmd, const fluid::SceneSimulation& 
         vkCmdDispatch(cmd, vertexGroups, 1, 1);
         // Outside its window the effect records its history (so it enters the window with the
         // right motion) but builds nothing.
-        const float slack = 0.5f / scene.output.fps;
-        const bool live = time + slack >= e.start && (!e.end || time <= *e.end + slack);
+        const bool live = simulation.effectLive(e, time);
         if (live) {
             computeToComputeBarrier(cmd);
             smear_.bind(cmd, effect.smearSet);

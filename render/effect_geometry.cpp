@@ -1,10 +1,12 @@
 #include "render/effect_geometry.h"
 
+#include "core/anim/sampling.h"
 #include "render/render_target.h"
 #include "shaders/shared/effect_draw.h"
 #include "shaders/shared/trajectory.h"
 
 #include <algorithm>
+#include <cstring>
 
 namespace mfx::render {
 
@@ -48,6 +50,35 @@ gpu::Buffer effectStorage(const gpu::Context& ctx, VkDeviceSize bytes, VkBufferU
                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
                                  VK_BUFFER_USAGE_TRANSFER_SRC_BIT | extra,
                              gpu::MemoryUsage::DeviceLocal, name);
+}
+
+void skinSource(VkCommandBuffer cmd, anim::SkinVertices& skinning, const anim::Character& character,
+                const trajectory::Source& source, const anim::Pose& pose,
+                const glm::mat4& placement, const gpu::Buffer& palette, const gpu::Buffer& input,
+                const gpu::Buffer& skinned, uint32_t vertexCount) {
+    const std::vector<shared::SkinJoint> joints =
+        anim::packPalette(trajectory::sourcePalette(character, source, pose, placement));
+    std::memcpy(palette.mapped, joints.data(), joints.size() * sizeof(shared::SkinJoint));
+    skinning.record(cmd, palette, uint32_t(joints.size()), input, skinned, vertexCount);
+}
+
+void drawBuiltTriangles(VkCommandBuffer cmd, gpu::Program& program, VkDescriptorSet set,
+                        const gpu::Buffer& vertices, const gpu::Buffer& counters, float fps) {
+    shared::EffectDraw d{};
+    d.timing = glm::vec4(0.0f, 1.0f, 0.0f, 1.0f / fps);
+    d.tint = glm::vec4(1.0f);
+    program.bind(cmd, set);
+    program.push(cmd, d);
+    const VkBuffer vb = vertices.get();
+    const VkDeviceSize offset = 0;
+    vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
+    vkCmdDrawIndirect(cmd, counters.get(), 0, 1, sizeof(VkDrawIndirectCommand));
+}
+
+void transferToComputeBarrier(VkCommandBuffer cmd) {
+    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
 }
 
 void computeToComputeBarrier(VkCommandBuffer cmd) {

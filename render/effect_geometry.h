@@ -1,11 +1,14 @@
 // What the passes that build effect geometry on the GPU and draw it by indirect draws share
-// (render/afterimage_pass.h, render/swept_volume_pass.h): compute programs over storage buffers,
-// the pipelines that draw trajectory vertices, the barriers between building and drawing, and
-// the rule that decides when a per-frame history starts again.
+// (render/afterimage_pass.h, render/swept_volume_pass.h, render/silhouette_shell_pass.h): the
+// skinning of an effect's bound vertices, compute programs over storage buffers, the pipelines that
+// draw trajectory vertices and the unsorted draw of built triangles, the barriers between building
+// and drawing, and the rule that decides when a per-frame history starts again.
 #pragma once
 
+#include "core/anim/skin_vertices.h"
 #include "core/gpu/program.h"
 #include "core/gpu/resources.h"
+#include "core/trajectory/trajectory_source.h"
 
 #include <cstdint>
 #include <span>
@@ -28,6 +31,22 @@ gpu::GraphicsProgramDesc trajectoryDrawDesc(const char* name, VkPrimitiveTopolog
 gpu::Buffer effectStorage(const gpu::Context& ctx, VkDeviceSize bytes, VkBufferUsageFlags extra,
                           const char* name);
 
+// Records the skinning of `source`'s vertices (`input`, `vertexCount` of them) in `pose`, the
+// character placed by `placement`, into `skinned`. The palette is written into `palette` now: the
+// previous recording that used it must have finished executing.
+void skinSource(VkCommandBuffer cmd, anim::SkinVertices& skinning, const anim::Character& character,
+                const trajectory::Source& source, const anim::Pose& pose,
+                const glm::mat4& placement, const gpu::Buffer& palette, const gpu::Buffer& input,
+                const gpu::Buffer& skinned, uint32_t vertexCount);
+
+// Records the unsorted, non-indexed draw of the triangles a build wrote into `vertices`, its
+// VkDrawIndirectCommand at the start of `counters`. Every vertex is drawn at time 0 with sample
+// time 0, so effect_common.glsl applies no age fade: the alpha is in the vertex colour.
+void drawBuiltTriangles(VkCommandBuffer cmd, gpu::Program& program, VkDescriptorSet set,
+                        const gpu::Buffer& vertices, const gpu::Buffer& counters, float fps);
+
+// Transfers (counter resets, fills) made visible to the compute stages that follow.
+void transferToComputeBarrier(VkCommandBuffer cmd);
 // One compute stage's writes made visible to the next.
 void computeToComputeBarrier(VkCommandBuffer cmd);
 // The built geometry and indirect arguments made visible to the draws, copies and the host.

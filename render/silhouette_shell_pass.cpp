@@ -25,12 +25,6 @@ gpu::Program computeProgram(const gpu::Context& ctx, const char* name,
                                  sizeof(shared::SilhouetteShellConstants));
 }
 
-void transferToCompute(VkCommandBuffer cmd) {
-    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-}
-
 void computeToTransfer(VkCommandBuffer cmd) {
     gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT,
@@ -195,16 +189,11 @@ void SilhouetteShellPass::advance(VkCommandBuffer cmd, const fluid::SceneSimulat
     if (step == FrameHistory::Step::Same) return; // the same frame again: the rings stay
     const bool reset = step == FrameHistory::Step::Restart;
 
-    const scene::Scene& scene = simulation.scene();
     const float time = simulation.frameTime(frame);
     const anim::Pose& pose = simulation.framePose();
     for (Effect& effect : effects_) {
-        const std::vector<shared::SkinJoint> palette = anim::packPalette(
-            trajectory::sourcePalette(character_, effect.source, pose, simulation.placement()));
-        std::memcpy(effect.palette.mapped, palette.data(),
-                    palette.size() * sizeof(shared::SkinJoint));
-        skinning_.record(cmd, effect.palette, uint32_t(palette.size()), effect.input,
-                         effect.skinned, effect.vertexCount);
+        skinSource(cmd, skinning_, character_, effect.source, pose, simulation.placement(),
+                   effect.palette, effect.input, effect.skinned, effect.vertexCount);
 
         shared::SilhouetteShellCounters zero{};
         zero.instanceCount = 1;
@@ -216,7 +205,7 @@ void SilhouetteShellPass::advance(VkCommandBuffer cmd, const fluid::SceneSimulat
             vkCmdFillBuffer(cmd, effect.history.get(), 0, VK_WHOLE_SIZE, 0);
             effect.newest = 0;
         }
-        transferToCompute(cmd);
+        transferToComputeBarrier(cmd);
 
         const scene::EffectSpec& e = effect.spec;
         shared::SilhouetteShellConstants c{};
@@ -253,12 +242,11 @@ void SilhouetteShellPass::advance(VkCommandBuffer cmd, const fluid::SceneSimulat
         const VkBufferCopy copy{0, 0,
                                 VkDeviceSize(effect.vertexCount) * sizeof(shared::ShellVertex)};
         vkCmdCopyBuffer(cmd, effect.current.get(), effect.last.get(), 1, &copy);
-        transferToCompute(cmd);
+        transferToComputeBarrier(cmd);
 
         // Outside its window the effect keeps updating its rings (so it enters the window with
         // the right history) but builds nothing.
-        const float slack = 0.5f / scene.output.fps;
-        const bool live = time + slack >= e.start && (!e.end || time <= *e.end + slack);
+        const bool live = simulation.effectLive(e, time);
         if (!live) continue;
         build_.bind(cmd, effect.buildSet);
         build_.push(cmd, c);
@@ -273,19 +261,10 @@ uint32_t SilhouetteShellPass::draw(VkCommandBuffer cmd, const scene::Scene& scen
     const shared::SceneFrame frame = sceneFrame(scene, camera);
     std::memcpy(frame_.mapped, &frame, sizeof frame);
     uint32_t draws = 0;
-    const VkDeviceSize offset = 0;
     for (const Effect& effect : effects_) {
         if (!shown.empty() && (effect.index >= shown.size() || shown[effect.index] == 0)) continue;
-        // Every vertex is drawn at time 0 with sample time 0: no age fade (effect_common.glsl);
-        // the alpha along the strip is in the vertex colour.
-        shared::EffectDraw d{};
-        d.timing = glm::vec4(0.0f, 1.0f, 0.0f, 1.0f / scene.output.fps);
-        d.tint = glm::vec4(1.0f);
-        shellDraw_.bind(cmd, drawSet_);
-        shellDraw_.push(cmd, d);
-        VkBuffer vb = effect.output.get();
-        vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
-        vkCmdDrawIndirect(cmd, effect.counters.get(), 0, 1, sizeof(VkDrawIndirectCommand));
+        drawBuiltTriangles(cmd, shellDraw_, drawSet_, effect.output, effect.counters,
+                           scene.output.fps);
         ++draws;
     }
     return draws;

@@ -170,12 +170,8 @@ void SweptVolumePass::advance(VkCommandBuffer cmd, const fluid::SceneSimulation&
     const float time = simulation.frameTime(frame);
     const anim::Pose& pose = simulation.framePose();
     for (Effect& effect : effects_) {
-        const std::vector<shared::SkinJoint> palette = anim::packPalette(
-            trajectory::sourcePalette(character_, effect.source, pose, simulation.placement()));
-        std::memcpy(effect.palette.mapped, palette.data(),
-                    palette.size() * sizeof(shared::SkinJoint));
-        skinning_.record(cmd, effect.palette, uint32_t(palette.size()), effect.input,
-                         effect.skinned, effect.vertexCount);
+        skinSource(cmd, skinning_, character_, effect.source, pose, simulation.placement(),
+                   effect.palette, effect.input, effect.skinned, effect.vertexCount);
 
         effect.newest = reset ? 0 : (effect.newest + 1) % effect.historySlots;
         effect.filled = reset ? 1 : std::min(effect.filled + 1, effect.historySlots);
@@ -183,10 +179,7 @@ void SweptVolumePass::advance(VkCommandBuffer cmd, const fluid::SceneSimulation&
         shared::SweptVolumeCounters zero{};
         zero.instanceCount = 1;
         vkCmdUpdateBuffer(cmd, effect.counters.get(), 0, sizeof zero, &zero);
-        gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
-                           VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                           VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
-                               VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+        transferToComputeBarrier(cmd);
 
         const scene::EffectSpec& e = effect.spec;
         shared::SweptVolumeConstants c{};
@@ -208,8 +201,7 @@ void SweptVolumePass::advance(VkCommandBuffer cmd, const fluid::SceneSimulation&
         vkCmdDispatch(cmd, gpu::groupCount(effect.vertexCount, MFX_SWEPT_GROUP_SIZE), 1, 1);
         // Outside its window the effect records its history (so it enters the window with the
         // right motion) but builds nothing.
-        const float slack = 0.5f / scene.output.fps;
-        const bool live = time + slack >= e.start && (!e.end || time <= *e.end + slack);
+        const bool live = simulation.effectLive(e, time);
         if (!live) continue;
         computeToComputeBarrier(cmd);
         motion_.bind(cmd, effect.motionSet);
@@ -231,19 +223,10 @@ uint32_t SweptVolumePass::draw(VkCommandBuffer cmd, const scene::Scene& scene,
     const shared::SceneFrame frame = sceneFrame(scene, camera);
     std::memcpy(frame_.mapped, &frame, sizeof frame);
     uint32_t draws = 0;
-    const VkDeviceSize offset = 0;
     for (const Effect& effect : effects_) {
         if (!shown.empty() && (effect.index >= shown.size() || shown[effect.index] == 0)) continue;
-        // Every vertex is drawn at time 0 with sample time 0: no age fade (effect_common.glsl);
-        // the alpha along the sweep is in the vertex colour.
-        shared::EffectDraw d{};
-        d.timing = glm::vec4(0.0f, 1.0f, 0.0f, 1.0f / scene.output.fps);
-        d.tint = glm::vec4(1.0f);
-        volumeDraw_.bind(cmd, drawSet_);
-        volumeDraw_.push(cmd, d);
-        VkBuffer vb = effect.output.get();
-        vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
-        vkCmdDrawIndirect(cmd, effect.counters.get(), 0, 1, sizeof(VkDrawIndirectCommand));
+        drawBuiltTriangles(cmd, volumeDraw_, drawSet_, effect.output, effect.counters,
+                           scene.output.fps);
         ++draws;
     }
     return draws;
