@@ -66,11 +66,20 @@ std::vector<uint32_t> shellVertexTriangles(const std::vector<shared::SkinVertexI
     return out;
 }
 
-uint32_t shellUpdatesPerFrame(const scene::SilhouetteShellSpec& shell, float fps) {
-    if (!shell.blurTime || *shell.blurTime <= 0.0f || fps <= 0.0f) return 1;
+ShellCadence shellCadence(const scene::SilhouetteShellSpec& shell, float fps) {
+    ShellCadence cadence;
+    if (!shell.blurTime || *shell.blurTime <= 0.0f || fps <= 0.0f) return cadence;
     const double perFrame = double(shell.subdivisions) / (double(*shell.blurTime) * double(fps));
-    return uint32_t(
-        std::clamp<double>(std::round(perFrame), 1.0, double(MFX_SHELL_MAX_UPDATES_PER_FRAME)));
+    if (perFrame >= 1.0) {
+        cadence.updatesPerFrame = uint32_t(
+            std::clamp<double>(std::round(perFrame), 1.0, double(MFX_SHELL_MAX_UPDATES_PER_FRAME)));
+    } else {
+        // The scene file bounds blur_time (60 s) and subdivisions (>= 1); the bound here only keeps
+        // the count finite for any caller.
+        cadence.framesPerUpdate =
+            uint32_t(std::clamp<double>(std::round(1.0 / perFrame), 1.0, 1e6));
+    }
+    return cadence;
 }
 
 SilhouetteShellPass::SilhouetteShellPass(const gpu::Context& ctx, const scene::Scene& scene,
@@ -110,7 +119,7 @@ SilhouetteShellPass::SilhouetteShellPass(const gpu::Context& ctx, const scene::S
         effect.triangleCount = uint32_t(source.triangles.size() / 3);
         // Sec. 3.2.3: one ring slot a subdivision, and one for the latest update (the live mesh).
         effect.historySlots = e.shell.subdivisions + 1;
-        effect.updatesPerFrame = shellUpdatesPerFrame(e.shell, scene.output.fps);
+        effect.cadence = shellCadence(e.shell, scene.output.fps);
         const std::vector<uint32_t> adjacency =
             shellVertexTriangles(source.vertices, source.triangles);
         // Every polygon drawing a full strip: the most one frame can build (Sec. 3.2.5).
@@ -214,7 +223,7 @@ void SilhouetteShellPass::advance(VkCommandBuffer cmd, const fluid::SceneSimulat
         c.historySlots = effect.historySlots;
         c.subdivisions = e.shell.subdivisions;
         c.newest = effect.newest;
-        c.updatesPerFrame = effect.updatesPerFrame;
+        c.updatesPerFrame = effect.cadence.updatesPerFrame;
         c.edgeRule = e.shell.edgeRule == scene::ShellEdgeRule::Back ? MFX_SHELL_EDGE_BACK
                                                                     : MFX_SHELL_EDGE_FRONT;
         c.initialAlpha = e.shell.initialAlpha;
@@ -225,8 +234,13 @@ void SilhouetteShellPass::advance(VkCommandBuffer cmd, const fluid::SceneSimulat
         vkCmdDispatch(cmd, gpu::groupCount(effect.vertexCount, MFX_SHELL_GROUP_SIZE), 1, 1);
         computeToComputeBarrier(cmd);
         // The first frame after a start only sets where the vertices were: a motion needs two.
-        if (!reset) {
-            for (uint32_t u = 0; u < effect.updatesPerFrame; ++u) {
+        // With a blur time longer than subdivisions frames, frames between two updates only build
+        // (from the live mesh back through the ring) and the motion of the next update runs from
+        // the vertices of the last one.
+        effect.framesSinceUpdate = reset ? 0 : effect.framesSinceUpdate + 1;
+        effect.updated = !reset && effect.framesSinceUpdate >= effect.cadence.framesPerUpdate;
+        if (effect.updated) {
+            for (uint32_t u = 0; u < effect.cadence.updatesPerFrame; ++u) {
                 effect.newest = (effect.newest + 1) % effect.historySlots;
                 c.newest = effect.newest;
                 c.update = u;
@@ -236,13 +250,16 @@ void SilhouetteShellPass::advance(VkCommandBuffer cmd, const fluid::SceneSimulat
                               1);
                 computeToComputeBarrier(cmd);
             }
+            effect.framesSinceUpdate = 0;
         }
-        // This frame's vertices are where the next frame's updates start from.
-        computeToTransfer(cmd);
-        const VkBufferCopy copy{0, 0,
-                                VkDeviceSize(effect.vertexCount) * sizeof(shared::ShellVertex)};
-        vkCmdCopyBuffer(cmd, effect.current.get(), effect.last.get(), 1, &copy);
-        transferToComputeBarrier(cmd);
+        if (reset || effect.updated) {
+            // These vertices are where the next update's motion starts from.
+            computeToTransfer(cmd);
+            const VkBufferCopy copy{0, 0,
+                                    VkDeviceSize(effect.vertexCount) * sizeof(shared::ShellVertex)};
+            vkCmdCopyBuffer(cmd, effect.current.get(), effect.last.get(), 1, &copy);
+            transferToComputeBarrier(cmd);
+        }
 
         // Outside its window the effect keeps updating its rings (so it enters the window with
         // the right history) but builds nothing.
@@ -286,7 +303,9 @@ SilhouetteShellPass::Counts SilhouetteShellPass::counts(size_t effect) const {
     out.silhouetteTriangles = c.silhouetteTriangles;
     out.strips = c.strips;
     out.fadingStrips = c.fadingStrips;
-    out.updatesPerFrame = e->updatesPerFrame;
+    out.updatesPerFrame = e->cadence.updatesPerFrame;
+    out.framesPerUpdate = e->cadence.framesPerUpdate;
+    out.updated = e->updated;
     return out;
 }
 

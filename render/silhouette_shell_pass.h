@@ -4,9 +4,9 @@
 // 3.3, holes and popping). For each silhouette_shell effect of the scene:
 //   * its bound vertices (bones, meshes) are skinned for the frame (anim::SkinVertices) and given
 //     normals averaged over their polygons (silhouette_shell_normals.comp);
-//   * the silhouette of motion is updated `updatesPerFrame` times between two recorded frames,
-//     each polygon recording its edge on it, or its last such edge, in its ring of past edges
-//     (silhouette_shell_update.comp);
+//   * the silhouette of motion is updated `updatesPerFrame` times between two recorded frames, or
+//     once every `framesPerUpdate` frames (ShellCadence), each polygon recording its edge on it, or
+//     its last such edge, in its ring of past edges (silhouette_shell_update.comp);
 //   * each polygon that had an edge on the silhouette within the fade-out count draws a quad strip
 //     from its edge on the live mesh back through its ring, alpha falling linearly from the
 //     initial value to 0, the whole strip fading while the polygon is off the silhouette
@@ -38,6 +38,15 @@ class SceneSimulation;
 
 namespace mfx::render {
 
+// When the silhouette of motion is updated: blur time / subdivisions apart (Jones 2004, Sec.
+// 3.2.2), rounded to a whole number of updates a recorded frame (at most
+// MFX_SHELL_MAX_UPDATES_PER_FRAME) or, when that is longer than a frame, to one update every whole
+// number of frames. Without a blur time: one update a frame.
+struct ShellCadence {
+    uint32_t updatesPerFrame = 1; // updates between two recorded frames that have an update
+    uint32_t framesPerUpdate = 1; // recorded frames from one update to the next
+};
+
 class SilhouetteShellPass {
 public:
     // The scene's silhouette_shell effects on `character` (which must outlive the pass), drawn
@@ -62,10 +71,13 @@ public:
     // scene.effects) built: all zero for an effect that is not a silhouette_shell.
     struct Counts {
         uint32_t vertices = 0;            // triangle vertices drawn, 6 a quad
-        uint32_t silhouetteTriangles = 0; // polygons with an edge on the latest silhouette
+        uint32_t silhouetteTriangles = 0; // polygons with an edge on this frame's last silhouette
+                                          // (0 on a frame without an update)
         uint32_t strips = 0;              // quad strips drawn
         uint32_t fadingStrips = 0;        // of them, polygons off the silhouette fading out
-        uint32_t updatesPerFrame = 0;     // silhouette updates between two recorded frames
+        uint32_t updatesPerFrame = 0;     // silhouette updates on a frame that has them
+        uint32_t framesPerUpdate = 0;     // recorded frames from one update to the next
+        bool updated = false;             // whether this frame updated the silhouette
     };
     Counts counts(size_t effect) const;
     // The triangles of effect `effect` as drawn: each strip's quads (6 vertices each, from the
@@ -82,7 +94,10 @@ private:
         size_t index = 0; // in scene.effects
         scene::EffectSpec spec;
         trajectory::Source source;
-        uint32_t vertexCount = 0, triangleCount = 0, historySlots = 2, updatesPerFrame = 1;
+        uint32_t vertexCount = 0, triangleCount = 0, historySlots = 2;
+        ShellCadence cadence;
+        uint32_t framesSinceUpdate = 0; // recorded frames since the last update (or start)
+        bool updated = false;           // whether the last recorded frame updated
         gpu::Buffer input, palette, skinned, adjacency, triangles, current, last, states, history,
             colours, output, counters;
         VkDescriptorSet normalsSet = VK_NULL_HANDLE, updateSet = VK_NULL_HANDLE,
@@ -108,9 +123,7 @@ private:
 std::vector<uint32_t> shellVertexTriangles(const std::vector<shared::SkinVertexIn>& vertices,
                                            const std::vector<uint32_t>& triangles);
 
-// Silhouette updates between two recorded frames: blur time / subdivisions apart (Jones 2004,
-// Sec. 3.2.2), at least one a frame (a longer blur time keeps one a frame), at most
-// MFX_SHELL_MAX_UPDATES_PER_FRAME.
-uint32_t shellUpdatesPerFrame(const scene::SilhouetteShellSpec& shell, float fps);
+// The cadence of `shell` at `fps` recorded frames a second.
+ShellCadence shellCadence(const scene::SilhouetteShellSpec& shell, float fps);
 
 } // namespace mfx::render

@@ -1,8 +1,8 @@
 // The silhouette-of-motion blur shell (render/silhouette_shell_pass.h; Jones 2004): geometry only
 // while the bound part moves, each strip attached to the live mesh, alpha falling linearly along
-// it, strips fading out when their polygon leaves the silhouette, several updates a frame, normals
-// averaged across seams, and the scene file's refusals. The scenes are small (the fighter's kicking
-// leg) and run a few frames.
+// it, strips fading out when their polygon leaves the silhouette, several updates a frame or one
+// every few frames, normals averaged across seams, and the scene file's refusals. The scenes are
+// small (the fighter's kicking leg) and run a few frames.
 #include "core/gpu/commands.h"
 #include "core/scene/scene.h"
 #include "fluid/scene_simulation.h"
@@ -15,6 +15,7 @@
 #include <set>
 #include <string>
 #include <tuple>
+#include <utility>
 
 namespace mfx::test {
 namespace {
@@ -106,14 +107,23 @@ TEST_F(SilhouetteShellTest, NothingOutsideTheEffectsWindow) {
 }
 
 // Each strip's first vertex pair is where two vertices of the live mesh are now (Jones 2004,
-// Sec. 3.2.5: the strip is connected to its polygon), with one update a frame and with several.
+// Sec. 3.2.5: the strip is connected to its polygon), with one update a frame, with several, and
+// on a frame between two updates of a blur time longer than subdivisions frames.
 TEST_F(SilhouetteShellTest, TheShellStaysAttachedToTheLiveMesh) {
-    for (const char* blurTime : {"", ", \"blur_time\": 0.1"}) {
-        SCOPED_TRACE(blurTime);
+    struct Case {
+        const char* blurTime;
+        uint32_t frame, updatesPerFrame, framesPerUpdate;
+    };
+    for (const Case& c :
+         {Case{"", kKickFrame, 1, 1}, Case{", \"blur_time\": 0.1", kKickFrame, 2, 1},
+          Case{", \"blur_time\": 0.6", kKickFrame + 1, 1, 3}}) {
+        SCOPED_TRACE(c.blurTime);
         start(kickScene("{\"type\": \"silhouette_shell\", " + kLeg + ", \"subdivisions\": 6" +
-                        std::string(blurTime) + "}"));
-        play(0, kKickFrame);
-        EXPECT_EQ(counts().updatesPerFrame, *blurTime ? 2u : 1u);
+                        std::string(c.blurTime) + "}"));
+        play(0, c.frame);
+        EXPECT_EQ(counts().updatesPerFrame, c.updatesPerFrame);
+        EXPECT_EQ(counts().framesPerUpdate, c.framesPerUpdate);
+        EXPECT_EQ(counts().updated, c.framesPerUpdate == 1);
         std::set<std::tuple<float, float, float>> live;
         for (const glm::vec3& p : pass_->livePositions(0))
             live.insert({p.x, p.y, p.z});
@@ -249,15 +259,45 @@ TEST(SilhouetteShellNormals, AveragedAcrossFlatShadedSeams) {
 TEST(SilhouetteShellUpdates, BlurTimeOverSubdivisionsApart) {
     scene::SilhouetteShellSpec s;
     s.subdivisions = 6;
-    EXPECT_EQ(render::shellUpdatesPerFrame(s, 30.0f), 1u) << "default: one update a frame";
+    auto cadence = [&](float fps) {
+        const render::ShellCadence c = render::shellCadence(s, fps);
+        return std::pair{c.updatesPerFrame, c.framesPerUpdate};
+    };
+    EXPECT_EQ(cadence(30.0f), std::pair(1u, 1u)) << "default: one update a frame";
     s.blurTime = 0.2f;
-    EXPECT_EQ(render::shellUpdatesPerFrame(s, 30.0f), 1u);
+    EXPECT_EQ(cadence(30.0f), std::pair(1u, 1u));
     s.blurTime = 0.1f;
-    EXPECT_EQ(render::shellUpdatesPerFrame(s, 30.0f), 2u);
+    EXPECT_EQ(cadence(30.0f), std::pair(2u, 1u));
     s.blurTime = 1.0f;
-    EXPECT_EQ(render::shellUpdatesPerFrame(s, 30.0f), 1u) << "never fewer than one a frame";
+    EXPECT_EQ(cadence(30.0f), std::pair(1u, 5u)) << "1/6 s apart: every fifth frame";
+    EXPECT_EQ(cadence(60.0f), std::pair(1u, 10u));
+    s.blurTime = 0.3f;
+    EXPECT_EQ(cadence(30.0f), std::pair(1u, 2u)) << "1.5 frames apart rounds to 2";
     s.blurTime = 0.001f;
-    EXPECT_EQ(render::shellUpdatesPerFrame(s, 30.0f), uint32_t(MFX_SHELL_MAX_UPDATES_PER_FRAME));
+    EXPECT_EQ(cadence(30.0f), std::pair(uint32_t(MFX_SHELL_MAX_UPDATES_PER_FRAME), 1u));
+}
+
+// A blur time of 0.6 s over 6 subdivisions at 30 fps: one update every third frame. The frames
+// between build the shell from the live mesh through the same ring; the next update's motion
+// spans the three frames since the last one.
+TEST_F(SilhouetteShellTest, ALongBlurTimeUpdatesEveryFewFrames) {
+    start(kickScene("{\"type\": \"silhouette_shell\", " + kLeg +
+                    ", \"subdivisions\": 6, \"blur_time\": 0.6}"));
+    for (uint32_t f = 0; f <= kKickFrame + 2; ++f) {
+        play(f, f);
+        SCOPED_TRACE("frame " + std::to_string(f));
+        const bool update = f > 0 && f % 3 == 0;
+        EXPECT_EQ(counts().updated, update);
+        if (!update) {
+            EXPECT_EQ(counts().silhouetteTriangles, 0u);
+        }
+        if (f >= kKickFrame) {
+            EXPECT_GT(counts().strips, 0u) << "the moving leg keeps its shell between updates";
+            if (update) {
+                EXPECT_GT(counts().silhouetteTriangles, 0u);
+            }
+        }
+    }
 }
 
 // The scene file's options and refusals: one line naming the effect's key.
