@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <iostream>
 #include <memory>
 #include <string>
 
@@ -87,8 +88,10 @@ class GoldenImage : public GpuTest {
 protected:
     // The last frame of docs/scenes/NAME.json, rendered as `motionfx render --size 160x90` does.
     // With `restartAfter` > 0 the renderer first draws that many frames of another simulation of
-    // the scene, which is destroyed before the one drawn (as a restarted view does).
-    static render::RgbaImage renderScene(const std::string& name, uint32_t restartAfter = 0) {
+    // the scene, which is destroyed before the one drawn (as a restarted view does). Without
+    // `effects` the scene's effects are left out (the character alone, in the scene's shot).
+    static render::RgbaImage renderScene(const std::string& name, uint32_t restartAfter = 0,
+                                         bool effects = true) {
         const std::string path = std::string(MFX_SOURCE_DIR) + "/docs/scenes/" + name + ".json";
         Result<scene::Scene> loaded = scene::loadScene(path);
         EXPECT_TRUE(loaded) << (loaded ? "" : loaded.error().message);
@@ -96,6 +99,7 @@ protected:
         scene::Scene s = std::move(loaded).value();
         s.output.width = kWidth;
         s.output.height = kHeight;
+        if (!effects) s.effects.clear();
         Result<anim::Character> character = scene::loadCharacter(s);
         EXPECT_TRUE(character) << (character ? "" : character.error().message);
         if (!character) return {};
@@ -183,8 +187,6 @@ TEST_F(GoldenImage, SilhouetteShell) {
     checkGolden("shell");
 }
 
-// The tolerance is tight enough to see any one effect: each effect's golden is outside it of the
-// character alone, and the combined shot is outside it of each effect alone.
 // A renderer outlives the simulation it was made for: after drawing a few frames of one that is
 // then destroyed, it draws a new simulation of the scene as a fresh renderer would (the view's
 // restart; it once kept the destroyed simulation's scene and smoke descriptor sets).
@@ -192,6 +194,8 @@ TEST_F(GoldenImage, RendererDrawsARestartedSimulation) {
     checkGolden("all", 5);
 }
 
+// The tolerance is tight enough to see any one effect: each effect's golden is outside it of the
+// character alone, and the combined shot is outside it of each effect alone.
 TEST_F(GoldenImage, ToleranceSeesEachEffect) {
     const render::RgbaImage alone = expected("none");
     const render::RgbaImage all = expected("all");
@@ -206,6 +210,22 @@ TEST_F(GoldenImage, ToleranceSeesEachEffect) {
             const Difference fromAll = compare(effect, all);
             EXPECT_FALSE(fromAll.withinTolerance()) << name << " vs all";
         }
+    }
+}
+
+// The mesh effects' scenes have their own shots: each golden is outside the tolerance of the same
+// shot with the effect left out.
+TEST_F(GoldenImage, ToleranceSeesEachMeshEffect) {
+    for (const char* name : {"afterimage", "swept", "shell"}) {
+        const render::RgbaImage alone = renderScene(name, 0, false);
+        const render::RgbaImage effect = expected(name);
+        ASSERT_EQ(effect.rgba.size(), alone.rgba.size()) << name;
+        const Difference d = compare(effect, alone);
+        EXPECT_FALSE(d.withinTolerance())
+            << name << " vs its shot without the effect: " << d.fractionOver * 100.0
+            << "% pixels over, mean " << d.meanAbs;
+        std::cout << name << " vs its shot without the effect: " << d.fractionOver * 100.0
+                  << "% of pixels over " << kPixelThreshold << ", mean " << d.meanAbs << "\n";
     }
 }
 
