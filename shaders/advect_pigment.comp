@@ -66,18 +66,17 @@ void sourceRange(vec3 x, out vec4 low, out vec4 high) {
 void main() {
     ivec3 q = ivec3(gl_GlobalInvocationID);
     if (any(greaterThanEqual(q, cellCount()))) return;
-    vec3 x = cellCentre(q);
     vec4 value;
     if (kPass == MFX_ADVECT_BFECC_COMPENSATE) {
         vec4 source = imageLoad(pigmentIn, q);
-        value = source + 0.5 * (source - samplePigment(kWorkPigment, backTrace(x, -timeStep())));
+        value = source + 0.5 * (source - samplePigment(kWorkPigment, backTraceFromCell(q, -timeStep())));
     } else {
-        vec3 departure = backTrace(x);
+        vec3 departure = backTraceFromCell(q, timeStep());
         if (kPass == MFX_ADVECT_SEMI_LAGRANGIAN || kPass == MFX_ADVECT_PREDICT) {
             value = samplePigment(kSourcePigment, departure);
         } else {
             if (kPass == MFX_ADVECT_MACCORMACK_CORRECT) {
-                vec4 returned = samplePigment(kWorkPigment, backTrace(x, -timeStep()));
+                vec4 returned = samplePigment(kWorkPigment, backTraceFromCell(q, -timeStep()));
                 value = imageLoad(work, q) + 0.5 * (imageLoad(pigmentIn, q) - returned);
             } else { // MFX_ADVECT_BFECC_FINAL
                 value = samplePigment(kWorkPigment, departure);

@@ -35,21 +35,20 @@ void main() {
     ivec3 q = ivec3(gl_GlobalInvocationID);
     if (any(greaterThanEqual(q, faceCount(c)))) return;
     bool wallNormal = wallNormalFace(c, q);
-    vec3 x = facePosition(c, q);
     float value = 0.0;
     if (kPass == MFX_ADVECT_BFECC_COMPENSATE) {
         // A wall-normal face samples as 0, as in every semi-Lagrangian pass.
         float source = loadFaceField(kVelocityField, c, q);
-        float returned = wallNormal ? 0.0 : sampleFace(kWorkField, c, backTrace(x, -timeStep()));
+        float returned = wallNormal ? 0.0 : sampleFace(kWorkField, c, backTraceFromFace(c, q, -timeStep()));
         value = source + 0.5 * (source - returned);
     } else if (!wallNormal) {
-        vec3 departure = backTrace(x);
+        vec3 departure = backTraceFromFace(c, q, timeStep());
         if (kPass == MFX_ADVECT_SEMI_LAGRANGIAN || kPass == MFX_ADVECT_PREDICT) {
             value = sampleFace(kVelocityField, c, departure);
         } else {
             if (kPass == MFX_ADVECT_MACCORMACK_CORRECT) {
                 float source = loadFaceField(kVelocityField, c, q);
-                float returned = sampleFace(kWorkField, c, backTrace(x, -timeStep()));
+                float returned = sampleFace(kWorkField, c, backTraceFromFace(c, q, -timeStep()));
                 value = imageLoad(work, q).r + 0.5 * (source - returned);
             } else { // MFX_ADVECT_BFECC_FINAL
                 value = sampleFace(kWorkField, c, departure);

@@ -73,16 +73,74 @@ vec3 velocityAt(vec3 x) {
     return vec3(sampleVelocity(0, x), sampleVelocity(1, x), sampleVelocity(2, x));
 }
 
-// Where the point at x came from `interval` seconds ago (a negative interval traces forwards).
-vec3 backTrace(vec3 x, float interval) {
-    vec3 v = velocityAt(x);
+// Velocity at grid points. At a face or a cell centre the trilinear stencil of each component
+// has weight 0 along some axes (a + 0 (b - a) = a: only the near corner counts) and 1/2 along the
+// others, so only the corners with a nonzero weight are loaded: the same values as velocityAt
+// there, from 1 to 4 loads a component instead of 8.
+
+// One z-slice of sampleFaceHalfway: the corner at (x0, y0), averaged with x1 and y1 where
+// `between`.
+float halfwayXY(int field, int d, AxisRef x0, AxisRef x1, AxisRef y0, AxisRef y1, AxisRef z,
+                bvec2 between) {
+    float a = cornerValue(field, d, x0, y0, z);
+    if (between.x) a = lerpValue(a, cornerValue(field, d, x1, y0, z), 0.5);
+    if (!between.y) return a;
+    float b = cornerValue(field, d, x0, y1, z);
+    if (between.x) b = lerpValue(b, cornerValue(field, d, x1, y1, z), 0.5);
+    return lerpValue(a, b, 0.5);
+}
+
+// Component d's faces sampled at the point of its face grid i0 + between / 2 (between: 0 or 1 an
+// axis).
+float sampleFaceHalfway(int field, int d, ivec3 i0, bvec3 between) {
+    ivec3 n = faceCount(d);
+    AxisRef x0 = resolveAxis(d, 0, n.x, i0.x), x1 = resolveAxis(d, 0, n.x, i0.x + 1);
+    AxisRef y0 = resolveAxis(d, 1, n.y, i0.y), y1 = resolveAxis(d, 1, n.y, i0.y + 1);
+    AxisRef z0 = resolveAxis(d, 2, n.z, i0.z), z1 = resolveAxis(d, 2, n.z, i0.z + 1);
+    float low = halfwayXY(field, d, x0, x1, y0, y1, z0, between.xy);
+    if (!between.z) return low;
+    return lerpValue(low, halfwayXY(field, d, x0, x1, y0, y1, z1, between.xy), 0.5);
+}
+
+// Component d of the velocity at face q of component c: face q itself when d == c; else, in d's
+// face grid, the point q - e_c / 2 + e_d / 2 (halfway along axes c and d, on a grid plane along
+// the third).
+float velocityComponentAtFace(int d, int c, ivec3 q) {
+    if (d == c) return sampleFaceHalfway(kVelocityField, d, q, bvec3(false));
+    ivec3 i0 = q;
+    i0[c] -= 1;
+    bvec3 between = bvec3(false);
+    between[c] = true;
+    between[d] = true;
+    return sampleFaceHalfway(kVelocityField, d, i0, between);
+}
+
+vec3 velocityAtFace(int c, ivec3 q) {
+    return vec3(velocityComponentAtFace(0, c, q), velocityComponentAtFace(1, c, q),
+                velocityComponentAtFace(2, c, q));
+}
+
+// The velocity at the centre of cell q: component d halfway between faces q and q + e_d.
+vec3 velocityAtCell(ivec3 q) {
+    return vec3(sampleFaceHalfway(kVelocityField, 0, q, bvec3(true, false, false)),
+                sampleFaceHalfway(kVelocityField, 1, q, bvec3(false, true, false)),
+                sampleFaceHalfway(kVelocityField, 2, q, bvec3(false, false, true)));
+}
+
+// Where the point at x, moving at v there, came from `interval` seconds ago (a negative interval
+// traces forwards).
+vec3 backTraceFrom(vec3 x, vec3 v, float interval) {
     if (kIntegrator == MFX_INTEGRATOR_EULER) return clampToDomain(x - interval * v);
     vec3 mid = clampToDomain(x - 0.5 * interval * v);
     return clampToDomain(x - interval * velocityAt(mid));
 }
 
-vec3 backTrace(vec3 x) {
-    return backTrace(x, timeStep());
+// The same from face q of component c, and from the centre of cell q.
+vec3 backTraceFromFace(int c, ivec3 q, float interval) {
+    return backTraceFrom(facePosition(c, q), velocityAtFace(c, q), interval);
+}
+vec3 backTraceFromCell(ivec3 q, float interval) {
+    return backTraceFrom(cellCentre(q), velocityAtCell(q), interval);
 }
 
 #endif
