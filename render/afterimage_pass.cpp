@@ -17,7 +17,7 @@ namespace mfx::render {
 
 namespace {
 
-constexpr uint32_t kBindings = 8;
+constexpr uint32_t kBindings = 10;
 
 gpu::Program computeProgram(const gpu::Context& ctx, const char* name,
                             std::span<const uint32_t> spirv) {
@@ -43,6 +43,25 @@ std::vector<uint32_t> uniqueEdges(const std::vector<uint32_t>& triangles) {
 }
 
 } // namespace
+
+std::vector<uint32_t> afterimageCopies(const std::vector<shared::SkinVertexIn>& vertices) {
+    const Welding welding = weldByPosition(vertices);
+    std::vector<std::vector<uint32_t>> groups(welding.groupCount);
+    for (size_t v = 0; v < vertices.size(); ++v)
+        groups[welding.group[v]].push_back(uint32_t(v));
+    std::vector<uint32_t> out(vertices.size() + 1);
+    uint32_t at = uint32_t(out.size());
+    for (size_t v = 0; v < vertices.size(); ++v) {
+        out[v] = at;
+        at += uint32_t(groups[welding.group[v]].size());
+    }
+    out[vertices.size()] = at;
+    for (size_t v = 0; v < vertices.size(); ++v) {
+        const std::vector<uint32_t>& group = groups[welding.group[v]];
+        out.insert(out.end(), group.begin(), group.end());
+    }
+    return out;
+}
 
 AfterimagePass::AfterimagePass(const gpu::Context& ctx, const scene::Scene& scene,
                                const anim::Character& character, VkSampleCountFlagBits samples)
@@ -99,6 +118,12 @@ AfterimagePass::AfterimagePass(const gpu::Context& ctx, const scene::Scene& scen
         gpu::uploadBuffer(ctx, effect.colours, std::span<const glm::vec4>(colours));
         effect.pushed = effectStorage(ctx, n * sizeof(shared::TrajectoryVertex),
                                       VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "afterimage pushed");
+        effect.decided =
+            effectStorage(ctx, n * sizeof(shared::TrajectoryVertex), 0, "afterimage decided");
+        effect.copyTable = afterimageCopies(source.vertices);
+        effect.copies =
+            effectStorage(ctx, effect.copyTable.size() * sizeof(uint32_t), 0, "afterimage copies");
+        gpu::uploadBuffer(ctx, effect.copies, std::span<const uint32_t>(effect.copyTable));
         effect.primitives =
             effectStorage(ctx, primitives.size() * sizeof(uint32_t), 0, "afterimage primitives");
         if (!primitives.empty())
@@ -123,15 +148,18 @@ AfterimagePass::AfterimagePass(const gpu::Context& ctx, const scene::Scene& scen
 
     record_ = computeProgram(ctx, "afterimage_record", shaders::afterimage_record_comp);
     smear_ = computeProgram(ctx, "afterimage_smear", shaders::afterimage_smear_comp);
+    weld_ = computeProgram(ctx, "afterimage_weld", shaders::afterimage_weld_comp);
     build_ = computeProgram(ctx, "afterimage_build", shaders::afterimage_build_comp);
     for (Effect& effect : effects_) {
         const gpu::DescriptorWrite writes[kBindings] = {
             gpu::bindBuffer(0, effect.skinned),    gpu::bindBuffer(1, effect.history),
             gpu::bindBuffer(2, effect.colours),    gpu::bindBuffer(3, effect.pushed),
             gpu::bindBuffer(4, effect.primitives), gpu::bindBuffer(5, effect.output),
-            gpu::bindBuffer(6, effect.indices),    gpu::bindBuffer(7, effect.counters)};
+            gpu::bindBuffer(6, effect.indices),    gpu::bindBuffer(7, effect.counters),
+            gpu::bindBuffer(8, effect.decided),    gpu::bindBuffer(9, effect.copies)};
         effect.recordSet = record_.createSet(ctx, writes);
         effect.smearSet = smear_.createSet(ctx, writes);
+        effect.weldSet = weld_.createSet(ctx, writes);
         effect.buildSet = build_.createSet(ctx, writes);
     }
 
@@ -227,6 +255,10 @@ void AfterimagePass::advance(VkCommandBuffer cmd, const fluid::SceneSimulation& 
             smear_.bind(cmd, effect.smearSet);
             smear_.push(cmd, c);
             vkCmdDispatch(cmd, vertexGroups, 1, 1);
+            computeToComputeBarrier(cmd);
+            weld_.bind(cmd, effect.weldSet);
+            weld_.push(cmd, c);
+            vkCmdDispatch(cmd, vertexGroups, 1, 1);
             if (effect.primitiveCount > 0) {
                 computeToComputeBarrier(cmd);
                 build_.bind(cmd, effect.buildSet);
@@ -295,6 +327,18 @@ AfterimagePass::Counts AfterimagePass::counts(size_t effect) const {
     out.triangles = c.indexCount / 3;
     out.lineVertices = c.vertexCount;
     std::memcpy(&out.fastest, &c.fastestBits, sizeof(float));
+    return out;
+}
+
+AfterimagePass::Decisions AfterimagePass::decisions(size_t effect) const {
+    const Effect* e = find(effect);
+    if (!e) return {};
+    Decisions out;
+    out.decided = gpu::readBufferAs<shared::TrajectoryVertex>(ctx_, e->decided);
+    out.drawn = gpu::readBufferAs<shared::TrajectoryVertex>(ctx_, e->pushed);
+    out.decided.resize(e->vertexCount);
+    out.drawn.resize(e->vertexCount);
+    out.copies = e->copyTable;
     return out;
 }
 

@@ -6,8 +6,10 @@
 //     (afterimage_record.comp);
 //   * each vertex facing away from its motion is pushed back along it, by the strengths of the
 //     character's travel and of the animation's own motion times a per-vertex random value that
-//     depends on the vertex index alone, with the taper and speed thresholds of Sec. 4.3 and 5.3
-//     (afterimage_smear.comp);
+//     depends on the vertex index alone (that of its first copy at the same bind-pose position),
+//     with the taper and speed thresholds of Sec. 4.3 and 5.3 (afterimage_smear.comp);
+//   * the copies of a seam vertex move together: each takes the push of its first pushed copy
+//     (Sec. 5.4; afterimage_weld.comp);
 //   * the drawn geometry is built (afterimage_build.comp): the smeared copy of the bound mesh
 //     (its triangles with a pushed vertex), a speed-line from each pushed vertex to where it is
 //     pushed, or arcs through the recorded positions (multi);
@@ -71,6 +73,14 @@ public:
     // The geometry of effect `effect` as drawn (smear: the vertices of its drawn triangles, three
     // a triangle; speed lines: two a line; multi: three a triangle). Reads back; waits.
     std::vector<shared::TrajectoryVertex> geometry(size_t effect) const;
+    // Per bound vertex of effect `effect` after the frame: as afterimage_smear.comp decided it on
+    // its own (`decided`) and as drawn once the copies of seam vertices agree (`drawn`),
+    // position.w 1 where pushed back; `copies` as afterimageCopies gives them. Reads back; waits.
+    struct Decisions {
+        std::vector<shared::TrajectoryVertex> decided, drawn;
+        std::vector<uint32_t> copies;
+    };
+    Decisions decisions(size_t effect) const;
 
 private:
     struct Effect {
@@ -78,10 +88,11 @@ private:
         scene::EffectSpec spec;
         trajectory::Source source;
         uint32_t vertexCount = 0, primitiveCount = 0, historySlots = 2, outputCapacity = 0;
-        gpu::Buffer input, palette, skinned, history, colours, pushed, primitives, output, indices,
-            counters;
+        gpu::Buffer input, palette, skinned, history, colours, decided, copies, pushed, primitives,
+            output, indices, counters;
         VkDescriptorSet recordSet = VK_NULL_HANDLE, smearSet = VK_NULL_HANDLE,
-                        buildSet = VK_NULL_HANDLE;
+                        weldSet = VK_NULL_HANDLE, buildSet = VK_NULL_HANDLE;
+        std::vector<uint32_t> copyTable; // as uploaded to `copies`
         uint32_t newest = 0, filled = 0;
     };
     const Effect* find(size_t effect) const;
@@ -89,7 +100,7 @@ private:
     const gpu::Context& ctx_;
     const anim::Character& character_;
     anim::SkinVertices skinning_;
-    gpu::Program record_, smear_, build_;
+    gpu::Program record_, smear_, weld_, build_;
     gpu::Program smearDraw_, lineDraw_, arcDraw_;
     gpu::Buffer frame_;
     VkDescriptorSet smearDrawSet_ = VK_NULL_HANDLE, lineDrawSet_ = VK_NULL_HANDLE,
@@ -98,5 +109,10 @@ private:
     FrameHistory history_;
     glm::vec3 lastRoot_{0.0f};
 };
+
+// The copies of each bound vertex at one bind-pose position, as afterimage_weld.comp reads them:
+// vertexCount + 1 offsets into the result, then each vertex's group of copies (itself included)
+// in index order.
+std::vector<uint32_t> afterimageCopies(const std::vector<shared::SkinVertexIn>& vertices);
 
 } // namespace mfx::render

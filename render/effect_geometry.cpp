@@ -6,7 +6,9 @@
 #include "shaders/shared/trajectory.h"
 
 #include <algorithm>
+#include <array>
 #include <cstring>
+#include <map>
 
 namespace mfx::render {
 
@@ -73,6 +75,19 @@ void drawBuiltTriangles(VkCommandBuffer cmd, gpu::Program& program, VkDescriptor
     const VkDeviceSize offset = 0;
     vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
     vkCmdDrawIndirect(cmd, counters.get(), 0, 1, sizeof(VkDrawIndirectCommand));
+}
+
+Welding weldByPosition(std::span<const shared::SkinVertexIn> vertices) {
+    std::map<std::array<float, 3>, uint32_t> groups;
+    Welding out;
+    out.group.resize(vertices.size());
+    for (size_t v = 0; v < vertices.size(); ++v) {
+        const glm::vec4& p = vertices[v].position;
+        out.group[v] = groups.emplace(std::array<float, 3>{p.x, p.y, p.z}, uint32_t(groups.size()))
+                           .first->second;
+    }
+    out.groupCount = uint32_t(groups.size());
+    return out;
 }
 
 void transferToComputeBarrier(VkCommandBuffer cmd) {

@@ -9,9 +9,11 @@
 #include "core/gpu/program.h"
 #include "core/gpu/resources.h"
 #include "core/trajectory/trajectory_source.h"
+#include "shaders/shared/skinning.h"
 
 #include <cstdint>
 #include <span>
+#include <vector>
 
 namespace mfx::render {
 
@@ -44,6 +46,14 @@ void skinSource(VkCommandBuffer cmd, anim::SkinVertices& skinning, const anim::C
 // time 0, so effect_common.glsl applies no age fade: the alpha is in the vertex colour.
 void drawBuiltTriangles(VkCommandBuffer cmd, gpu::Program& program, VkDescriptorSet set,
                         const gpu::Buffer& vertices, const gpu::Buffer& counters, float fps);
+
+// The copies of a vertex at one bind-pose position (a seam: one point with several normals) welded
+// into one: each vertex's group, groups numbered in order of first appearance, exact positions.
+struct Welding {
+    std::vector<uint32_t> group; // per vertex
+    uint32_t groupCount = 0;
+};
+Welding weldByPosition(std::span<const shared::SkinVertexIn> vertices);
 
 // Transfers (counter resets, fills) made visible to the compute stages that follow.
 void transferToComputeBarrier(VkCommandBuffer cmd);

@@ -7,10 +7,8 @@
 #include "shaders/shared/effect_draw.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstring>
-#include <map>
 #include <utility>
 
 namespace mfx::render {
@@ -37,15 +35,9 @@ void computeToTransfer(VkCommandBuffer cmd) {
 std::vector<uint32_t> shellVertexTriangles(const std::vector<shared::SkinVertexIn>& vertices,
                                            const std::vector<uint32_t>& triangles) {
     // Weld by exact bind-pose position: the copies of a seam vertex are made from one point.
-    std::map<std::array<float, 3>, uint32_t> welded;
-    std::vector<uint32_t> weldedIndex(vertices.size());
-    for (size_t v = 0; v < vertices.size(); ++v) {
-        const glm::vec4& p = vertices[v].position;
-        weldedIndex[v] =
-            welded.emplace(std::array<float, 3>{p.x, p.y, p.z}, uint32_t(welded.size()))
-                .first->second;
-    }
-    std::vector<std::vector<uint32_t>> around(welded.size());
+    const Welding welding = weldByPosition(vertices);
+    const std::vector<uint32_t>& weldedIndex = welding.group;
+    std::vector<std::vector<uint32_t>> around(welding.groupCount);
     for (size_t t = 0; t + 2 < triangles.size(); t += 3)
         for (size_t k = 0; k < 3; ++k) {
             std::vector<uint32_t>& list = around[weldedIndex[triangles[t + k]]];

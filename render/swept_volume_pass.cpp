@@ -42,14 +42,8 @@ uint32_t filterCode(scene::SweptFilter filter) {
 std::vector<uint32_t> sweptVolumeEdges(const std::vector<shared::SkinVertexIn>& vertices,
                                        const std::vector<uint32_t>& triangles) {
     // Weld by exact bind-pose position: the copies of a seam vertex are made from one point.
-    std::map<std::array<float, 3>, uint32_t> welded;
-    std::vector<uint32_t> weldedIndex(vertices.size());
-    for (size_t v = 0; v < vertices.size(); ++v) {
-        const glm::vec4& p = vertices[v].position;
-        weldedIndex[v] =
-            welded.emplace(std::array<float, 3>{p.x, p.y, p.z}, uint32_t(welded.size()))
-                .first->second;
-    }
+    const Welding welding = weldByPosition(vertices);
+    const std::vector<uint32_t>& weldedIndex = welding.group;
     struct Side {
         uint32_t triangle, a, b;
     };

@@ -1,5 +1,5 @@
 // What the afterimage passes share (render/afterimage_pass.h): one descriptor layout for the
-// three stages, the ring of recorded positions, and the per-vertex random value.
+// four stages, the ring of recorded positions, and the per-vertex random value.
 // Smith 2016, "Afterimage Toon Blur": chapter 4 (single afterimage), chapter 5 (multi-afterimage).
 #ifndef MFX_AFTERIMAGE_COMMON_GLSL
 #define MFX_AFTERIMAGE_COMMON_GLSL
@@ -42,6 +42,21 @@ layout(std430, binding = 6) writeonly buffer Indices {
 layout(std430, binding = 7) buffer Counters {
     AfterimageCounters counters;
 };
+// What afterimage_smear.comp decides per vertex, before afterimage_weld.comp makes the copies of a
+// seam vertex agree (then Pushed).
+layout(std430, binding = 8) buffer Decided {
+    TrajectoryVertex decided[];
+};
+// The copies of each vertex at one bind-pose position: vertexCount + 1 offsets into this buffer,
+// then each vertex's group of copies in index order (render/effect_geometry.h, weldByPosition).
+layout(std430, binding = 9) readonly buffer Copies {
+    uint copies[];
+};
+
+// The first copy of a vertex (the lowest index at its bind-pose position).
+uint firstCopy(uint vertex) {
+    return copies[copies[vertex]];
+}
 
 // The slot `back` frames before this one (0: this frame), back < constants.filled.
 uint slotBack(uint back) {

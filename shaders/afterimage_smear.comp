@@ -3,12 +3,14 @@
 //   rear:   n . m < 0, m its motion this frame;
 //   push:   T = R * taper * (f^U * -m^U + f^V * -m^V)  (Sec. 4.3, the uniform/non-uniform split),
 //           m^U the character's root travel, m^V = m - m^U the animation's own motion;
-//   R:      in [min, max] from a hash of the vertex index, 0 below the threshold;
+//   R:      in [min, max] from a hash of the index of the vertex's first copy (the copies of a
+//           seam vertex draw the same), 0 below the threshold;
 //   taper:  (-n . m/|m|)^k, so the vertex facing straight back is pushed furthest;
 //   speed:  |m| at least an absolute bound and a fraction of the fastest bound vertex's |m|
 //           (Sec. 5.3 "Thresholding": only the blade smears, not the hilt).
 // The speed-lines variant appends a line from each pushed vertex to its pushed position
-// (Sec. 4.3 "Speedlines").
+// (Sec. 4.3 "Speedlines"). The decision goes to Decided; afterimage_weld.comp then moves the
+// copies of a seam vertex together (Sec. 5.4).
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "afterimage_common.glsl"
@@ -35,7 +37,7 @@ void main() {
     bool moving = speed > MFX_AFTERIMAGE_STILL;
     float facing = moving ? dot(n, m / speed) : 0.0;
 
-    float r = mix(constants.randomMin, constants.randomMax, vertexRandom(i));
+    float r = mix(constants.randomMin, constants.randomMax, vertexRandom(firstCopy(i)));
     if (r < constants.randomThreshold) r = 0.0;
     float taper = constants.taper > 0.0 ? pow(max(-facing, 0.0), constants.taper) : 1.0;
     bool pushedBack = moving && facing < 0.0 && speed >= constants.minSpeed &&
@@ -55,9 +57,8 @@ void main() {
     TrajectoryVertex v = makeVertex(p + (moved ? push : vec3(0.0)), n, colour, pushedBack ? 1.0 : 0.0);
     v.position.w = pushedBack ? 1.0 : 0.0;
     v.velocity = vec4(push, pushedBack ? r * taper : 0.0);
-    pushed[i] = v;
+    decided[i] = v;
     if (!pushedBack) return;
-    atomicAdd(counters.pushedVertices, 1u);
 
     if (constants.variant == MFX_AFTERIMAGE_SPEED_LINES && i % constants.stride == 0u) {
         uint base = atomicAdd(counters.vertexCount, 2u);

@@ -84,6 +84,72 @@ TEST_F(AfterimageTest, GeometryOnlyWhileTheBoundPartMoves) {
     }
 }
 
+// The copies of a seam vertex (one bind-pose position) move together (Smith 2016, Sec. 5.4), or
+// the smear tears away from the mesh: the fighter's sword, whose seam copies share a normal (they
+// must draw the same random value), and the flat-shaded RiggedFigure of ../shared/assets, whose
+// copies face their motion differently (every copy takes the push of the first one pushed back).
+TEST_F(AfterimageTest, TheCopiesOfASeamVertexMoveTogether) {
+    const std::string figure = std::string(MFX_SOURCE_DIR) + "/../shared/assets/RiggedFigure.gltf";
+    struct Case {
+        scene::Scene scene;
+        uint32_t frame;
+        bool facingDiffers;
+    };
+    Result<scene::Scene> flat =
+        scene::parseScene(R"({"character": {"source": ")" + figure + R"(", "clip": "clip_0"},
+            "output": {"width": 64, "height": 36, "fps": 30, "frames": 30},
+            "effects": [{"type": "afterimage_smear", "meshes": ["Proxy"]}]})",
+                          "test.json");
+    ASSERT_TRUE(flat) << flat.error().message;
+    for (const Case& c : {Case{swordScene(R"({"type": "afterimage_smear", "meshes": ["sword"]})"),
+                               kSwingFrame, false},
+                          Case{flat.value(), 10, true}}) {
+        SCOPED_TRACE(c.scene.effects[0].meshes[0]);
+        start(c.scene);
+        play(0, c.frame);
+        const render::AfterimagePass::Decisions d = pass_->decisions(0);
+        ASSERT_FALSE(d.drawn.empty());
+        const size_t n = d.drawn.size();
+        ASSERT_GT(d.copies.size(), n);
+        ASSERT_EQ(d.copies[n], d.copies.size());
+        size_t seams = 0, disagreements = 0, pushed = 0;
+        for (size_t v = 0; v < n; ++v) {
+            const uint32_t first = d.copies[v], end = d.copies[v + 1];
+            ASSERT_LT(first, end);
+            if (end - first > 1) ++seams;
+            // The first copy the smear pushed back on its own, if any.
+            const shared::TrajectoryVertex* leader = nullptr;
+            bool anyStill = false;
+            for (uint32_t k = first; k < end; ++k) {
+                const shared::TrajectoryVertex& copy = d.decided[d.copies[k]];
+                if (copy.position.w == 0.0f)
+                    anyStill = true;
+                else if (!leader)
+                    leader = &copy;
+            }
+            if (leader && anyStill) ++disagreements;
+            const shared::TrajectoryVertex& drawn = d.drawn[v];
+            ASSERT_EQ(drawn.position.w, leader ? 1.0f : 0.0f) << "vertex " << v;
+            if (!leader) continue;
+            ++pushed;
+            EXPECT_EQ(glm::vec3(drawn.velocity), glm::vec3(leader->velocity)) << "vertex " << v;
+            for (uint32_t k = first; k < end; ++k) {
+                const glm::vec3 other = glm::vec3(d.drawn[d.copies[k]].position);
+                EXPECT_LE(glm::length(glm::vec3(drawn.position) - other), 1e-5f)
+                    << "vertex " << v << " and its copy " << d.copies[k] << " drawn apart";
+            }
+        }
+        EXPECT_GT(seams, 0u) << "the mesh has seam vertices";
+        EXPECT_GT(pushed, 0u);
+        if (c.facingDiffers) {
+            EXPECT_GT(disagreements, 0u) << "flat-shaded copies face their motion differently";
+        } else {
+            EXPECT_EQ(disagreements, 0u);
+        }
+        EXPECT_EQ(counts().pushedVertices, pushed);
+    }
+}
+
 TEST_F(AfterimageTest, NothingOutsideTheEffectsWindow) {
     start(swordScene(R"({"type": "afterimage_smear", "meshes": ["sword"], "start": 0.6})"));
     play(0, kSwingFrame);
