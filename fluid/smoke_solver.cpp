@@ -277,7 +277,8 @@ gpu::Program& SmokeSolver::program(Stage stage, int part, uint32_t target) {
                    ? makeProgram(ctx_, options_, "confinement_force", confinement_force_comp,
                                  target, 3, 2)
                    : makeProgram(ctx_, options_, "apply_vorticity_force",
-                                 MFX_FIELD_SHADER(apply_vorticity_force_comp), target, 6, 5);
+                                 MFX_FIELD_SHADER(apply_vorticity_force_comp), target, 8, 0, {},
+                                 0xe0u);
         break;
     case Stage::DiffuseViscosity:
         slot = makeProgram(ctx_, options_, "diffuse_viscosity",
@@ -632,17 +633,16 @@ void SmokeSolver::vorticityConfinement(VkCommandBuffer cmd) {
                  }),
              cells_);
     copyToImages(cmd, {{&scratch_[0], &force_}});
-    for (uint32_t c = 0; c < 3; ++c) {
-        gpu::Program& apply = program(Stage::VorticityConfinement, 2, c);
-        dispatch(cmd, apply,
-                 set(apply, {v, 0, 0},
-                     [&](auto& w) {
-                         addVelocity(w, v, 1);
-                         w.push_back(storage(4, force_));
-                         w.push_back(gpu::bindBuffer(5, scratch_[c]));
-                     }),
-                 faceExtent(options_.grid, int(c)));
-    }
+    gpu::Program& apply = program(Stage::VorticityConfinement, 2, 0);
+    dispatch(cmd, apply,
+             set(apply, {v, 0, 0},
+                 [&](auto& w) {
+                     addVelocity(w, v, 1);
+                     w.push_back(storage(4, force_));
+                     for (uint32_t c = 0; c < 3; ++c)
+                         w.push_back(gpu::bindBuffer(5 + c, scratch_[c]));
+                 }),
+             cells_ + glm::uvec3(1));
     copyToImages(cmd, {{&scratch_[0], &velocity_[v][0]},
                        {&scratch_[1], &velocity_[v][1]},
                        {&scratch_[2], &velocity_[v][2]}});
