@@ -8,7 +8,7 @@
 #include "render/afterimage_pass.h"
 #include "render/frame_renderer.h"
 #include "render/render_target.h"
-#include "tests/gpu_test.h"
+#include "tests/effect_pass_test.h"
 
 #include <algorithm>
 #include <cmath>
@@ -21,46 +21,12 @@ namespace {
 // The sword slash (0.8 s) at 30 fps, held for 6 frames after its end; `effect` is the JSON of
 // one afterimage_smear effect on the sword.
 scene::Scene swordScene(const std::string& effect, uint32_t frames = 30) {
-    const std::string text = R"({"character": {"clip": "sword_slash"},
-        "output": {"width": 64, "height": 36, "fps": 30, "frames": )" +
-                             std::to_string(frames) + R"(}, "effects": [)" + effect + "]}";
-    Result<scene::Scene> s = scene::parseScene(text, "test.json");
-    EXPECT_TRUE(s) << (s ? "" : s.error().message);
-    return s ? std::move(s).value() : scene::Scene{};
+    return clipScene("sword_slash", effect, frames);
 }
 
 constexpr uint32_t kSwingFrame = 11; // the blade at its fastest (0.37 s)
 
-class AfterimageTest : public GpuTest {
-protected:
-    void start(const scene::Scene& s) {
-        scene_ = s;
-        Result<anim::Character> c = scene::loadCharacter(scene_);
-        ASSERT_TRUE(c) << c.error().message;
-        character_ = std::make_unique<anim::Character>(std::move(c).value());
-        auto sim = fluid::SceneSimulation::create(ctx(), scene_, *character_);
-        ASSERT_TRUE(sim) << sim.error().message;
-        sim_ = std::move(sim).value();
-        pass_ = std::make_unique<render::AfterimagePass>(ctx(), scene_, *character_);
-        ASSERT_FALSE(pass_->empty());
-    }
-    // Records frames first..last in order (the ring advances once a frame).
-    void play(uint32_t first, uint32_t last) {
-        for (uint32_t f = first; f <= last; ++f) {
-            gpu::submitOneShot(ctx(), [&](VkCommandBuffer cmd) {
-                sim_->recordFrame(cmd, f);
-                pass_->advance(cmd, *sim_, f);
-            });
-            sim_->finishFrame();
-        }
-    }
-    render::AfterimagePass::Counts counts() const { return pass_->counts(0); }
-
-    scene::Scene scene_;
-    std::unique_ptr<anim::Character> character_;
-    std::unique_ptr<fluid::SceneSimulation> sim_;
-    std::unique_ptr<render::AfterimagePass> pass_;
-};
+using AfterimageTest = EffectPassTest<render::AfterimagePass>;
 
 uint32_t drawn(const render::AfterimagePass::Counts& c) {
     return c.triangles + c.lineVertices;

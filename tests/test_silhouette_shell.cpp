@@ -7,7 +7,7 @@
 #include "core/scene/scene.h"
 #include "fluid/scene_simulation.h"
 #include "render/silhouette_shell_pass.h"
-#include "tests/gpu_test.h"
+#include "tests/effect_pass_test.h"
 
 #include <algorithm>
 #include <cmath>
@@ -22,48 +22,14 @@ namespace {
 
 // The roundhouse kick (0.9 s) at 30 fps, held after its end; `effect` is the JSON of one effect.
 scene::Scene kickScene(const std::string& effect, uint32_t frames = 45) {
-    const std::string text = R"({"character": {"clip": "roundhouse_kick"},
-        "output": {"width": 64, "height": 36, "fps": 30, "frames": )" +
-                             std::to_string(frames) + R"(}, "effects": [)" + effect + "]}";
-    Result<scene::Scene> s = scene::parseScene(text, "test.json");
-    EXPECT_TRUE(s) << (s ? "" : s.error().message);
-    return s ? std::move(s).value() : scene::Scene{};
+    return clipScene("roundhouse_kick", effect, frames);
 }
 
 constexpr uint32_t kKickFrame = 12;  // the leg swinging fast (0.4 s)
 constexpr uint32_t kLastMoving = 27; // the clip ends at 0.9 s; the pose is held after it
 const std::string kLeg = R"("bones": ["thigh_r", "shin_r", "foot_r", "toe_r"])";
 
-class SilhouetteShellTest : public GpuTest {
-protected:
-    void start(const scene::Scene& s) {
-        scene_ = s;
-        Result<anim::Character> c = scene::loadCharacter(scene_);
-        ASSERT_TRUE(c) << c.error().message;
-        character_ = std::make_unique<anim::Character>(std::move(c).value());
-        auto sim = fluid::SceneSimulation::create(ctx(), scene_, *character_);
-        ASSERT_TRUE(sim) << sim.error().message;
-        sim_ = std::move(sim).value();
-        pass_ = std::make_unique<render::SilhouetteShellPass>(ctx(), scene_, *character_);
-        ASSERT_FALSE(pass_->empty());
-    }
-    // Records frames first..last in order (the rings advance once a frame).
-    void play(uint32_t first, uint32_t last) {
-        for (uint32_t f = first; f <= last; ++f) {
-            gpu::submitOneShot(ctx(), [&](VkCommandBuffer cmd) {
-                sim_->recordFrame(cmd, f);
-                pass_->advance(cmd, *sim_, f);
-            });
-            sim_->finishFrame();
-        }
-    }
-    render::SilhouetteShellPass::Counts counts() const { return pass_->counts(0); }
-
-    scene::Scene scene_;
-    std::unique_ptr<anim::Character> character_;
-    std::unique_ptr<fluid::SceneSimulation> sim_;
-    std::unique_ptr<render::SilhouetteShellPass> pass_;
-};
+using SilhouetteShellTest = EffectPassTest<render::SilhouetteShellPass>;
 
 // The drawn triangles split into strips: a strip starts with a quad whose first vertex is at
 // place 0 (the live mesh); each quad is 6 vertices.

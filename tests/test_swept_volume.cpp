@@ -7,7 +7,7 @@
 #include "core/scene/scene.h"
 #include "fluid/scene_simulation.h"
 #include "render/swept_volume_pass.h"
-#include "tests/gpu_test.h"
+#include "tests/effect_pass_test.h"
 
 #include <cmath>
 #include <memory>
@@ -18,46 +18,12 @@ namespace {
 
 // The sword slash (0.8 s) at 30 fps, held after its end; `effect` is the JSON of one effect.
 scene::Scene swordScene(const std::string& effect, uint32_t frames = 30) {
-    const std::string text = R"({"character": {"clip": "sword_slash"},
-        "output": {"width": 64, "height": 36, "fps": 30, "frames": )" +
-                             std::to_string(frames) + R"(}, "effects": [)" + effect + "]}";
-    Result<scene::Scene> s = scene::parseScene(text, "test.json");
-    EXPECT_TRUE(s) << (s ? "" : s.error().message);
-    return s ? std::move(s).value() : scene::Scene{};
+    return clipScene("sword_slash", effect, frames);
 }
 
 constexpr uint32_t kSwingFrame = 11; // the blade at its fastest (0.37 s)
 
-class SweptVolumeTest : public GpuTest {
-protected:
-    void start(const scene::Scene& s) {
-        scene_ = s;
-        Result<anim::Character> c = scene::loadCharacter(scene_);
-        ASSERT_TRUE(c) << c.error().message;
-        character_ = std::make_unique<anim::Character>(std::move(c).value());
-        auto sim = fluid::SceneSimulation::create(ctx(), scene_, *character_);
-        ASSERT_TRUE(sim) << sim.error().message;
-        sim_ = std::move(sim).value();
-        pass_ = std::make_unique<render::SweptVolumePass>(ctx(), scene_, *character_);
-        ASSERT_FALSE(pass_->empty());
-    }
-    // Records frames first..last in order (the ring advances once a frame).
-    void play(uint32_t first, uint32_t last) {
-        for (uint32_t f = first; f <= last; ++f) {
-            gpu::submitOneShot(ctx(), [&](VkCommandBuffer cmd) {
-                sim_->recordFrame(cmd, f);
-                pass_->advance(cmd, *sim_, f);
-            });
-            sim_->finishFrame();
-        }
-    }
-    render::SweptVolumePass::Counts counts() const { return pass_->counts(0); }
-
-    scene::Scene scene_;
-    std::unique_ptr<anim::Character> character_;
-    std::unique_ptr<fluid::SceneSimulation> sim_;
-    std::unique_ptr<render::SweptVolumePass> pass_;
-};
+using SweptVolumeTest = EffectPassTest<render::SweptVolumePass>;
 
 // The drawn geometry split into joining strips (they start at place 0, `quads` quads each) and
 // trailing triangles (every vertex at place 1).
