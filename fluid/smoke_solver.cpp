@@ -271,14 +271,13 @@ gpu::Program& SmokeSolver::program(Stage stage, int part, uint32_t target) {
                            target, 4, 3);
         break;
     case Stage::VorticityConfinement:
-        slot = part == 0 ? makeProgram(ctx_, options_, "compute_vorticity",
-                                       MFX_FIELD_SHADER(compute_vorticity_comp), target, 5, 4)
-               : part == 1
-                   ? makeProgram(ctx_, options_, "confinement_force", confinement_force_comp,
-                                 target, 3, 2)
-                   : makeProgram(ctx_, options_, "apply_vorticity_force",
-                                 MFX_FIELD_SHADER(apply_vorticity_force_comp), target, 8, 0, {},
-                                 0xe0u);
+        slot = part == 0   ? makeProgram(ctx_, options_, "compute_vorticity",
+                                         MFX_FIELD_SHADER(compute_vorticity_comp), target, 5, 4)
+               : part == 1 ? makeProgram(ctx_, options_, "confinement_force",
+                                         confinement_force_comp, target, 3, 2)
+                           : makeProgram(ctx_, options_, "apply_vorticity_force",
+                                         MFX_FIELD_SHADER(apply_vorticity_force_comp), target, 8, 0,
+                                         {}, 0xe0u);
         break;
     case Stage::DiffuseViscosity:
         slot = makeProgram(ctx_, options_, "diffuse_viscosity",
