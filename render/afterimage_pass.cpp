@@ -69,16 +69,12 @@ AfterimagePass::AfterimagePass(const gpu::Context& ctx, const scene::Scene& scen
     for (size_t i = 0; i < scene.effects.size(); ++i) {
         const scene::EffectSpec& e = scene.effects[i];
         if (e.type != scene::EffectType::AfterimageSmear) continue;
-        trajectory::Selection selection;
-        selection.meshes = e.meshes;
-        selection.bones = e.bones;
-        selection.minBoneWeight = e.minBoneWeight;
-        Result<trajectory::Source> selected = trajectory::selectSource(character, selection);
-        if (!selected || selected.value().vertices.empty()) continue;
+        std::optional<trajectory::Source> selected = effectSource(character, e);
+        if (!selected) continue;
         Effect effect;
         effect.index = i;
         effect.spec = e;
-        effect.source = std::move(selected).value();
+        effect.source = std::move(*selected);
         const trajectory::Source& source = effect.source;
         const scene::AfterimageVariant variant = e.afterimage.variant;
         effect.vertexCount = uint32_t(source.vertices.size());
@@ -136,12 +132,8 @@ AfterimagePass::AfterimagePass(const gpu::Context& ctx, const scene::Scene& scen
                                            ? source.triangles.size() * sizeof(uint32_t)
                                            : 0,
                                        VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "afterimage indices");
-        effect.counters = gpu::createBuffer(
-            ctx, sizeof(shared::AfterimageCounters),
-            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
-                VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-            gpu::MemoryUsage::Readback, "afterimage counters");
-        std::memset(effect.counters.mapped, 0, sizeof(shared::AfterimageCounters));
+        effect.counters =
+            effectCounters(ctx, sizeof(shared::AfterimageCounters), "afterimage counters");
         effects_.push_back(std::move(effect));
     }
     if (effects_.empty()) return; // a scene without the effect pays for nothing
@@ -279,7 +271,7 @@ uint32_t AfterimagePass::draw(VkCommandBuffer cmd, const scene::Scene& scene,
     uint32_t draws = 0;
     const VkDeviceSize offset = 0;
     for (const Effect& effect : effects_) {
-        if (!shown.empty() && (effect.index >= shown.size() || shown[effect.index] == 0)) continue;
+        if (!effectShown(shown, effect.index)) continue;
         const scene::AfterimageVariant variant = effect.spec.afterimage.variant;
         // Every vertex is drawn at time 0 with sample time 0: no age fade (effect_common.glsl);
         // the alpha along the push or the arc is in the vertex colour.
@@ -312,9 +304,7 @@ uint32_t AfterimagePass::draw(VkCommandBuffer cmd, const scene::Scene& scene,
 }
 
 const AfterimagePass::Effect* AfterimagePass::find(size_t effect) const {
-    for (const Effect& e : effects_)
-        if (e.index == effect) return &e;
-    return nullptr;
+    return findEffect(effects_, effect);
 }
 
 AfterimagePass::Counts AfterimagePass::counts(size_t effect) const {

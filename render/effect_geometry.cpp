@@ -54,6 +54,16 @@ gpu::Buffer effectStorage(const gpu::Context& ctx, VkDeviceSize bytes, VkBufferU
                              gpu::MemoryUsage::DeviceLocal, name);
 }
 
+gpu::Buffer effectCounters(const gpu::Context& ctx, VkDeviceSize bytes, const char* name) {
+    gpu::Buffer counters =
+        gpu::createBuffer(ctx, bytes,
+                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
+                              VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                          gpu::MemoryUsage::Readback, name);
+    std::memset(counters.mapped, 0, bytes);
+    return counters;
+}
+
 void skinSource(VkCommandBuffer cmd, anim::SkinVertices& skinning, const anim::Character& character,
                 const trajectory::Source& source, const anim::Pose& pose,
                 const glm::mat4& placement, const gpu::Buffer& palette, const gpu::Buffer& input,
@@ -75,6 +85,17 @@ void drawBuiltTriangles(VkCommandBuffer cmd, gpu::Program& program, VkDescriptor
     const VkDeviceSize offset = 0;
     vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
     vkCmdDrawIndirect(cmd, counters.get(), 0, 1, sizeof(VkDrawIndirectCommand));
+}
+
+std::optional<trajectory::Source> effectSource(const anim::Character& character,
+                                               const scene::EffectSpec& e) {
+    trajectory::Selection selection;
+    selection.meshes = e.meshes;
+    selection.bones = e.bones;
+    selection.minBoneWeight = e.minBoneWeight;
+    Result<trajectory::Source> selected = trajectory::selectSource(character, selection);
+    if (!selected || selected.value().vertices.empty()) return std::nullopt;
+    return std::move(selected).value();
 }
 
 Welding weldByPosition(std::span<const shared::SkinVertexIn> vertices) {

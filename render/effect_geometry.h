@@ -8,14 +8,37 @@
 #include "core/anim/skin_vertices.h"
 #include "core/gpu/program.h"
 #include "core/gpu/resources.h"
+#include "core/scene/scene.h"
 #include "core/trajectory/trajectory_source.h"
+#include "render/scene_camera.h"
 #include "shaders/shared/skinning.h"
 
 #include <cstdint>
+#include <cstring>
+#include <optional>
 #include <span>
 #include <vector>
 
 namespace mfx::render {
+
+// The bound vertices of effect `e` on `character` (its meshes, bones and minimum bone weight);
+// none when the selection fails or leaves no vertex (the simulation refuses such scenes first).
+std::optional<trajectory::Source> effectSource(const anim::Character& character,
+                                               const scene::EffectSpec& e);
+
+// Whether the effect at `index` in scene.effects is drawn: `shown` empty (all are) or non-zero at
+// that index.
+inline bool effectShown(std::span<const uint8_t> shown, size_t index) {
+    return shown.empty() || (index < shown.size() && shown[index] != 0);
+}
+
+// The entry of a pass's `effects` whose `index` (in scene.effects) is `index`; null if none.
+template <class Effect>
+const Effect* findEffect(const std::vector<Effect>& effects, size_t index) {
+    for (const Effect& e : effects)
+        if (e.index == index) return &e;
+    return nullptr;
+}
 
 // A compute program whose bindings 0..bindingCount-1 are all storage buffers.
 gpu::Program storageComputeProgram(const gpu::Context& ctx, const char* name,
@@ -32,6 +55,10 @@ gpu::GraphicsProgramDesc trajectoryDrawDesc(const char* name, VkPrimitiveTopolog
 // be copied to and from, with `extra` usage.
 gpu::Buffer effectStorage(const gpu::Context& ctx, VkDeviceSize bytes, VkBufferUsageFlags extra,
                           const char* name);
+
+// A build's counters and indirect draw arguments: a zeroed storage buffer the host reads back,
+// usable as indirect arguments and written by transfers.
+gpu::Buffer effectCounters(const gpu::Context& ctx, VkDeviceSize bytes, const char* name);
 
 // Records the skinning of `source`'s vertices (`input`, `vertexCount` of them) in `pose`, the
 // character placed by `placement`, into `skinned`. The palette is written into `palette` now: the
@@ -54,6 +81,25 @@ struct Welding {
     uint32_t groupCount = 0;
 };
 Welding weldByPosition(std::span<const shared::SkinVertexIn> vertices);
+
+// Writes the scene frame of `camera` into `frame` (host-visible) and draws the built triangles of
+// each shown entry of `effects` (their `output` and `counters`) with `program` and `set`. Returns
+// the number of draws.
+template <class Effect>
+uint32_t drawBuiltEffects(VkCommandBuffer cmd, const std::vector<Effect>& effects,
+                          const scene::Scene& scene, const SceneCamera& camera,
+                          std::span<const uint8_t> shown, const gpu::Buffer& frame,
+                          gpu::Program& program, VkDescriptorSet set) {
+    const shared::SceneFrame values = sceneFrame(scene, camera);
+    std::memcpy(frame.mapped, &values, sizeof values);
+    uint32_t draws = 0;
+    for (const Effect& effect : effects) {
+        if (!effectShown(shown, effect.index)) continue;
+        drawBuiltTriangles(cmd, program, set, effect.output, effect.counters, scene.output.fps);
+        ++draws;
+    }
+    return draws;
+}
 
 // Transfers (counter resets, fills) made visible to the compute stages that follow.
 void transferToComputeBarrier(VkCommandBuffer cmd);

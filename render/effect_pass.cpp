@@ -1,6 +1,7 @@
 #include "render/effect_pass.h"
 
 #include "core/gpu/context.h"
+#include "render/effect_geometry.h"
 #include "render/render_target.h"
 #include "shaders/embedded.h"
 #include "shaders/shared/effect_draw.h"
@@ -75,7 +76,7 @@ uint32_t EffectPass::draw(VkCommandBuffer cmd, const fluid::SceneSimulation& sim
         for (const fluid::SceneSimulation::TrajectoryEffect& effect : simulation.trajectories()) {
             if (effect.spec->type != type) continue;
             const size_t index = simulation.effectIndex(effect);
-            if (!shown.empty() && (index >= shown.size() || shown[index] == 0)) continue;
+            if (!effectShown(shown, index)) continue;
             const trajectory::Queue& queue = *effect.queue;
             const auto live = queue.liveSegments();
             if (live.empty()) continue;

@@ -81,17 +81,12 @@ SilhouetteShellPass::SilhouetteShellPass(const gpu::Context& ctx, const scene::S
     for (size_t i = 0; i < scene.effects.size(); ++i) {
         const scene::EffectSpec& e = scene.effects[i];
         if (e.type != scene::EffectType::SilhouetteShell) continue;
-        trajectory::Selection selection;
-        selection.meshes = e.meshes;
-        selection.bones = e.bones;
-        selection.minBoneWeight = e.minBoneWeight;
-        Result<trajectory::Source> selected = trajectory::selectSource(character, selection);
-        if (!selected || selected.value().vertices.empty() || selected.value().triangles.empty())
-            continue;
+        std::optional<trajectory::Source> selected = effectSource(character, e);
+        if (!selected || selected->triangles.empty()) continue;
         Effect effect;
         effect.index = i;
         effect.spec = e;
-        effect.source = std::move(selected).value();
+        effect.source = std::move(*selected);
         trajectory::Source& source = effect.source;
         // A triangle with two corners at one point has no edge to sweep: its strip would be a
         // line. Leaving such triangles out keeps every strip a surface.
@@ -146,12 +141,8 @@ SilhouetteShellPass::SilhouetteShellPass(const gpu::Context& ctx, const scene::S
         gpu::uploadBuffer(ctx, effect.colours, std::span<const glm::vec4>(colours));
         effect.output = effectStorage(ctx, outputCapacity * sizeof(shared::TrajectoryVertex),
                                       VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "shell geometry");
-        effect.counters = gpu::createBuffer(
-            ctx, sizeof(shared::SilhouetteShellCounters),
-            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
-                VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-            gpu::MemoryUsage::Readback, "shell counters");
-        std::memset(effect.counters.mapped, 0, sizeof(shared::SilhouetteShellCounters));
+        effect.counters =
+            effectCounters(ctx, sizeof(shared::SilhouetteShellCounters), "shell counters");
         effects_.push_back(std::move(effect));
     }
     if (effects_.empty()) return; // a scene without the effect pays for nothing
@@ -267,22 +258,11 @@ void SilhouetteShellPass::advance(VkCommandBuffer cmd, const fluid::SceneSimulat
 uint32_t SilhouetteShellPass::draw(VkCommandBuffer cmd, const scene::Scene& scene,
                                    const SceneCamera& camera, std::span<const uint8_t> shown) {
     if (effects_.empty() || !history_.recorded()) return 0;
-    const shared::SceneFrame frame = sceneFrame(scene, camera);
-    std::memcpy(frame_.mapped, &frame, sizeof frame);
-    uint32_t draws = 0;
-    for (const Effect& effect : effects_) {
-        if (!shown.empty() && (effect.index >= shown.size() || shown[effect.index] == 0)) continue;
-        drawBuiltTriangles(cmd, shellDraw_, drawSet_, effect.output, effect.counters,
-                           scene.output.fps);
-        ++draws;
-    }
-    return draws;
+    return drawBuiltEffects(cmd, effects_, scene, camera, shown, frame_, shellDraw_, drawSet_);
 }
 
 const SilhouetteShellPass::Effect* SilhouetteShellPass::find(size_t effect) const {
-    for (const Effect& e : effects_)
-        if (e.index == effect) return &e;
-    return nullptr;
+    return findEffect(effects_, effect);
 }
 
 SilhouetteShellPass::Counts SilhouetteShellPass::counts(size_t effect) const {

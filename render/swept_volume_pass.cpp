@@ -73,16 +73,12 @@ SweptVolumePass::SweptVolumePass(const gpu::Context& ctx, const scene::Scene& sc
     for (size_t i = 0; i < scene.effects.size(); ++i) {
         const scene::EffectSpec& e = scene.effects[i];
         if (e.type != scene::EffectType::SweptVolume) continue;
-        trajectory::Selection selection;
-        selection.meshes = e.meshes;
-        selection.bones = e.bones;
-        selection.minBoneWeight = e.minBoneWeight;
-        Result<trajectory::Source> selected = trajectory::selectSource(character, selection);
-        if (!selected || selected.value().vertices.empty()) continue;
+        std::optional<trajectory::Source> selected = effectSource(character, e);
+        if (!selected) continue;
         Effect effect;
         effect.index = i;
         effect.spec = e;
-        effect.source = std::move(selected).value();
+        effect.source = std::move(*selected);
         const trajectory::Source& source = effect.source;
         const uint32_t n = uint32_t(source.vertices.size());
         effect.vertexCount = n;
@@ -117,12 +113,8 @@ SweptVolumePass::SweptVolumePass(const gpu::Context& ctx, const scene::Scene& sc
         if (!edges.empty()) gpu::uploadBuffer(ctx, effect.edges, std::span<const uint32_t>(edges));
         effect.output = effectStorage(ctx, outputCapacity * sizeof(shared::TrajectoryVertex),
                                       VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "swept geometry");
-        effect.counters = gpu::createBuffer(
-            ctx, sizeof(shared::SweptVolumeCounters),
-            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
-                VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-            gpu::MemoryUsage::Readback, "swept counters");
-        std::memset(effect.counters.mapped, 0, sizeof(shared::SweptVolumeCounters));
+        effect.counters =
+            effectCounters(ctx, sizeof(shared::SweptVolumeCounters), "swept counters");
         effects_.push_back(std::move(effect));
     }
     if (effects_.empty()) return; // a scene without the effect pays for nothing
@@ -214,22 +206,11 @@ void SweptVolumePass::advance(VkCommandBuffer cmd, const fluid::SceneSimulation&
 uint32_t SweptVolumePass::draw(VkCommandBuffer cmd, const scene::Scene& scene,
                                const SceneCamera& camera, std::span<const uint8_t> shown) {
     if (effects_.empty() || !history_.recorded()) return 0;
-    const shared::SceneFrame frame = sceneFrame(scene, camera);
-    std::memcpy(frame_.mapped, &frame, sizeof frame);
-    uint32_t draws = 0;
-    for (const Effect& effect : effects_) {
-        if (!shown.empty() && (effect.index >= shown.size() || shown[effect.index] == 0)) continue;
-        drawBuiltTriangles(cmd, volumeDraw_, drawSet_, effect.output, effect.counters,
-                           scene.output.fps);
-        ++draws;
-    }
-    return draws;
+    return drawBuiltEffects(cmd, effects_, scene, camera, shown, frame_, volumeDraw_, drawSet_);
 }
 
 const SweptVolumePass::Effect* SweptVolumePass::find(size_t effect) const {
-    for (const Effect& e : effects_)
-        if (e.index == effect) return &e;
-    return nullptr;
+    return findEffect(effects_, effect);
 }
 
 SweptVolumePass::Counts SweptVolumePass::counts(size_t effect) const {

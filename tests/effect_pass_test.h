@@ -6,11 +6,13 @@
 #include "core/gpu/commands.h"
 #include "core/scene/scene.h"
 #include "fluid/scene_simulation.h"
+#include "shaders/shared/skinning.h"
 #include "tests/gpu_test.h"
 
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace mfx::test {
 
@@ -23,6 +25,26 @@ inline scene::Scene clipScene(const std::string& clip, const std::string& effect
     Result<scene::Scene> s = scene::parseScene(text, "test.json");
     EXPECT_TRUE(s) << (s ? "" : s.error().message);
     return s ? std::move(s).value() : scene::Scene{};
+}
+
+// A cube from -1 to 1 whose faces have their own vertices (24, as a flat-shaded mesh has: each
+// corner is three copies at one position), two triangles a face, appended to the lists.
+inline void flatShadedCube(std::vector<shared::SkinVertexIn>& vertices,
+                           std::vector<uint32_t>& triangles) {
+    for (int axis = 0; axis < 3; ++axis)
+        for (float side : {-1.0f, 1.0f}) {
+            const uint32_t base = uint32_t(vertices.size());
+            for (int corner = 0; corner < 4; ++corner) {
+                glm::vec3 p(0.0f);
+                p[axis] = side;
+                p[(axis + 1) % 3] = (corner & 1) ? 1.0f : -1.0f;
+                p[(axis + 2) % 3] = (corner & 2) ? 1.0f : -1.0f;
+                shared::SkinVertexIn v{};
+                v.position = glm::vec4(p, 1.0f);
+                vertices.push_back(v);
+            }
+            triangles.insert(triangles.end(), {base, base + 1, base + 3, base, base + 3, base + 2});
+        }
 }
 
 template <class Pass>

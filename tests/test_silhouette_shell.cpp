@@ -194,20 +194,7 @@ TEST_F(SilhouetteShellTest, ASceneWithoutTheEffectHasNoPass) {
 TEST(SilhouetteShellNormals, AveragedAcrossFlatShadedSeams) {
     std::vector<shared::SkinVertexIn> vertices;
     std::vector<uint32_t> triangles;
-    for (int axis = 0; axis < 3; ++axis)
-        for (float side : {-1.0f, 1.0f}) {
-            const uint32_t base = uint32_t(vertices.size());
-            for (int corner = 0; corner < 4; ++corner) {
-                glm::vec3 p(0.0f);
-                p[axis] = side;
-                p[(axis + 1) % 3] = (corner & 1) ? 1.0f : -1.0f;
-                p[(axis + 2) % 3] = (corner & 2) ? 1.0f : -1.0f;
-                shared::SkinVertexIn v{};
-                v.position = glm::vec4(p, 1.0f);
-                vertices.push_back(v);
-            }
-            triangles.insert(triangles.end(), {base, base + 1, base + 3, base, base + 3, base + 2});
-        }
+    flatShadedCube(vertices, triangles);
     const std::vector<uint32_t> around = render::shellVertexTriangles(vertices, triangles);
     ASSERT_EQ(around.size(), around[vertices.size()]) << "the last offset ends the lists";
     for (size_t v = 0; v < vertices.size(); ++v) {

@@ -165,20 +165,7 @@ TEST_F(SweptVolumeTest, ASceneWithoutTheEffectHasNoPass) {
 TEST(SweptVolumeEdges, FoundAcrossSeams) {
     std::vector<shared::SkinVertexIn> vertices;
     std::vector<uint32_t> triangles;
-    for (int axis = 0; axis < 3; ++axis)
-        for (float side : {-1.0f, 1.0f}) {
-            const uint32_t base = uint32_t(vertices.size());
-            for (int corner = 0; corner < 4; ++corner) {
-                glm::vec3 p(0.0f);
-                p[axis] = side;
-                p[(axis + 1) % 3] = (corner & 1) ? 1.0f : -1.0f;
-                p[(axis + 2) % 3] = (corner & 2) ? 1.0f : -1.0f;
-                shared::SkinVertexIn v{};
-                v.position = glm::vec4(p, 1.0f);
-                vertices.push_back(v);
-            }
-            triangles.insert(triangles.end(), {base, base + 1, base + 3, base, base + 3, base + 2});
-        }
+    flatShadedCube(vertices, triangles);
     const std::vector<uint32_t> edges = render::sweptVolumeEdges(vertices, triangles);
     ASSERT_EQ(edges.size(), 18u * 6u);
     for (size_t e = 0; e < edges.size(); e += 6) {
