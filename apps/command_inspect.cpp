@@ -2,6 +2,7 @@
 // the one-line reason it refuses it.
 #include "apps/commands.h"
 
+#include "core/anim/bone_groups.h"
 #include "core/anim/gltf_import.h"
 
 #include <algorithm>
@@ -100,16 +101,31 @@ void printBounds(const anim::Character& character) {
                 double(high.z));
 }
 
+// Which bones each bone group resolves to (core/anim/bone_groups.h), as a scene's "bones" would.
+void printBoneGroups(const anim::Character& character) {
+    std::printf("bone groups  (what an effect's \"bones\": [\"right_leg\"] and so on select)\n");
+    for (const std::string& group : anim::boneGroupNames()) {
+        const std::vector<std::string> bones = anim::resolveBoneGroup(character, group);
+        std::string list;
+        for (const std::string& b : bones)
+            list += (list.empty() ? "" : ", ") + b;
+        std::printf("  %-11s %s\n", group.c_str(),
+                    bones.empty() ? "(none recognised: name its bones instead)" : list.c_str());
+    }
+}
+
 } // namespace
 
 int runInspect(std::span<const std::string> args) {
     cli::ParsedArgs parsed;
     int exitCode = kExitOk;
-    if (!parseOrExit(args, {}, 1,
-                     "usage: motionfx inspect FILE\n\nLoads a glTF 2.0 character (.gltf or .glb) "
-                     "and prints its meshes, joints, clips and rest-pose bounds, or the reason "
-                     "the file is refused.",
-                     parsed, exitCode))
+    if (!parseOrExit(
+            args, {}, 1,
+            "usage: motionfx inspect FILE\n\nLoads a glTF 2.0 character (.gltf or .glb) "
+            "and prints its meshes, joints, clips, rest-pose bounds and the bones each bone group "
+            "(right_leg, head, ...) resolves to, or the reason "
+            "the file is refused.",
+            parsed, exitCode))
         return exitCode;
     if (parsed.positional.empty()) {
         printError("inspect needs a .gltf or .glb file (see --help)");
@@ -126,6 +142,7 @@ int runInspect(std::span<const std::string> args) {
     printJoints(character);
     printClips(character);
     printBounds(character);
+    printBoneGroups(character);
     return kExitOk;
 }
 

@@ -34,12 +34,16 @@ int runRender(std::span<const std::string> args) {
     options.push_back({"frames", "N", "render the first N frames (default: the scene's)"});
     options.push_back({"size", "WxH", "image size in pixels (default: the scene's, 1280x720)"});
     options.push_back({"stats", "FILE", "write per-frame statistics as JSON"});
+    for (const cli::OptionSpec& o : characterOptions())
+        options.push_back(o);
     cli::ParsedArgs parsed;
     int exitCode = kExitOk;
     if (!parseOrExit(args, options, 1,
-                     "usage: motionfx render [SCENE] [options]\n\nRenders a scene file (JSON; "
-                     "README.md \"Scene files\") or, without one, the built-in default scene "
-                     "headless into DIR/frame_0000.png, frame_0001.png, ... and, when ffmpeg is "
+                     "usage: motionfx render [SCENE | CHARACTER.glb] [options]\n\nRenders a scene "
+                     "file (JSON; README.md \"Scene files\"), or a .gltf/.glb character with "
+                     "the default effects on its fastest limb, framed, or without either the "
+                     "built-in default scene headless into DIR/frame_0000.png, frame_0001.png, ... "
+                     "and, when ffmpeg is "
                      "installed, DIR/scene.mp4.",
                      parsed, exitCode))
         return exitCode;
@@ -104,6 +108,7 @@ int runRender(std::span<const std::string> args) {
                 s.file.c_str(), ctx.info().name.c_str(), sim.frameCount(), s.output.width,
                 s.output.height, outDir.c_str(), frameName(sim.frameCount() - 1).c_str(),
                 video.c_str());
+    reportMotionlessEffects(sim.scene(), argument.character, sim.frameCount());
     if (statsFile.is_open())
         statsFile << nlohmann::json{{"device", ctx.info().name},
                                     {"scene", s.file},

@@ -13,12 +13,16 @@ namespace mfx::app {
 int runScene(std::span<const std::string> args) {
     cli::ParsedArgs parsed;
     int exitCode = kExitOk;
-    if (!parseOrExit(args, {}, 1,
-                     "usage: motionfx scene [FILE]\n\nChecks a scene file (JSON; see README.md "
-                     "\"Scene files\") and prints what it asks for: the character and clip, the "
-                     "frames, and each effect with its window and the vertices its bones and "
-                     "meshes select. Without FILE, the built-in default scene.",
-                     parsed, exitCode))
+    const std::vector<cli::OptionSpec> options = characterOptions();
+    if (!parseOrExit(
+            args, options, 1,
+            "usage: motionfx scene [FILE | CHARACTER.glb]\n\nChecks a scene file (JSON; see "
+            "README.md \"Scene files\") and prints what it asks for: the character and "
+            "clip, the frames, and each effect with its window, its bones (bone groups "
+            "and patterns resolved; the limb chosen for an effect that names none) and "
+            "the vertices they select. Without FILE, the built-in default scene; a "
+            ".gltf/.glb character file gets the default effects on its fastest limb.",
+            parsed, exitCode))
         return exitCode;
     SceneArgument argument;
     if (!loadSceneArgument(parsed, argument, exitCode)) return exitCode;
@@ -33,6 +37,12 @@ int runScene(std::span<const std::string> args) {
     std::printf("output       %ux%u, %.3g fps, %u frames (%.3g s)\n", s.output.width,
                 s.output.height, double(s.output.fps), scene::frameCount(s, c),
                 double(scene::frameCount(s, c)) / double(s.output.fps));
+    std::printf("camera       at (%.3g, %.3g, %.3g) looking at (%.3g, %.3g, %.3g), %.3g degrees; "
+                "floor at y = %.3g\n",
+                double(s.camera.position.x), double(s.camera.position.y),
+                double(s.camera.position.z), double(s.camera.target.x), double(s.camera.target.y),
+                double(s.camera.target.z), double(s.camera.fovDegrees),
+                double(s.stage.floorHeight));
     std::printf("effects      %zu\n", s.effects.size());
     for (const scene::EffectSpec& e : s.effects) {
         trajectory::Selection selection;
@@ -53,9 +63,17 @@ int runScene(std::span<const std::string> args) {
             std::printf("%s\n", source.error().message.c_str());
             continue;
         }
+        std::string bones = "the whole character";
+        if (!e.bones.empty()) {
+            bones.clear();
+            for (const std::string& b : e.bones)
+                bones += (bones.empty() ? "" : ", ") + b;
+        }
         if (!surface) {
-            std::printf("%zu vertices, %zu triangles selected\n", source.value().vertices.size(),
-                        source.value().triangles.size() / 3);
+            std::printf("%zu vertices, %zu triangles selected, stride %u\n",
+                        source.value().vertices.size(), source.value().triangles.size() / 3,
+                        e.stride);
+            std::printf("  %-18s bones: %s\n", "", bones.c_str());
             continue;
         }
         std::printf("%zu surface points from %zu triangles (step %.3g)", report.samples,
@@ -65,7 +83,7 @@ int runScene(std::span<const std::string> args) {
                         report.degenerateInUv, report.degenerateInModel, report.withoutUv);
         for (const std::string& mesh : report.overlappingMeshes)
             std::printf("; warning: mesh \"%s\" has overlapping UVs", mesh.c_str());
-        std::printf("\n");
+        std::printf("\n  %-18s bones: %s\n", "", bones.c_str());
     }
     return kExitOk;
 }

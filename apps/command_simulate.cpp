@@ -36,13 +36,17 @@ int runSimulate(std::span<const std::string> args) {
     std::vector<cli::OptionSpec> options = deviceOptions();
     options.push_back({"frames", "N", "simulate N frames (default: the scene's)"});
     options.push_back({"stats", "FILE", "write per-frame statistics as JSON"});
+    for (const cli::OptionSpec& o : characterOptions())
+        options.push_back(o);
     cli::ParsedArgs parsed;
     int exitCode = kExitOk;
-    if (!parseOrExit(args, options, 1,
-                     "usage: motionfx simulate [SCENE] [options]\n\nRuns the scene's trajectories "
-                     "and smoke on the GPU, frame by frame, without drawing, and prints what ran. "
-                     "Without SCENE, the built-in default scene.",
-                     parsed, exitCode))
+    if (!parseOrExit(
+            args, options, 1,
+            "usage: motionfx simulate [SCENE | CHARACTER.glb] [options]\n\nRuns the scene's "
+            "trajectories and smoke on the GPU, frame by frame, without drawing, and "
+            "prints what ran. Without SCENE, the built-in default scene; a .gltf/.glb "
+            "character file in its place gets the default effects on its fastest limb.",
+            parsed, exitCode))
         return exitCode;
     SceneArgument argument;
     if (!loadSceneArgument(parsed, argument, exitCode)) return exitCode;
@@ -80,6 +84,7 @@ int runSimulate(std::span<const std::string> args) {
                 s.file.c_str(), sim.frameCount(), context->info().name.c_str(), dispatchTotal,
                 gpuTotal, sim.trajectories().size(), sim.smokeGrids().size(),
                 double(sim.fluidBytes()) / (1024.0 * 1024.0), sleepingFrames);
+    reportMotionlessEffects(sim.scene(), argument.character, sim.frameCount());
     if (statsFile.is_open())
         statsFile << nlohmann::json{{"device", context->info().name},
                                     {"scene", s.file},

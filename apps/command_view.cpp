@@ -166,11 +166,15 @@ int runView(std::span<const std::string> args) {
     options.push_back({"paused", "", "start paused on the first frame"});
     options.push_back({"quit-after", "N", "close by itself after presenting N frames"});
     options.push_back({"screenshot", "FILE", "on closing, write the window's last picture as PNG"});
+    for (const cli::OptionSpec& o : characterOptions())
+        options.push_back(o);
     cli::ParsedArgs parsed;
     int exitCode = kExitOk;
     if (!parseOrExit(args, options, 1,
-                     "usage: motionfx view [SCENE] [options]\n\nPlays a scene file (default: "
-                     "the built-in scene) in a window in real time, looping, with the frame "
+                     "usage: motionfx view [SCENE | CHARACTER.glb] [options]\n\nPlays a scene "
+                     "file (default: the built-in scene; a .gltf/.glb character file gets the "
+                     "default effects on its fastest limb) in a window in real time, looping, with "
+                     "the frame "
                      "number, frame time and state drawn in the corner.\n" +
                          std::string(kKeysHelp) + ".",
                      parsed, exitCode))

@@ -1,7 +1,11 @@
 #include "apps/commands.h"
 
+#include "core/anim/sampling.h"
+#include "core/scene/scene_fit.h"
+
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 
 namespace mfx::app {
 
@@ -66,15 +70,37 @@ bool openOutputFile(const std::string& path, std::ofstream& file) {
 }
 
 bool loadSceneArgument(const cli::ParsedArgs& parsed, SceneArgument& out, int& exitCode) {
-    Result<scene::Scene> loaded = parsed.positional.empty()
-                                      ? Result<scene::Scene>(scene::defaultScene())
-                                      : scene::loadScene(parsed.positional[0]);
+    const bool preview = !parsed.positional.empty() && scene::isCharacterFile(parsed.positional[0]);
+    Result<scene::Scene> loaded =
+        parsed.positional.empty() ? Result<scene::Scene>(scene::defaultScene())
+        : preview                 ? Result<scene::Scene>(scene::previewScene(parsed.positional[0]))
+                                  : scene::loadScene(parsed.positional[0]);
     if (!loaded) {
         printError(loaded.error().message);
         exitCode = kExitFailure;
         return false;
     }
     out.scene = std::move(loaded).value();
+    if (parsed.has("character")) {
+        const std::string file = parsed.value("character");
+        if (file.empty()) {
+            printError("--character needs a .gltf/.glb file or \"fighter\"");
+            exitCode = kExitUsage;
+            return false;
+        }
+        // Relative to where the command runs, not to the scene file.
+        out.scene.character.source =
+            file == "fighter" ? file : std::filesystem::absolute(file).string();
+        if (!parsed.has("clip")) out.scene.character.clip.clear();
+    }
+    if (parsed.has("clip")) {
+        if (parsed.value("clip").empty()) {
+            printError("--clip needs a clip name");
+            exitCode = kExitUsage;
+            return false;
+        }
+        out.scene.character.clip = parsed.value("clip");
+    }
     if (parsed.has("size")) {
         auto size = cli::parseSize(parsed.value("size"), 16384);
         if (!size) {
@@ -94,14 +120,61 @@ bool loadSceneArgument(const cli::ParsedArgs& parsed, SceneArgument& out, int& e
         }
         out.scene.output.frames = frames.value();
     }
-    Result<anim::Character> character = scene::loadCharacter(out.scene);
+    std::string scaleNote;
+    Result<anim::Character> character = scene::loadCharacter(out.scene, &scaleNote);
     if (!character) {
         printError(character.error().message);
         exitCode = kExitFailure;
         return false;
     }
     out.character = std::move(character).value();
+    std::vector<std::string> notes;
+    if (Status fitted = scene::fitScene(out.scene, out.character, &notes); !fitted) {
+        printError(fitted.error().message);
+        exitCode = kExitFailure;
+        return false;
+    }
+    if (!scaleNote.empty()) std::printf("%s\n", scaleNote.c_str());
+    if (preview) {
+        // One line: the clip, the size and the bones the preview's effects were bound to.
+        const anim::Clip& clip = scene::sceneClip(out.scene, out.character);
+        const scene::Bounds first = scene::poseBounds(
+            out.character,
+            anim::samplePose(out.character, &clip, out.scene.character.start, anim::Wrap::Clamp));
+        std::string bones = notes.empty() ? std::string() : notes.front();
+        const size_t bound = bones.find("\": ");
+        if (bound != std::string::npos) bones = bones.substr(bound + 3);
+        std::printf("preview of %s: clip \"%s\" (%.3g s), %.2f m tall; effects %s\n",
+                    parsed.positional[0].c_str(), clip.name.c_str(), double(clip.duration),
+                    double(first.empty() ? 0.0f : first.size().y), bones.c_str());
+    } else {
+        for (const std::string& note : notes)
+            std::printf("%s\n", note.c_str());
+    }
+    std::fflush(stdout);
     return true;
+}
+
+std::vector<cli::OptionSpec> characterOptions() {
+    return {{"character", "FILE",
+             "put this character (a .gltf/.glb file, or \"fighter\") in the scene instead of "
+             "its own, playing its first clip unless --clip names one"},
+            {"clip", "NAME",
+             "play the character's clip NAME (default: the scene's, else the "
+             "first)"}};
+}
+
+void reportMotionlessEffects(const scene::Scene& scene, const anim::Character& character,
+                             uint32_t frames) {
+    const std::vector<std::string> still = scene::motionlessEffects(scene, character, frames);
+    if (still.empty()) return;
+    std::string list;
+    for (const std::string& s : still)
+        list += (list.empty() ? "" : "; ") + s;
+    std::printf("note: %s no motion to draw: %s\n",
+                still.size() == 1 ? "one effect had"
+                                  : (std::to_string(still.size()) + " effects had").c_str(),
+                list.c_str());
 }
 
 double median(std::vector<double> values) {

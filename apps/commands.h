@@ -54,11 +54,22 @@ bool openOutputFile(const std::string& path, std::ofstream& file);
 // The scene a command was given as its first word, or the built-in default without one, with
 // --size and --frames applied where the command has them, and its character loaded. On failure
 // prints the one-line reason, sets `exitCode` (1, or 2 for a bad option value) and returns false.
+// A .gltf/.glb file in place of a scene previews that character (scene::previewScene); --clip,
+// where the command has it, picks the clip. The scene is fitted to its character
+// (scene::fitScene), and what was chosen for the user (a scale, a limb) is printed on stdout.
 struct SceneArgument {
     scene::Scene scene;
     anim::Character character;
 };
 bool loadSceneArgument(const cli::ParsedArgs& parsed, SceneArgument& out, int& exitCode);
+
+// The --character and --clip options of the commands that take a scene or a character file.
+std::vector<cli::OptionSpec> characterOptions();
+
+// At the end of a run over `frames` frames: one line naming the effects that showed no motion
+// (their vertices never move while they are live, or they are never live), if there are any.
+void reportMotionlessEffects(const scene::Scene& scene, const anim::Character& character,
+                             uint32_t frames);
 
 // False (after printing why) when the scene's output size exceeds the device's largest image.
 bool checkOutputSize(const gpu::Context& ctx, const scene::Scene& scene);

@@ -1,5 +1,7 @@
 #include "fluid/scene_simulation.h"
 
+#include "core/scene/scene_fit.h"
+
 #include "core/anim/sampling.h"
 #include "core/gpu/commands.h"
 #include "core/gpu/context.h"
@@ -74,8 +76,10 @@ uint32_t SimulationFrameStats::fluidDispatches() const {
 Result<std::unique_ptr<SceneSimulation>> SceneSimulation::create(const gpu::Context& ctx,
                                                                  const scene::Scene& scene,
                                                                  const anim::Character& character) {
-    if (Status names = scene::checkNames(scene, character); !names) return names.error();
     std::unique_ptr<SceneSimulation> sim(new SceneSimulation(ctx, scene, character));
+    // Bone groups and patterns resolved, automatic bones, strides, camera and stage chosen (a
+    // scene the caller fitted already is left as it is).
+    if (Status fitted = scene::fitScene(sim->scene_, character); !fitted) return fitted.error();
     sim->frames_ = scene::frameCount(sim->scene_, character);
     for (size_t i = 0; i < sim->scene_.effects.size(); ++i) {
         const scene::EffectSpec& e = sim->scene_.effects[i];
@@ -182,9 +186,7 @@ Result<std::unique_ptr<SceneSimulation>> SceneSimulation::create(const gpu::Cont
 }
 
 glm::mat4 SceneSimulation::placement() const {
-    return glm::translate(glm::mat4(1.0f), scene_.character.position) *
-           glm::rotate(glm::mat4(1.0f), glm::radians(scene_.character.yawDegrees),
-                       glm::vec3(0.0f, 1.0f, 0.0f));
+    return scene::characterPlacement(scene_);
 }
 
 bool SceneSimulation::effectLive(const scene::EffectSpec& e, float time) const {
@@ -194,7 +196,8 @@ bool SceneSimulation::effectLive(const scene::EffectSpec& e, float time) const {
 }
 
 // The grid is centred on the bounds its effects' vertices sweep over their windows (sampled at
-// the frame rate), and stands on the floor (y = 0) when the stage has one and the bounds allow.
+// the frame rate), and stands on the floor (y = stage.floorHeight) when the stage has one and the
+// bounds allow.
 Status SceneSimulation::placeGrid(SmokeGrid& grid) {
     glm::vec3 low(std::numeric_limits<float>::max()), high(std::numeric_limits<float>::lowest());
     const anim::Clip& clip = scene::sceneClip(scene_, character_);
@@ -226,7 +229,8 @@ Status SceneSimulation::placeGrid(SmokeGrid& grid) {
         low = high = scene_.character.position + glm::vec3(0.0f, 0.5f * extent.y, 0.0f);
     }
     grid.origin = 0.5f * (low + high) - 0.5f * extent;
-    if (scene_.stage.floor && grid.origin.y < 0.0f && low.y >= 0.0f) grid.origin.y = 0.0f;
+    const float floor = scene_.stage.floorHeight;
+    if (scene_.stage.floor && grid.origin.y < floor && low.y >= floor) grid.origin.y = floor;
     return Ok{};
 }
 

@@ -106,12 +106,14 @@ CharacterPass::CharacterPass(const gpu::Context& ctx, const anim::Character& cha
                                              gpu::MemoryUsage::Upload, "character palette");
             parts_.push_back(std::move(part));
         }
-    if (scene.stage.floor)
-        addStageQuad(ctx, glm::vec3(0.0f), glm::vec3(0, 0, 40.0f), glm::vec3(40.0f, 0, 0),
-                     scene.stage.floorColour);
-    if (scene.stage.backdrop)
-        addStageQuad(ctx, glm::vec3(0.0f, 10.0f, -4.0f), glm::vec3(40.0f, 0, 0),
-                     glm::vec3(0, 10.0f, 0), scene.stage.backdropColour);
+    const scene::StageSpec& stage = scene.stage;
+    if (stage.floor)
+        addStageQuad(ctx, glm::vec3(stage.floorCentre.x, stage.floorHeight, stage.floorCentre.z),
+                     glm::vec3(0, 0, stage.floorHalfSize), glm::vec3(stage.floorHalfSize, 0, 0),
+                     stage.floorColour);
+    if (stage.backdrop)
+        addStageQuad(ctx, stage.backdropCentre, stage.backdropHalfWidth,
+                     glm::vec3(0, stage.backdropHalfHeight, 0), stage.backdropColour);
 }
 
 // A rectangle centre ± u ± v; its normal u × v.
@@ -162,10 +164,12 @@ void CharacterPass::skin(VkCommandBuffer cmd, const anim::Pose& pose, const glm:
 }
 
 void CharacterPass::shadow(VkCommandBuffer cmd) {
-    // Around where the character stands, big enough for a kick or a sword's reach.
-    const glm::vec3 centre = scene_.character.position + glm::vec3(0.0f, 1.0f, 0.0f);
+    // Around where the character stands, big enough for a kick or a sword's reach (fitScene
+    // sizes it to the character's animated bounds when it frames the camera).
+    const glm::vec3 centre =
+        scene_.stage.shadowCentre.value_or(scene_.character.position + glm::vec3(0.0f, 1.0f, 0.0f));
     const scene::LightSpec key = scene_.lights.empty() ? scene::LightSpec{} : scene_.lights.front();
-    lightViewProjection_ = lightViewProjection(key, centre, 2.5f);
+    lightViewProjection_ = lightViewProjection(key, centre, scene_.stage.shadowRadius);
     shadowReady_ = key.shadow;
     if (!key.shadow) return;
     gpu::imageBarrier(cmd, shadowMap_, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,

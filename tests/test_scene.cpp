@@ -22,7 +22,8 @@ TEST(SceneFile, SpeedLinesAloneIsACompleteScene) {
     const scene::Scene s = parse(R"({"effects": [{"type": "speed_lines"}]})");
     ASSERT_EQ(s.effects.size(), 1u);
     EXPECT_EQ(s.effects[0].type, scene::EffectType::SpeedLines);
-    EXPECT_TRUE(s.effects[0].bones.empty()); // the whole character
+    EXPECT_TRUE(s.effects[0].bones.empty());
+    EXPECT_TRUE(s.effects[0].automaticBones); // fitScene binds it to the fastest limb
     EXPECT_TRUE(s.effects[0].meshes.empty());
     EXPECT_EQ(s.effects[0].name, "speed_lines#0");
     EXPECT_EQ(s.character.source, "fighter");
@@ -178,7 +179,10 @@ const BadScene kBadScenes[] = {
     {"UnknownBone",
      R"({"effects": [{"type": "speed_lines"}, {"type": "motion_blur"},
                      {"type": "smoke", "bones": ["hand_X"]}]})",
-     "effects[2].bones[0]: no bone \"hand_X\"; bones are: hips, spine, chest", true},
+     "effects[2].bones[0]: no bone or bone group \"hand_X\"; groups are: right_leg, left_leg",
+     true},
+    {"UnknownBonePattern", R"({"effects": [{"type": "smoke", "bones": ["mixamorig:*"]}]})",
+     "effects[0].bones[0]: pattern \"mixamorig:*\" matches no bone; bones are: hips, spine", true},
     {"UnknownMesh", R"({"effects": [{"type": "motion_blur", "meshes": ["cape"]}]})",
      "effects[0].meshes[0]: no mesh \"cape\"; meshes are: body, sword", true},
     {"UnknownClip", R"({"character": {"clip": "moonwalk"}, "effects": []})",

@@ -147,4 +147,21 @@ Status checkInvariants(const Character& c) {
     return Ok{};
 }
 
+void scaleCharacter(Character& character, float factor) {
+    for (Node& node : character.nodes)
+        node.rest.translation *= factor;
+    for (Skin& skin : character.skins)
+        for (glm::mat4& inverseBind : skin.inverseBind)
+            inverseBind[3] = glm::vec4(glm::vec3(inverseBind[3]) * factor, inverseBind[3].w);
+    for (Mesh& mesh : character.meshes)
+        for (Primitive& p : mesh.primitives)
+            for (glm::vec3& position : p.positions)
+                position *= factor;
+    for (Clip& clip : character.clips)
+        for (Channel& channel : clip.channels)
+            if (channel.path == Path::Translation)
+                for (glm::vec4& value : channel.values)
+                    value = glm::vec4(glm::vec3(value) * factor, value.w);
+}
+
 } // namespace mfx::anim

@@ -100,6 +100,14 @@ struct Character {
 std::vector<glm::vec3> smoothNormals(const std::vector<glm::vec3>& positions,
                                      const std::vector<uint32_t>& indices, glm::vec3 fallback);
 
+// Scales the whole character uniformly by `factor` about its origin, so that every world position
+// it takes in every pose is `factor` times what it was and every rotation is unchanged: each
+// node's rest translation, every translation key (CUBICSPLINE tangents too), the translation of
+// every inverse bind matrix and every vertex position are multiplied by `factor`. (A node's world
+// matrix W becomes D W D^-1 with D = scale(factor), so a skinned vertex W B v becomes D W B v.)
+// Node scales, rotations and normals are left alone. `factor` must be finite and positive.
+void scaleCharacter(Character& character, float factor);
+
 // Checks the invariants above; the error names the element (e.g. "skins[0]: 3 inverse bind
 // matrices for 4 joints"). Producers call it before handing a character out.
 Status checkInvariants(const Character& character);

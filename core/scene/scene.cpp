@@ -1,7 +1,9 @@
 #include "core/scene/scene.h"
 
+#include "core/anim/bone_groups.h"
 #include "core/anim/fighter.h"
 #include "core/anim/gltf_import.h"
+#include "core/scene/scene_fit.h"
 
 #include <nlohmann/json.hpp>
 
@@ -173,7 +175,8 @@ private:
 };
 
 void readCharacter(const Object& o, CharacterSpec& c) {
-    o.onlyKeys({"source", "clip", "start", "end", "speed", "loop", "position", "yaw_degrees"});
+    o.onlyKeys({"source", "clip", "start", "end", "speed", "loop", "position", "yaw_degrees",
+                "height", "scale"});
     c.source = o.string("source", c.source);
     if (c.source.empty()) fail(o.at("source"), "must name \"fighter\" or a .gltf/.glb file");
     c.clip = o.string("clip", c.clip);
@@ -186,6 +189,11 @@ void readCharacter(const Object& o, CharacterSpec& c) {
     c.loop = o.boolean("loop", c.loop);
     c.position = o.vec3("position", c.position);
     c.yawDegrees = float(o.number("yaw_degrees", c.yawDegrees, -3600.0, 3600.0));
+    if (o.has("height") && o.has("scale"))
+        fail(o.at("scale"), "give height or scale, not both (height: the metres to scale the "
+                            "character to; scale: the factor to scale it by)");
+    if (const std::optional<double> h = o.optionalNumber("height", 0.0, 1e4, true)) c.height = *h;
+    if (const std::optional<double> f = o.optionalNumber("scale", 0.0, 1e6, true)) c.scale = *f;
 }
 
 void readCamera(const Object& o, CameraSpec& c) {
@@ -252,6 +260,8 @@ void readCommonEffectKeys(const Object& o, size_t index, const std::string& type
     e.name = o.string("name", type + "#" + std::to_string(index));
     e.bones = o.strings("bones");
     e.meshes = o.strings("meshes");
+    e.automaticBones = !o.has("bones") && !o.has("meshes");
+    e.automaticStride = !o.has("stride");
     e.minBoneWeight = float(o.number("min_bone_weight", e.minBoneWeight, 0.0, 1.0, true));
     e.start = float(o.number("start", e.start, 0.0, 1e5));
     e.end = o.optionalNumber("end", 0.0, 1e5);
@@ -490,6 +500,7 @@ Scene readScene(const json& doc, const std::string& where) {
     top.onlyKeys({"character", "camera", "lights", "stage", "output", "effects"});
     if (top.has("character")) readCharacter(Object(top.raw("character"), "character"), s.character);
     if (top.has("camera")) readCamera(Object(top.raw("camera"), "camera"), s.camera);
+    s.camera.automatic = !top.has("camera");
     if (top.has("lights")) {
         const json& lights = top.raw("lights");
         if (!lights.is_array())
@@ -530,13 +541,6 @@ std::string parseMessage(const std::string& what) {
     std::string m = close == std::string::npos ? what : what.substr(close + 2);
     if (m.rfind("parse error at ", 0) == 0) m = m.substr(15);
     return m;
-}
-
-std::vector<std::string> nodeNames(const anim::Character& c) {
-    std::vector<std::string> out;
-    for (const anim::Node& n : c.nodes)
-        out.push_back(n.name);
-    return out;
 }
 
 } // namespace
@@ -590,6 +594,7 @@ Result<Scene> loadScene(const std::filesystem::path& file) {
 Scene defaultScene() {
     Scene s;
     s.file = "(built-in default scene)";
+    s.camera.automatic = true;
     EffectSpec lines;
     lines.type = EffectType::SpeedLines;
     lines.name = "kick lines";
@@ -619,7 +624,30 @@ Scene defaultScene() {
     return s;
 }
 
-Result<anim::Character> loadCharacter(const Scene& scene) {
+Scene previewScene(const std::string& file) {
+    Scene s = defaultScene();
+    s.file = "(preview of " + file + ")";
+    s.character.source = file; // the preview's "file" is no folder: read from the working one
+    s.effects[0].name = "speed lines";
+    s.effects[1].name = "blur";
+    s.effects[2].name = "smoke";
+    for (EffectSpec& e : s.effects) {
+        e.meshes.clear();
+        e.bones.clear();
+        e.automaticBones = true;
+        e.automaticStride = true;
+    }
+    return s;
+}
+
+bool isCharacterFile(const std::string& path) {
+    std::string extension = std::filesystem::path(path).extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    return extension == ".gltf" || extension == ".glb";
+}
+
+Result<anim::Character> loadCharacter(const Scene& scene, std::string* note) {
     anim::Character character;
     if (scene.character.source == "fighter") {
         character = anim::makeFighter();
@@ -632,10 +660,16 @@ Result<anim::Character> loadCharacter(const Scene& scene) {
         character = std::move(imported).value();
     }
     if (Status names = checkNames(scene, character); !names) return names.error();
+    const std::string where =
+        scene.character.source == "fighter"
+            ? std::string("the built-in fighter")
+            : std::filesystem::path(scene.character.source).filename().string();
+    const float factor = chooseCharacterScale(scene, character, where, note);
+    if (factor != 1.0f) anim::scaleCharacter(character, factor);
     return character;
 }
 
-Status checkNames(const Scene& scene, const anim::Character& character) {
+Status checkClip(const Scene& scene, const anim::Character& character) {
     if (character.clips.empty())
         return Error{scene.file + ": character.source: \"" + scene.character.source +
                      "\" has no animation clip"};
@@ -651,14 +685,18 @@ Status checkNames(const Scene& scene, const anim::Character& character) {
         return Error{scene.file + ": character.start: " + formatNumber(scene.character.start) +
                      " is not before the end of clip \"" + clip.name + "\" (" +
                      formatNumber(clip.duration) + " s)"};
+    return Ok{};
+}
+
+Status checkNames(const Scene& scene, const anim::Character& character) {
+    if (Status clip = checkClip(scene, character); !clip) return clip;
     for (size_t i = 0; i < scene.effects.size(); ++i) {
         const EffectSpec& e = scene.effects[i];
         const std::string path = "effects[" + std::to_string(i) + "]";
         for (size_t b = 0; b < e.bones.size(); ++b)
-            if (!character.findNode(e.bones[b]))
+            if (auto bones = anim::resolveBoneEntry(character, e.bones[b]); !bones)
                 return Error{scene.file + ": " + path + ".bones[" + std::to_string(b) +
-                             "]: no bone \"" + e.bones[b] +
-                             "\"; bones are: " + join(nodeNames(character))};
+                             "]: " + bones.error().message};
         for (size_t m = 0; m < e.meshes.size(); ++m)
             if (!character.findMesh(e.meshes[m])) {
                 std::vector<std::string> meshes;

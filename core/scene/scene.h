@@ -26,6 +26,10 @@ struct CharacterSpec {
     bool loop = false;              // past `end`, wrap to `start` (else hold the last pose)
     glm::vec3 position{0.0f};       // world placement
     float yawDegrees = 0.0f;        // rotation about +y
+    // Size (scene_fit.h): the height in metres to scale the character to, or the factor to scale
+    // it by; neither: outliers are brought to a human height, others left alone.
+    std::optional<float> height;
+    std::optional<float> scale;
 };
 
 struct CameraSpec {
@@ -34,6 +38,8 @@ struct CameraSpec {
     float fovDegrees = 40.0f; // vertical
     float nearPlane = 0.05f;
     float farPlane = 50.0f;
+    // Set where the scene has no "camera": fitScene frames the character (and sizes the stage).
+    bool automatic = false;
 };
 
 struct LightSpec {
@@ -48,6 +54,16 @@ struct StageSpec {
     bool backdrop = true;
     glm::vec3 floorColour{0.32f, 0.30f, 0.36f};
     glm::vec3 backdropColour{0.12f, 0.13f, 0.2f};
+    // Where the stage stands (not keys of the scene file: fitScene sizes them to the character
+    // when it frames the camera; these defaults suit a 1.8 m character at the origin).
+    float floorHeight = 0.0f;
+    glm::vec3 floorCentre{0.0f}; // x and z; y is floorHeight
+    float floorHalfSize = 40.0f; // the floor is a square 2x this across
+    glm::vec3 backdropCentre{0.0f, 10.0f, -4.0f};
+    glm::vec3 backdropHalfWidth{40.0f, 0.0f, 0.0f}; // horizontal, along the backdrop
+    float backdropHalfHeight = 10.0f;
+    std::optional<glm::vec3> shadowCentre; // default: character.position + (0, 1, 0)
+    float shadowRadius = 2.5f;             // half-size of the key light's shadow box
 };
 
 struct OutputSpec {
@@ -124,6 +140,10 @@ struct EffectSpec {
     std::vector<std::string> bones;  // empty: the whole character
     std::vector<std::string> meshes; // empty: every mesh
     float minBoneWeight = 0.5f;
+    // Set by the parser where the effect has neither "bones" nor "meshes" (fitScene binds it to
+    // the fastest limb) and where it has no "stride" (fitScene chooses one from the vertex count).
+    bool automaticBones = false;
+    bool automaticStride = false;
     float start = 0.0f;       // the window, in scene seconds
     std::optional<float> end; // default: the end of the scene
     // Trajectory (speed lines, blur volumes, particles; smoke reads its segments too).
@@ -182,9 +202,22 @@ Result<Scene> loadScene(const std::filesystem::path& file);
 // kicking leg and smoke from the kicking foot.
 Scene defaultScene();
 
+// What `motionfx render CHARACTER.glb` plays: the file's first clip (or character.clip, once
+// set), framed by fitScene, with the default scene's speed-lines, blur volume and smoke bound to
+// the fastest limb at automatic strides. `file` is named as given (relative to the working
+// directory).
+Scene previewScene(const std::string& file);
+// Whether a command's first word names a character file (.gltf or .glb) rather than a scene.
+bool isCharacterFile(const std::string& path);
+
 // Loads the scene's character (the built-in fighter or a glTF file relative to the scene file's
-// folder) and checks the clip and every effect's bone and mesh names against it.
-Result<anim::Character> loadCharacter(const Scene& scene);
+// folder), scales it to a sane size (scene_fit.h: chooseCharacterScale; `note`, when not null,
+// gets the line saying so) and checks the clip and every effect's bone and mesh names against it
+// (checkNames).
+Result<anim::Character> loadCharacter(const Scene& scene, std::string* note = nullptr);
+// Checks that the character has the scene's clip and that playback starts inside it.
+Status checkClip(const Scene& scene, const anim::Character& character);
+// checkClip, then every effect's bone (plain names, groups and patterns) and mesh names.
 Status checkNames(const Scene& scene, const anim::Character& character);
 
 // Seconds of scene time the output covers, and the clip time at a scene time.

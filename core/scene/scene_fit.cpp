@@ -1,0 +1,399 @@
+#include "core/scene/scene_fit.h"
+
+#include "core/anim/bone_groups.h"
+#include "core/anim/sampling.h"
+#include "core/anim/skinning.h"
+#include "core/trajectory/build_segment.h"
+#include "core/trajectory/trajectory_source.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <set>
+
+namespace mfx::scene {
+
+namespace {
+
+// The default camera's three-quarter view of a character facing +z: from the front right,
+// slightly above (the direction from the target to the camera).
+const glm::vec3 kThreeQuarterView = glm::normalize(glm::vec3(2.6f, 0.55f, 3.4f));
+constexpr float kFrameFill = 0.95f;    // the framed bounds fill at most this much of the frame
+constexpr float kEffectMargin = 0.08f; // the effects' reach beyond the body, in heights
+constexpr size_t kMaxFramedFrames = 240;
+
+std::string formatNumber(double v, int digits = 3) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.*g", digits, v);
+    return text;
+}
+
+std::string join(const std::vector<std::string>& names) {
+    std::string out;
+    for (const std::string& n : names)
+        out += (out.empty() ? "" : ", ") + n;
+    return out;
+}
+
+Bounds emptyBounds() {
+    return {glm::vec3(std::numeric_limits<float>::max()),
+            glm::vec3(std::numeric_limits<float>::lowest())};
+}
+
+void include(Bounds& b, glm::vec3 p) {
+    b.low = glm::min(b.low, p);
+    b.high = glm::max(b.high, p);
+}
+
+anim::Pose poseAtSceneTime(const Scene& scene, const anim::Character& character, float time) {
+    return anim::samplePose(character, &sceneClip(scene, character),
+                            clipTimeAt(scene, character, time), anim::Wrap::Clamp);
+}
+
+// The frames at which the scene is sampled for its bounds and motion (every frame, or an even
+// subset of a long render).
+std::vector<uint32_t> sampledFrames(uint32_t frames) {
+    std::vector<uint32_t> out;
+    const uint32_t step =
+        std::max<uint32_t>(1, uint32_t((frames + kMaxFramedFrames - 1) / kMaxFramedFrames));
+    for (uint32_t f = 0; f < frames; f += step)
+        out.push_back(f);
+    if (out.back() != frames - 1) out.push_back(frames - 1);
+    return out;
+}
+
+// Whether scene time `time` lies in effect `e`'s window, with half a frame of slack at each end
+// (the rule the simulation plays effects by).
+bool live(const Scene& scene, const EffectSpec& e, float time) {
+    const float slack = 0.5f / scene.output.fps;
+    return time + slack >= e.start && (!e.end || time <= *e.end + slack);
+}
+
+trajectory::Selection selectionOf(const EffectSpec& e) {
+    trajectory::Selection s;
+    s.meshes = e.meshes;
+    s.bones = e.bones;
+    s.minBoneWeight = e.minBoneWeight;
+    return s;
+}
+
+// The peak speed of any bone of `bones` (their world origins, metres per second) over the frames
+// where `e` is live.
+float peakBoneSpeed(const Scene& scene, const anim::Character& character, const EffectSpec& e,
+                    const std::vector<std::string>& bones) {
+    std::vector<int> nodes;
+    for (const std::string& b : bones)
+        if (std::optional<int> n = character.findNode(b)) nodes.push_back(*n);
+    const glm::mat4 placement = characterPlacement(scene);
+    const uint32_t frames = frameCount(scene, character);
+    const float dt = 1.0f / scene.output.fps;
+    float peak = 0.0f;
+    std::vector<glm::vec3> previous;
+    for (uint32_t f = 0; f < frames; ++f) {
+        const float t = float(f) * dt;
+        if (!live(scene, e, t)) {
+            previous.clear();
+            continue;
+        }
+        const anim::Pose pose = poseAtSceneTime(scene, character, t);
+        std::vector<glm::vec3> now;
+        for (int n : nodes)
+            now.push_back(glm::vec3(placement * pose.world[size_t(n)][3]));
+        if (!previous.empty())
+            for (size_t i = 0; i < now.size(); ++i)
+                peak = std::max(peak, glm::length(now[i] - previous[i]) / dt);
+        previous = std::move(now);
+    }
+    return peak;
+}
+
+// Binds an effect that names no bone or mesh to the limb that moves fastest over its window.
+std::string bindFastestLimb(const Scene& scene, const anim::Character& character, EffectSpec& e) {
+    std::string best;
+    std::vector<std::string> bestBones;
+    float bestSpeed = -1.0f;
+    for (const std::string& limb : anim::limbGroupNames()) {
+        std::vector<std::string> bones = anim::resolveBoneGroup(character, limb);
+        if (bones.empty()) continue;
+        // The limb must hold vertices (a recognised name on a bone that skins nothing is no use).
+        trajectory::Selection selection = selectionOf(e);
+        selection.bones = bones;
+        if (!trajectory::selectSource(character, selection)) continue;
+        const float speed = peakBoneSpeed(scene, character, e, bones);
+        if (speed > bestSpeed) {
+            best = limb;
+            bestBones = std::move(bones);
+            bestSpeed = speed;
+        }
+    }
+    if (best.empty())
+        return "bound to the whole character (no bones given, and no limb recognised among its "
+               "bones)";
+    e.bones = bestBones;
+    return "bound to " + best + ", the fastest limb over its window (no bones given; peak " +
+           formatNumber(bestSpeed) + " m/s): " + join(bestBones);
+}
+
+// The number of vertices an effect's trail is built from is its selection over the stride; the
+// automatic stride leaves about `target` of them.
+uint32_t targetCount(const EffectSpec& e) {
+    switch (e.type) {
+    case EffectType::SpeedLines:
+        return kTargetLines;
+    case EffectType::MotionParticles:
+        return kTargetParticles;
+    case EffectType::AfterimageSmear:
+        return e.afterimage.variant == AfterimageVariant::SpeedLines ? kTargetLines : 0;
+    default:
+        return 0; // every vertex: blur volumes, smoke (sampled by max_emitters), mesh effects
+    }
+}
+
+void frameCamera(Scene& scene, const anim::Character& character) {
+    const Bounds body = animatedBounds(scene, character);
+    if (body.empty()) return;
+    const float height = std::max(body.size().y, 1e-3f);
+    const float unit = height / kDefaultHeight; // lengths scale with the character
+    Bounds framed = body;
+    framed.low -= glm::vec3(kEffectMargin * height);
+    framed.high += glm::vec3(kEffectMargin * height);
+
+    const float yaw = glm::radians(scene.character.yawDegrees);
+    const glm::mat3 turn = glm::mat3(glm::rotate(glm::mat4(1.0f), yaw, glm::vec3(0, 1, 0)));
+    const glm::vec3 toCamera = turn * kThreeQuarterView;
+    const glm::vec3 forward = -toCamera;
+    const glm::vec3 right = glm::normalize(glm::cross(forward, glm::vec3(0, 1, 0)));
+    const glm::vec3 up = glm::cross(right, forward);
+    const glm::vec3 target = framed.centre();
+    const float tanV = std::tan(glm::radians(scene.camera.fovDegrees) * 0.5f) * kFrameFill;
+    const float tanH =
+        tanV * float(scene.output.width) / float(std::max<uint32_t>(scene.output.height, 1));
+    // Each corner q of the box must lie inside the view cone: |q.up| <= (D - q.toCamera) tanV,
+    // and the same across; the least distance D that holds for all eight.
+    float distance = 0.0f;
+    for (int corner = 0; corner < 8; ++corner) {
+        const glm::vec3 p((corner & 1) ? framed.high.x : framed.low.x,
+                          (corner & 2) ? framed.high.y : framed.low.y,
+                          (corner & 4) ? framed.high.z : framed.low.z);
+        const glm::vec3 q = p - target;
+        const float along = glm::dot(q, toCamera);
+        distance = std::max(distance, along + std::abs(glm::dot(q, up)) / tanV);
+        distance = std::max(distance, along + std::abs(glm::dot(q, right)) / tanH);
+    }
+    const float radius = 0.5f * glm::length(framed.size());
+    scene.camera.position = target + toCamera * distance;
+    scene.camera.target = target;
+    scene.camera.nearPlane = std::clamp(0.5f * (distance - radius), 1e-3f * unit, 0.05f * unit);
+    scene.camera.farPlane = distance + 60.0f * unit; // past the backdrop and the floor's far edge
+    scene.camera.automatic = false;
+
+    // The stage: the floor where the lowest point of the character goes, the backdrop behind it
+    // (across the character's facing), the shadow box around everything it reaches.
+    StageSpec& stage = scene.stage;
+    const glm::vec3 centre = body.centre();
+    stage.floorHeight = body.low.y;
+    stage.floorCentre = glm::vec3(centre.x, 0.0f, centre.z);
+    stage.floorHalfSize = 40.0f * unit;
+    const glm::vec3 facing = turn * glm::vec3(0, 0, 1);
+    float behind = 0.0f; // how far the body reaches behind its centre, along -facing
+    for (int corner = 0; corner < 8; ++corner) {
+        const glm::vec3 p((corner & 1) ? body.high.x : body.low.x,
+                          (corner & 2) ? body.high.y : body.low.y,
+                          (corner & 4) ? body.high.z : body.low.z);
+        behind = std::max(behind, -glm::dot(p - centre, facing));
+    }
+    stage.backdropHalfHeight = 10.0f * unit;
+    stage.backdropCentre = glm::vec3(centre.x, stage.floorHeight, centre.z) -
+                           facing * (behind + 3.5f * unit) +
+                           glm::vec3(0.0f, stage.backdropHalfHeight, 0.0f);
+    stage.backdropHalfWidth = glm::cross(glm::vec3(0, 1, 0), facing) * (40.0f * unit);
+    stage.shadowCentre = centre;
+    stage.shadowRadius = std::max(2.5f * unit, 0.5f * glm::length(body.size()) + 0.5f * unit);
+}
+
+} // namespace
+
+glm::mat4 characterPlacement(const Scene& scene) {
+    return glm::translate(glm::mat4(1.0f), scene.character.position) *
+           glm::rotate(glm::mat4(1.0f), glm::radians(scene.character.yawDegrees),
+                       glm::vec3(0.0f, 1.0f, 0.0f));
+}
+
+Bounds poseBounds(const anim::Character& character, const anim::Pose& pose, size_t maxVertices) {
+    Bounds b = emptyBounds();
+    for (const anim::Mesh& mesh : character.meshes)
+        for (const anim::Primitive& p : mesh.primitives) {
+            const size_t count = p.positions.size();
+            if (count == 0) continue;
+            const size_t stride = std::max<size_t>(1, (count + maxVertices - 1) / maxVertices);
+            if (p.skin < 0) {
+                const glm::mat4 m = p.node < 0 ? glm::mat4(1.0f) : pose.world[size_t(p.node)];
+                for (size_t v = 0; v < count; v += stride)
+                    include(b, glm::vec3(m * glm::vec4(p.positions[v], 1.0f)));
+                continue;
+            }
+            const std::vector<anim::DualQuatJoint> palette =
+                anim::dualQuatPalette(anim::jointMatrices(character, p.skin, pose));
+            for (size_t v = 0; v < count; v += stride)
+                include(b, anim::skinDualQuat(palette, p.positions[v], glm::vec3(0, 1, 0),
+                                              p.joints[v], p.weights[v])
+                               .position);
+        }
+    return b;
+}
+
+Bounds animatedBounds(const Scene& scene, const anim::Character& character) {
+    const glm::mat4 placement = characterPlacement(scene);
+    Bounds out = emptyBounds();
+    for (uint32_t f : sampledFrames(frameCount(scene, character))) {
+        const Bounds b = poseBounds(
+            character, poseAtSceneTime(scene, character, float(f) / scene.output.fps), 2048);
+        if (b.empty()) continue;
+        for (int corner = 0; corner < 8; ++corner)
+            include(out, glm::vec3(placement * glm::vec4((corner & 1) ? b.high.x : b.low.x,
+                                                         (corner & 2) ? b.high.y : b.low.y,
+                                                         (corner & 4) ? b.high.z : b.low.z, 1.0f)));
+    }
+    return out;
+}
+
+float chooseCharacterScale(const Scene& scene, const anim::Character& character,
+                           const std::string& where, std::string* note) {
+    if (note) note->clear();
+    if (character.clips.empty()) return 1.0f;
+    const anim::Pose first = anim::samplePose(character, &sceneClip(scene, character),
+                                              scene.character.start, anim::Wrap::Clamp);
+    const Bounds b = poseBounds(character, first);
+    const float height = b.empty() ? 0.0f : b.size().y;
+    float factor = 1.0f;
+    std::string why;
+    if (scene.character.scale) {
+        factor = *scene.character.scale;
+        why = " (character.scale)";
+    } else if (scene.character.height) {
+        if (!(height > 0.0f)) return 1.0f; // nothing to measure: nothing to scale by
+        factor = *scene.character.height / height;
+        why = " (character.height)";
+    } else if (height > 0.0f && (height < kSaneHeightLow || height > kSaneHeightHigh)) {
+        factor = kDefaultHeight / height;
+        why = "; set character.height or character.scale to change";
+    }
+    if (factor == 1.0f) return factor;
+    if (note) {
+        char metres[32];
+        std::snprintf(metres, sizeof metres, "%.2f", double(height * factor));
+        *note = where + " is " + formatNumber(height) + " units tall: scaled by " +
+                formatNumber(factor) + " to " + metres + " m" + why;
+    }
+    return factor;
+}
+
+Status fitScene(Scene& scene, const anim::Character& character, std::vector<std::string>* notes) {
+    if (Status names = checkNames(scene, character); !names) return names;
+    for (size_t i = 0; i < scene.effects.size(); ++i) {
+        EffectSpec& e = scene.effects[i];
+        const std::string path = "effects[" + std::to_string(i) + "] \"" + e.name + "\"";
+        if (e.automaticBones) {
+            const std::string choice = bindFastestLimb(scene, character, e);
+            e.automaticBones = false;
+            if (notes) notes->push_back(path + ": " + choice);
+        } else if (!e.bones.empty()) {
+            std::vector<std::string> bones;
+            std::set<std::string> seen;
+            for (const std::string& entry : e.bones) {
+                // checkNames above resolved every entry; a failure here cannot happen.
+                const Result<std::vector<std::string>> resolved =
+                    anim::resolveBoneEntry(character, entry);
+                if (!resolved)
+                    return Error{scene.file + ": " + path + ": " + resolved.error().message};
+                for (const std::string& b : resolved.value())
+                    if (seen.insert(b).second) bones.push_back(b);
+            }
+            e.bones = std::move(bones);
+        }
+        if (e.automaticStride) {
+            e.automaticStride = false;
+            const uint32_t target = targetCount(e);
+            if (target == 0) continue;
+            const Result<trajectory::Source> source =
+                trajectory::selectSource(character, selectionOf(e));
+            if (!source) // the simulation reports it, with the effect's path
+                continue;
+            const size_t count = source.value().vertices.size();
+            e.stride = std::max<uint32_t>(1, uint32_t(std::lround(double(count) / target)));
+        }
+    }
+    if (scene.camera.automatic) frameCamera(scene, character);
+    return Ok{};
+}
+
+std::vector<std::string> motionlessEffects(const Scene& scene, const anim::Character& character,
+                                           uint32_t frames) {
+    std::vector<std::string> out;
+    const float dt = 1.0f / scene.output.fps;
+    const glm::mat4 placement = characterPlacement(scene);
+    const float renderEnd = float(frames) * dt;
+    for (const EffectSpec& e : scene.effects) {
+        // Smoke paints its pigment where its vertices are even at rest, and the smear variant of
+        // the afterimage draws the mesh itself: both show something without motion.
+        if (e.type == EffectType::Smoke || (e.type == EffectType::AfterimageSmear &&
+                                            e.afterimage.variant == AfterimageVariant::Smear))
+            continue;
+        const Result<trajectory::Source> selected =
+            trajectory::selectSource(character, selectionOf(e));
+        if (!selected) continue; // refused elsewhere, with a reason
+        // An even sample of at most 1024 of its vertices.
+        trajectory::Source source = selected.value();
+        const size_t stride = std::max<size_t>(1, (source.vertices.size() + 1023) / 1024);
+        std::vector<shared::SkinVertexIn> sample;
+        for (size_t v = 0; v < source.vertices.size(); v += stride)
+            sample.push_back(source.vertices[v]);
+        source.vertices = std::move(sample);
+        auto positions = [&](float t) {
+            const auto transforms = trajectory::vertexTransforms(
+                source, trajectory::sourcePalette(character, source,
+                                                  poseAtSceneTime(scene, character, t), placement));
+            std::vector<glm::vec3> p(transforms.size());
+            for (size_t v = 0; v < p.size(); ++v)
+                p[v] = anim::applyTransform(transforms[v], glm::vec3(source.vertices[v].position),
+                                            glm::vec3(0, 1, 0))
+                           .position;
+            return p;
+        };
+        bool everLive = false;
+        float largest = 0.0f;
+        Bounds reach = emptyBounds();
+        std::vector<glm::vec3> previous;
+        for (uint32_t f = 0; f < frames; ++f) {
+            const float t = float(f) * dt;
+            if (!live(scene, e, t)) continue;
+            everLive = true;
+            // Each live frame's segment runs from the previous frame's pose to this one.
+            if (previous.empty()) previous = positions(std::max(t - dt, 0.0f));
+            std::vector<glm::vec3> now = positions(t);
+            for (size_t v = 0; v < now.size(); ++v) {
+                largest = std::max(largest, glm::length(now[v] - previous[v]));
+                include(reach, now[v]);
+            }
+            previous = std::move(now);
+        }
+        const std::string window = formatNumber(e.start) + "-" +
+                                   (e.end ? formatNumber(*e.end) : std::string("end")) + " s";
+        if (!everLive) {
+            out.push_back("\"" + e.name + "\" (its window " + window +
+                          " is outside the render, 0-" + formatNumber(renderEnd) + " s)");
+            continue;
+        }
+        // Still, to a millionth of the size of what it covers (or of a micrometre).
+        const float size = std::max(glm::length(reach.size()), 1.0f);
+        if (largest <= 1e-6f * size)
+            out.push_back("\"" + e.name + "\" (its vertices never move in its window " + window +
+                          ")");
+    }
+    return out;
+}
+
+} // namespace mfx::scene

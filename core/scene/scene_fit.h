@@ -1,0 +1,72 @@
+// Fitting a scene to whatever character it loads, so that a rig of any unit, size and naming
+// convention gives a framed picture with visible effects and no per-rig tuning:
+//
+//   * size: a character whose height (its skinned vertices at the first frame of the scene's
+//     clip) lies outside [kSaneHeightLow, kSaneHeightHigh] metres is scaled uniformly to
+//     kDefaultHeight (anim::scaleCharacter); character.height or character.scale override it.
+//     Every length default of the scene (cell size, splat radius, ribbon width, camera, stage) is
+//     in metres for a human-sized character and so fits every character after this;
+//   * bones: an effect's "bones" may name bone groups and glob patterns (core/anim/bone_groups.h),
+//     resolved here to the rig's bone names; an effect with neither bones nor meshes binds to the
+//     limb that moves fastest over its window;
+//   * strides: an effect without "stride" takes the stride that leaves about kTargetLines lines
+//     (speed-lines), kTargetParticles points (particles) or kTargetSmokeVertices smoke sources of
+//     the vertices it selects, whatever the mesh's vertex count;
+//   * framing: a scene without "camera" is framed on the character's animated bounds over the
+//     played range, from a three-quarter view, with the floor at the lowest point the character
+//     reaches and the shadow box, backdrop and near/far planes sized to those bounds.
+#pragma once
+
+#include "core/anim/character.h"
+#include "core/anim/sampling.h"
+#include "core/result.h"
+#include "core/scene/scene.h"
+
+#include <string>
+#include <vector>
+
+namespace mfx::scene {
+
+constexpr float kDefaultHeight = 1.8f;  // what an outlier is scaled to, metres
+constexpr float kSaneHeightLow = 1.0f;  // heights in [low, high] are left alone
+constexpr float kSaneHeightHigh = 2.5f; //
+constexpr uint32_t kTargetLines = 150;
+constexpr uint32_t kTargetParticles = 300;
+constexpr uint32_t kTargetSmokeVertices = 120;
+
+struct Bounds {
+    glm::vec3 low{0.0f};
+    glm::vec3 high{0.0f};
+    bool empty() const { return low.x > high.x; }
+    glm::vec3 centre() const { return 0.5f * (low + high); }
+    glm::vec3 size() const { return high - low; }
+};
+
+// The character placed in the world (character.position, then yaw about +y).
+glm::mat4 characterPlacement(const Scene& scene);
+
+// The bounds of the character's skinned vertices in `pose` (in its own frame, not placed); at
+// most about `maxVertices` vertices a primitive are visited (an even stride through each).
+Bounds poseBounds(const anim::Character& character, const anim::Pose& pose,
+                  size_t maxVertices = 4096);
+// The bounds of the placed character over every frame of the scene's played range.
+Bounds animatedBounds(const Scene& scene, const anim::Character& character);
+
+// The uniform scale loadCharacter applies: 1 inside the sane range; `note` (when not null) gets
+// the line that tells the user what was done (empty when nothing was). `where` names the file.
+float chooseCharacterScale(const Scene& scene, const anim::Character& character,
+                           const std::string& where, std::string* note);
+
+// Resolves every effect's bone groups and patterns into bone names, binds effects that name no
+// bone or mesh to the fastest limb, chooses strides, frames the camera and sizes the stage
+// (whichever of these the scene leaves to it), and checks every name. Idempotent: what it set is
+// no longer automatic. `notes` (when not null) gets one line per choice made for the user.
+Status fitScene(Scene& scene, const anim::Character& character,
+                std::vector<std::string>* notes = nullptr);
+
+// Effects whose selected vertices never move while they are live over `frames` frames (or that
+// are never live): what they draw is empty. One entry per effect: its name and why.
+std::vector<std::string> motionlessEffects(const Scene& scene, const anim::Character& character,
+                                           uint32_t frames);
+
+} // namespace mfx::scene
