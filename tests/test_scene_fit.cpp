@@ -105,6 +105,33 @@ TEST(CharacterScale, BadSizeKeysAreRefusedNamingTheKey) {
     }
 }
 
+TEST(FitScene, AGiantOnPurposeGetsItsLengthDefaultsScaled) {
+    const scene::Scene parsed = parse(R"({"character": {"height": 10}, "effects": [
+        {"type": "smoke", "bones": ["foot_r"]},
+        {"type": "speed_lines", "bones": ["foot_r"], "width": 0.05}]})");
+    scene::Scene s = parsed;
+    std::string note;
+    Result<anim::Character> giant = scene::loadCharacter(s, &note);
+    ASSERT_TRUE(giant.ok()) << giant.error().message;
+    std::vector<std::string> notes;
+    ASSERT_TRUE(scene::fitScene(s, giant.value(), &notes).ok());
+    const float unit = 10.0f / scene::kDefaultHeight;
+    EXPECT_NEAR(s.effects[0].cellSize, parsed.effects[0].cellSize * unit, 1e-5f);
+    EXPECT_NEAR(s.effects[0].radius, parsed.effects[0].radius * unit, 1e-5f);
+    EXPECT_EQ(s.effects[1].width, 0.05f); // given: kept
+    ASSERT_FALSE(notes.empty());
+    EXPECT_NE(notes.back().find("the character is 10 m tall: the effects' default"),
+              std::string::npos)
+        << notes.back();
+    // Fitting again scales nothing twice; a human-sized character scales nothing at all.
+    const float once = s.effects[0].cellSize;
+    ASSERT_TRUE(scene::fitScene(s, giant.value()).ok());
+    EXPECT_EQ(s.effects[0].cellSize, once);
+    scene::Scene human = parse(R"({"effects": [{"type": "smoke", "bones": ["foot_r"]}]})");
+    ASSERT_TRUE(scene::fitScene(human, anim::makeFighter()).ok());
+    EXPECT_EQ(human.effects[0].cellSize, scene::EffectSpec{}.cellSize);
+}
+
 TEST(FitScene, AnEffectWithoutBonesTakesTheFastestLimb) {
     const anim::Character fighter = anim::makeFighter();
     const std::pair<const char*, const char*> cases[] = {{"roundhouse_kick", "right_leg"},

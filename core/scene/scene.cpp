@@ -71,6 +71,12 @@ public:
     }
 
     bool has(const std::string& key) const { return j_.contains(key); }
+    std::vector<std::string> keys() const {
+        std::vector<std::string> out;
+        for (auto it = j_.begin(); it != j_.end(); ++it)
+            out.push_back(it.key());
+        return out;
+    }
     std::string at(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
     const json& raw(const std::string& key) const { return j_.at(key); }
 
@@ -262,6 +268,7 @@ void readCommonEffectKeys(const Object& o, size_t index, const std::string& type
     e.meshes = o.strings("meshes");
     e.automaticBones = !o.has("bones") && !o.has("meshes");
     e.automaticStride = !o.has("stride");
+    e.givenKeys = o.keys();
     e.minBoneWeight = float(o.number("min_bone_weight", e.minBoneWeight, 0.0, 1.0, true));
     e.start = float(o.number("start", e.start, 0.0, 1e5));
     e.end = o.optionalNumber("end", 0.0, 1e5);

@@ -8,6 +8,7 @@
 #include "core/anim/character.h"
 #include "core/result.h"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <filesystem>
@@ -144,6 +145,12 @@ struct EffectSpec {
     // the fastest limb) and where it has no "stride" (fitScene chooses one from the vertex count).
     bool automaticBones = false;
     bool automaticStride = false;
+    // The keys the scene file gave this effect (fitScene scales the length defaults of the others
+    // to a character sized outside the human range on purpose).
+    std::vector<std::string> givenKeys;
+    bool given(const std::string& key) const {
+        return std::find(givenKeys.begin(), givenKeys.end(), key) != givenKeys.end();
+    }
     float start = 0.0f;       // the window, in scene seconds
     std::optional<float> end; // default: the end of the scene
     // Trajectory (speed lines, blur volumes, particles; smoke reads its segments too).

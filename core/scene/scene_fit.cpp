@@ -152,6 +152,37 @@ uint32_t targetCount(const EffectSpec& e) {
     }
 }
 
+// A character the scene sized outside the human range on purpose (character.height or .scale)
+// gets its effects' length defaults scaled with it, so a 10 m giant's smoke grid and ribbons are
+// as big on it as the defaults are on a human; lengths the file gives are kept.
+void scaleLengthDefaults(Scene& scene, const anim::Character& character,
+                         std::vector<std::string>* notes) {
+    if (scene.effects.empty()) return;
+    const anim::Pose first = anim::samplePose(character, &sceneClip(scene, character),
+                                              scene.character.start, anim::Wrap::Clamp);
+    const Bounds b = poseBounds(character, first);
+    const float height = b.empty() ? 0.0f : b.size().y;
+    if (!(height > 0.0f) || (height >= kSaneHeightLow && height <= kSaneHeightHigh)) return;
+    const float unit = height / kDefaultHeight;
+    std::vector<std::string> scaled;
+    for (EffectSpec& e : scene.effects) {
+        const std::pair<const char*, float*> lengths[] = {{"width", &e.width},
+                                                          {"size", &e.size},
+                                                          {"cell_size", &e.cellSize},
+                                                          {"radius", &e.radius}};
+        for (const auto& [key, value] : lengths) {
+            if (e.given(key)) continue;
+            *value *= unit;
+            e.givenKeys.push_back(key); // once: fitting again keeps it
+            if (std::find(scaled.begin(), scaled.end(), key) == scaled.end()) scaled.push_back(key);
+        }
+    }
+    if (notes && !scaled.empty())
+        notes->push_back("the character is " + formatNumber(height) +
+                         " m tall: the effects' default " + join(scaled) + " scaled by " +
+                         formatNumber(unit) + " to match");
+}
+
 void frameCamera(Scene& scene, const anim::Character& character) {
     const Bounds body = animatedBounds(scene, character);
     if (body.empty()) return;
@@ -326,6 +357,7 @@ Status fitScene(Scene& scene, const anim::Character& character, std::vector<std:
             e.stride = std::max<uint32_t>(1, uint32_t(std::lround(double(count) / target)));
         }
     }
+    scaleLengthDefaults(scene, character, notes);
     if (scene.camera.automatic) frameCamera(scene, character);
     return Ok{};
 }
