@@ -185,6 +185,26 @@ TEST(BoneGroups, AnEntryIsABoneFirstThenAPatternThenAGroup) {
     EXPECT_EQ(group(c, "head"), (Bones{"head", "jaw"}));
 }
 
+TEST(BoneGroups, AtAlwaysMeansTheGroup) {
+    const anim::Character c = anim::makeFighter();
+    EXPECT_EQ(anim::resolveBoneEntry(c, "spine").value(), (Bones{"spine"}));
+    EXPECT_EQ(anim::resolveBoneEntry(c, "@spine").value(),
+              (Bones{"hips", "spine", "chest", "neck"}));
+    const Result<Bones> unknown = anim::resolveBoneEntry(c, "@tail");
+    ASSERT_FALSE(unknown.ok());
+    EXPECT_NE(unknown.error().message.find("no bone group \"tail\"; groups are: right_leg"),
+              std::string::npos)
+        << unknown.error().message;
+}
+
+TEST(BoneGroups, FingerWordsComeLast) {
+    // "Middle" names a finger in "Middle1.R" but not in "Spine_Middle".
+    const anim::Character c =
+        rig({{"Hips", -1}, {"Spine_Middle", 0}, {"Hand.R", 1}, {"Middle1.R", 2}});
+    EXPECT_EQ(group(c, "spine"), (Bones{"Hips", "Spine_Middle"}));
+    EXPECT_EQ(group(c, "right_hand"), (Bones{"Hand.R", "Middle1.R"}));
+}
+
 TEST(BoneGroups, GlobPatternsMatchBoneNames) {
     const anim::Character c = mixamo("mixamorig:");
     const Result<Bones> right = anim::resolveBoneEntry(c, "mixamorig:Right*");
@@ -198,6 +218,8 @@ TEST(BoneGroups, GlobPatternsMatchBoneNames) {
     EXPECT_TRUE(anim::globMatch("a*b*c", "aXbYbZc"));
     EXPECT_FALSE(anim::globMatch("a*b*c", "aXbYbZ"));
     EXPECT_TRUE(anim::globMatch("*", ""));
+    EXPECT_TRUE(anim::globMatch("*a", "*ba")); // a "*" in the name is matched by the star
+    EXPECT_TRUE(anim::globMatch("*", "*"));
     EXPECT_FALSE(anim::globMatch("?", ""));
 }
 

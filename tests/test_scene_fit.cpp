@@ -248,9 +248,12 @@ TEST(FitScene, ACameraGivenIsUsedAsWritten) {
     EXPECT_FALSE(s.stage.shadowCentre.has_value());
 }
 
-TEST(FitScene, TheAutomaticCameraSeesTheWholeAnimationWithTheFloorUnderIt) {
+class AutomaticCamera : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(AutomaticCamera, SeesTheWholeAnimationWithTheFloorUnderIt) {
     const anim::Character fighter = anim::makeFighter();
-    scene::Scene s = parse(R"({"effects": []})");
+    scene::Scene s =
+        parse(std::string(R"({"effects": [{"type": "speed_lines"}], )") + GetParam() + "}");
     ASSERT_TRUE(s.camera.automatic);
     ASSERT_TRUE(scene::fitScene(s, fighter).ok());
     EXPECT_FALSE(s.camera.automatic);
@@ -270,11 +273,27 @@ TEST(FitScene, TheAutomaticCameraSeesTheWholeAnimationWithTheFloorUnderIt) {
         EXPECT_LT(std::abs(clip.y / clip.w), 1.0f) << corner;
         EXPECT_GT(clip.w, s.camera.nearPlane) << corner;
     }
-    // Fitting again changes nothing.
+    // Fitting again changes nothing: the automatic choices were made once.
     const scene::Scene once = s;
+    s.camera.automatic = true; // even asked to frame again, the same bounds give the same camera
     ASSERT_TRUE(scene::fitScene(s, fighter).ok());
     EXPECT_EQ(s.camera.position, once.camera.position);
+    EXPECT_EQ(s.camera.target, once.camera.target);
+    EXPECT_EQ(s.stage.floorHeight, once.stage.floorHeight);
+    EXPECT_EQ(s.stage.backdropCentre, once.stage.backdropCentre);
+    EXPECT_EQ(s.stage.shadowRadius, once.stage.shadowRadius);
+    EXPECT_EQ(s.effects[0].bones, once.effects[0].bones);
+    EXPECT_EQ(s.effects[0].stride, once.effects[0].stride);
+    EXPECT_FALSE(s.effects[0].automaticBones);
+    EXPECT_FALSE(s.effects[0].automaticStride);
 }
+
+INSTANTIATE_TEST_SUITE_P(
+    Placements, AutomaticCamera,
+    ::testing::Values(R"("output": {"width": 640, "height": 360})",
+                      R"("character": {"yaw_degrees": 90, "position": [3, 0.5, -2]})",
+                      R"("character": {"yaw_degrees": 200, "clip": "spin"},
+                         "output": {"width": 200, "height": 800})"));
 
 TEST(FitScene, AnEffectWhoseBonesNeverMoveIsNamed) {
     const anim::Character fighter = anim::makeFighter();

@@ -104,8 +104,6 @@ Reading read(std::string_view name) {
         r.part = Part::Shoulder;
     else if (any({"hand", "wrist", "palm"}))
         r.part = Part::Hand;
-    else if (any({"thumb", "index", "middle", "ring", "pinky", "little", "finger", "fingers"}))
-        r.part = Part::Finger;
     else if (any({"thigh", "upleg", "upperleg", "femur"}) || (has.count("leg") && upper) ||
              (has.count("hip") && r.side != Side::None))
         r.part = Part::UpperLeg;
@@ -122,6 +120,8 @@ Reading read(std::string_view name) {
     else if (any({"spine", "chest", "upperchest", "torso", "abdomen", "pelvis", "waist", "hips",
                   "hip", "belly"}))
         r.part = Part::Spine;
+    else if (any({"thumb", "index", "middle", "ring", "pinky", "little", "finger", "fingers"}))
+        r.part = Part::Finger; // last: "middle" and "ring" also name other things
     return r;
 }
 
@@ -205,12 +205,12 @@ bool globMatch(std::string_view pattern, std::string_view name) {
     // Iterative matching with one backtrack point: the last '*' seen.
     size_t p = 0, n = 0, star = std::string_view::npos, resume = 0;
     while (n < name.size()) {
-        if (p < pattern.size() && (pattern[p] == '?' || pattern[p] == name[n])) {
-            ++p;
-            ++n;
-        } else if (p < pattern.size() && pattern[p] == '*') {
+        if (p < pattern.size() && pattern[p] == '*') { // before the literal test: "*" in a name
             star = p++;
             resume = n;
+        } else if (p < pattern.size() && (pattern[p] == '?' || pattern[p] == name[n])) {
+            ++p;
+            ++n;
         } else if (star != std::string_view::npos) {
             p = star + 1;
             n = ++resume;
@@ -236,6 +236,22 @@ std::string listBoneNames(const Character& character) {
 
 Result<std::vector<std::string>> resolveBoneEntry(const Character& character,
                                                   const std::string& entry) {
+    if (entry.size() > 1 && entry[0] == '@') { // "@spine": the group, even where a bone is "spine"
+        const std::string group = entry.substr(1);
+        if (!isBoneGroup(group)) {
+            std::string groupList;
+            for (const std::string& g : boneGroupNames())
+                groupList += (groupList.empty() ? "" : ", ") + g;
+            return Error{"no bone group \"" + group + "\"; groups are: " + groupList};
+        }
+        std::vector<std::string> out = resolveBoneGroup(character, group);
+        if (out.empty())
+            return Error{"group \"" + group +
+                         "\": no bone of this rig is recognised as one (README.md \"Your own "
+                         "character\"); name its bones instead; bones are: " +
+                         listBoneNames(character)};
+        return out;
+    }
     if (character.findNode(entry)) return std::vector<std::string>{entry};
     if (isGlobPattern(entry)) {
         std::vector<std::string> out;
@@ -250,8 +266,8 @@ Result<std::vector<std::string>> resolveBoneEntry(const Character& character,
         std::vector<std::string> out = resolveBoneGroup(character, entry);
         if (out.empty())
             return Error{"group \"" + entry +
-                         "\": no bone of this rig is recognised as one (README.md \"Bone "
-                         "groups\"); name its bones instead; bones are: " +
+                         "\": no bone of this rig is recognised as one (README.md \"Your own "
+                         "character\"); name its bones instead; bones are: " +
                          listBoneNames(character)};
         return out;
     }

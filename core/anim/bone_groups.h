@@ -5,10 +5,11 @@
 // ("mixamorig:RightLeg"), the name is split at '_', '.', '-', spaces, lower-to-upper case changes
 // and letter/digit changes ("RightUpLeg" -> right up leg, "upper_arm.R" -> upper arm r,
 // "Bip01 R Calf" -> bip 01 r calf), and a leading "left"/"right" glued to a word is split off.
-// The side is a word "l"/"left"/"lt" or "r"/"right"/"rt"; the part is the first word that names
-// one (thigh, calf, shin, leg, upleg, knee, foot, ankle, toe, ball, arm, upperarm, forearm,
-// elbow, hand, wrist, fingers, head, neck, spine, chest, pelvis, hips, ...). Helper bones (words
-// ik, mch, ctrl, pole, target, org) are never recognised.
+// The side is a word "l"/"left"/"lt" or "r"/"right"/"rt"; the part is found by looking for words
+// in a fixed order: forearm/lowerarm/elbow, upper arm/arm, shoulder/clavicle, hand/wrist/palm,
+// thigh/upleg/upper leg, calf/shin/knee/leg, foot/ankle, toe/ball, head, neck,
+// spine/chest/pelvis/hips, and last fingers (thumb, index, middle, ring, ...). Helper bones (words
+// ik, fk, mch, ctrl, pole, target, org, tweak, helper) are never recognised.
 //
 // A limb group is the subtree of every bone recognised as its root part, so twist bones, fingers
 // and toes under it come along: right_leg = the right thigh (or upper leg) and everything below
@@ -42,7 +43,8 @@ std::vector<std::string> resolveBoneGroup(const Character& character, std::strin
 bool globMatch(std::string_view pattern, std::string_view name);
 bool isGlobPattern(std::string_view text);
 
-// One entry of an effect's "bones": a bone name (exact, first), a glob pattern, or a group. The
+// One entry of an effect's "bones": "@group" (always the group), a bone name (exact: a bone
+// called "spine" wins over the spine group), a glob pattern, or a group. The
 // bones it stands for, in node order, or an error naming the entry and listing the bones there
 // are (and the groups, when it names neither a bone nor a group).
 Result<std::vector<std::string>> resolveBoneEntry(const Character& character,

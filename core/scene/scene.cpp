@@ -198,8 +198,8 @@ void readCharacter(const Object& o, CharacterSpec& c) {
     if (o.has("height") && o.has("scale"))
         fail(o.at("scale"), "give height or scale, not both (height: the metres to scale the "
                             "character to; scale: the factor to scale it by)");
-    if (const std::optional<double> h = o.optionalNumber("height", 0.0, 1e4, true)) c.height = *h;
-    if (const std::optional<double> f = o.optionalNumber("scale", 0.0, 1e6, true)) c.scale = *f;
+    if (const std::optional<double> h = o.optionalNumber("height", 1e-4, 1e4)) c.height = *h;
+    if (const std::optional<double> f = o.optionalNumber("scale", 1e-6, 1e6)) c.scale = *f;
 }
 
 void readCamera(const Object& o, CameraSpec& c) {

@@ -18,8 +18,9 @@ namespace mfx::scene {
 
 namespace {
 
-// The default camera's three-quarter view of a character facing +z: from the front right,
-// slightly above (the direction from the target to the camera).
+// The default camera's three-quarter view of a character facing +z: from in front and to the
+// viewer's right (+x, the character's left), slightly above (the direction from the target to
+// the camera).
 const glm::vec3 kThreeQuarterView = glm::normalize(glm::vec3(2.6f, 0.55f, 3.4f));
 constexpr float kFrameFill = 0.95f;    // the framed bounds fill at most this much of the frame
 constexpr float kEffectMargin = 0.08f; // the effects' reach beyond the body, in heights
@@ -92,12 +93,14 @@ float peakBoneSpeed(const Scene& scene, const anim::Character& character, const 
     const float dt = 1.0f / scene.output.fps;
     float peak = 0.0f;
     std::vector<glm::vec3> previous;
+    float previousClipTime = 0.0f;
     for (uint32_t f = 0; f < frames; ++f) {
         const float t = float(f) * dt;
-        if (!live(scene, e, t)) {
-            previous.clear();
-            continue;
-        }
+        const float clipTime = clipTimeAt(scene, character, t);
+        // Not across a loop's wrap (the pose jumps back there) nor outside the window.
+        if (!live(scene, e, t) || clipTime < previousClipTime) previous.clear();
+        previousClipTime = clipTime;
+        if (!live(scene, e, t)) continue;
         const anim::Pose pose = poseAtSceneTime(scene, character, t);
         std::vector<glm::vec3> now;
         for (int n : nodes)
@@ -187,7 +190,9 @@ void frameCamera(Scene& scene, const anim::Character& character) {
     const Bounds body = animatedBounds(scene, character);
     if (body.empty()) return;
     const float height = std::max(body.size().y, 1e-3f);
-    const float unit = height / kDefaultHeight; // lengths scale with the character
+    // Lengths scale with the character: its largest extent (a long, low creature gets a stage
+    // as long as it is).
+    const float unit = std::max({height, body.size().x, body.size().z}) / kDefaultHeight;
     Bounds framed = body;
     framed.low -= glm::vec3(kEffectMargin * height);
     framed.high += glm::vec3(kEffectMargin * height);
@@ -312,7 +317,9 @@ float chooseCharacterScale(const Scene& scene, const anim::Character& character,
         factor = kDefaultHeight / height;
         why = "; set character.height or character.scale to change";
     }
-    if (factor == 1.0f) return factor;
+    // A factor a float cannot hold (a scale of 1e-50, a height measured as infinite) scales
+    // nothing rather than collapsing the character.
+    if (!std::isfinite(factor) || !(factor > 0.0f) || factor == 1.0f) return 1.0f;
     if (note) {
         char metres[32];
         std::snprintf(metres, sizeof metres, "%.2f", double(height * factor));

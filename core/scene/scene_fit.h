@@ -10,11 +10,12 @@
 //     resolved here to the rig's bone names; an effect with neither bones nor meshes binds to the
 //     limb that moves fastest over its window;
 //   * strides: an effect without "stride" takes the stride that leaves about kTargetLines lines
-//     (speed-lines), kTargetParticles points (particles) or kTargetSmokeVertices smoke sources of
-//     the vertices it selects, whatever the mesh's vertex count;
+//     (speed-lines) or kTargetParticles points (particles) of the vertices it selects, whatever
+//     the mesh's vertex count (smoke samples its vertices by max_emitters instead);
 //   * framing: a scene without "camera" is framed on the character's animated bounds over the
-//     played range, from a three-quarter view, with the floor at the lowest point the character
-//     reaches and the shadow box, backdrop and near/far planes sized to those bounds.
+//     played range (at most 240 frames and about 2,048 vertices a primitive are sampled), from a
+//     three-quarter view, with the floor at the lowest point the character reaches and the shadow
+//     box, backdrop and near/far planes sized to those bounds.
 #pragma once
 
 #include "core/anim/character.h"
@@ -32,7 +33,6 @@ constexpr float kSaneHeightLow = 1.0f;  // heights in [low, high] are left alone
 constexpr float kSaneHeightHigh = 2.5f; //
 constexpr uint32_t kTargetLines = 150;
 constexpr uint32_t kTargetParticles = 300;
-constexpr uint32_t kTargetSmokeVertices = 120;
 
 struct Bounds {
     glm::vec3 low{0.0f};
