@@ -1,6 +1,6 @@
 // The simulation grid's shape: cell counts per axis and the cell size in world units. Velocity
 // lives on the faces of a staggered (MAC) grid, pressure and pigment at cell centres
-// (../shared/DESIGN.md "Numerics"); this header only describes and checks the shape.
+// (docs/architecture.md "Numerics"); this header only describes and checks the shape.
 #pragma once
 
 #include "core/result.h"

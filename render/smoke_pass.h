@@ -1,6 +1,6 @@
 // The smoke pass: every smoke grid of a simulation ray-marched through its pigment volume and
 // composited over the rendered picture, after the scene and effect passes: the march stops at the
-// scene's depth, and smoke behind a surface fades out over `fadeDistance` (DESIGN.md "Formulas"),
+// scene's depth, and smoke behind a surface fades out over `fadeDistance` (docs/architecture.md "Formulas"),
 // so it meets the floor and the character softly.
 //
 // Per grid, all on the GPU (the CPU never waits for it):

@@ -2,7 +2,7 @@
 // (x, y, z, w); a rigid transform with scale is a SkinJoint (real, dual, scale: M = T * R * S).
 // Twins: math::DualQuat (core/math/dual_quat.cpp) and anim::blendJoints / anim::applyTransform
 // (core/anim/skinning.cpp) and trajectory::interpolateTransform (core/trajectory/build_segment.cpp),
-// in the same order of operations. DESIGN.md "Formulas"; Kavan et al.
+// in the same order of operations. docs/architecture.md "Formulas"; Kavan et al.
 // 2008.
 #ifndef MFX_DUAL_QUAT_GLSL
 #define MFX_DUAL_QUAT_GLSL

@@ -1,6 +1,6 @@
 // What every effect pass reads from a trajectory vertex (shared/trajectory.h): its alpha is the
 // attenuation along the segment (stored) times a fade with the sample's age at draw time,
-// 1 - age / lifetime (Xu et al., Algorithm 1; DESIGN.md "The frame").
+// 1 - age / lifetime (Xu et al., Algorithm 1; docs/architecture.md "One frame").
 #ifndef MFX_EFFECT_COMMON_GLSL
 #define MFX_EFFECT_COMMON_GLSL
 

@@ -2,7 +2,7 @@
 // Twin: anim::skinDualQuat (core/anim/skinning.cpp), same order of operations: align every
 // influence with the first one of non-zero weight (the sign rule), blend the dual quaternions and
 // the scales by weight, normalise, scale the vertex (the normal by 1/S), rotate and translate.
-// DESIGN.md "Formulas"; Kavan et al. 2008.
+// docs/architecture.md "Formulas"; Kavan et al. 2008.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "shared/skinning.h"

@@ -49,7 +49,7 @@ vec2 crossBox(vec3 inv, vec3 lo, vec3 hi) {
     return vec2(enter, leave);
 }
 
-// The depth-fade distance b (DESIGN.md "Formulas").
+// The depth-fade distance b (docs/architecture.md "Formulas").
 float fadeDistance() {
     return max(draw.eye.w, 1e-4);
 }

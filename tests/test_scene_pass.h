@@ -1,6 +1,6 @@
 // The lit test scene: a sphere, a box and a floor, shaded Blinn-Phong with one directional light.
 // It exercises the graphics path end to end (vertex buffers, uniform buffer, push constants,
-// depth test, sRGB target) and is what `motionfx render` draws until scenes exist.
+// depth test, sRGB target) for the rendering tests; it is built into the tests only.
 #pragma once
 
 #include "core/gpu/program.h"

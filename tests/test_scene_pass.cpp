@@ -1,4 +1,4 @@
-#include "render/test_scene_pass.h"
+#include "tests/test_scene_pass.h"
 
 #include "core/gpu/context.h"
 #include "shaders/embedded.h"
