@@ -11,7 +11,7 @@
 #include "core/gpu/commands.h"
 #include "core/gpu/context.h"
 #include "fluid/scene_simulation.h"
-#include "render/frame_renderer.h"
+#include "render/scene_player.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -35,65 +35,24 @@ struct Measure {
     uint32_t frames = 0;    // timed
 };
 
-// A pipeline-statistics query counting clipping invocations.
-class PrimitiveQuery {
-public:
-    explicit PrimitiveQuery(const gpu::Context& ctx) : device_(ctx.device()) {
-        VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
-        info.queryType = VK_QUERY_TYPE_PIPELINE_STATISTICS;
-        info.queryCount = 1;
-        info.pipelineStatistics = VK_QUERY_PIPELINE_STATISTIC_CLIPPING_INVOCATIONS_BIT;
-        if (vkCreateQueryPool(device_, &info, nullptr, &pool_) != VK_SUCCESS)
-            pool_ = VK_NULL_HANDLE;
-    }
-    ~PrimitiveQuery() {
-        if (pool_) vkDestroyQueryPool(device_, pool_, nullptr);
-    }
-    PrimitiveQuery(const PrimitiveQuery&) = delete;
-    PrimitiveQuery& operator=(const PrimitiveQuery&) = delete;
-    bool valid() const { return pool_ != VK_NULL_HANDLE; }
-    void begin(VkCommandBuffer cmd) const {
-        vkCmdResetQueryPool(cmd, pool_, 0, 1);
-        vkCmdBeginQuery(cmd, pool_, 0, 0);
-    }
-    void end(VkCommandBuffer cmd) const { vkCmdEndQuery(cmd, pool_, 0); }
-    uint64_t result() const {
-        uint64_t count = 0;
-        vkGetQueryPoolResults(device_, pool_, 0, 1, sizeof count, &count, sizeof count,
-                              VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT);
-        return count;
-    }
-
-private:
-    VkDevice device_;
-    VkQueryPool pool_ = VK_NULL_HANDLE;
-};
-
 // Runs `argument`'s scene through, timing every frame after the first `skip`.
 bool measure(const gpu::Context& ctx, const SceneArgument& argument, VkSampleCountFlagBits samples,
-             uint32_t skip, const PrimitiveQuery& query, Measure& out, int& exitCode) {
+             uint32_t skip, const gpu::PrimitiveCounter& primitives, Measure& out, int& exitCode) {
     const std::unique_ptr<fluid::SceneSimulation> sim =
         createSceneSimulation(ctx, argument, exitCode);
     if (!sim) return false;
     const scene::Scene& s = argument.scene;
-    render::FrameRenderer renderer(ctx, *sim, s.output.width, s.output.height, samples);
+    render::ScenePlayer player(ctx, *sim, s.output.width, s.output.height, samples);
     std::vector<double> gpuMs;
     double triangles = 0.0;
     for (uint32_t f = 0; f < sim->frameCount(); ++f) {
-        gpu::submitOneShot(ctx, [&](VkCommandBuffer cmd) {
-            query.begin(cmd);
-            renderer.record(cmd, *sim, f);
-            query.end(cmd);
-        });
-        const fluid::SimulationFrameStats stats = sim->finishFrame();
+        const fluid::SimulationFrameStats stats = player.play(f, &primitives);
         if (f < skip) continue; // pipeline compiles run inside the first frames on a CPU driver
         double ms = 0.0;
-        for (const fluid::PassRecord& p : stats.passes)
+        for (const fluid::PassRecord& p : stats.passes) // the drawing's passes among them
             ms += p.gpuMs;
-        for (const gpu::PassTime& p : renderer.passTimes())
-            ms += p.milliseconds;
         gpuMs.push_back(ms);
-        triangles += double(query.result());
+        triangles += double(primitives.result());
     }
     out.frames = uint32_t(gpuMs.size());
     out.gpuMs = gpuMs.empty() ? 0.0 : median(gpuMs);
@@ -165,8 +124,8 @@ int runBenchEffects(std::span<const std::string> args) {
         printError(ctx.info().name + " has no timestamp queries; the frames cannot be timed");
         return kExitFailure;
     }
-    const PrimitiveQuery query(ctx);
-    if (!query.valid()) {
+    const gpu::PrimitiveCounter primitives(ctx);
+    if (!primitives.valid()) {
         printError(ctx.info().name + " has no pipeline-statistics queries; triangles cannot be "
                                      "counted");
         return kExitFailure;
@@ -189,9 +148,11 @@ int runBenchEffects(std::span<const std::string> args) {
         alone.scene.effects.clear();
         Row row{effect, files[i]};
         const VkSampleCountFlagBits wanted = VkSampleCountFlagBits(samples.value());
-        if (!measure(ctx, alone, wanted, skip.value(), query, row.alone, exitCode)) return exitCode;
+        if (!measure(ctx, alone, wanted, skip.value(), primitives, row.alone, exitCode))
+            return exitCode;
         progress.update(uint32_t(2 * i + 1));
-        if (!measure(ctx, with, wanted, skip.value(), query, row.with, exitCode)) return exitCode;
+        if (!measure(ctx, with, wanted, skip.value(), primitives, row.with, exitCode))
+            return exitCode;
         progress.update(uint32_t(2 * i + 2));
         rows.push_back(row);
     }

@@ -8,7 +8,7 @@
 
 #include "core/gpu/commands.h"
 #include "fluid/scene_simulation.h"
-#include "render/frame_renderer.h"
+#include "render/scene_player.h"
 
 #include <algorithm>
 #include <chrono>
@@ -86,8 +86,8 @@ int runBenchFrame(std::span<const std::string> args) {
         createSceneSimulation(ctx, argument, exitCode);
     if (!created) return exitCode;
     fluid::SceneSimulation& sim = *created;
-    render::FrameRenderer renderer(ctx, sim, s.output.width, s.output.height,
-                                   VkSampleCountFlagBits(samples.value()));
+    render::ScenePlayer player(ctx, sim, s.output.width, s.output.height,
+                               VkSampleCountFlagBits(samples.value()));
 
     std::vector<std::string> rowOrder; // first appearance
     std::map<std::string, std::vector<double>> rows;
@@ -95,8 +95,7 @@ int runBenchFrame(std::span<const std::string> args) {
     Progress progress("benchmarking", sim.frameCount());
     for (uint32_t f = 0; f < sim.frameCount(); ++f) {
         const auto start = std::chrono::steady_clock::now();
-        gpu::submitOneShot(ctx, [&](VkCommandBuffer cmd) { renderer.record(cmd, sim, f); });
-        const fluid::SimulationFrameStats stats = sim.finishFrame();
+        const fluid::SimulationFrameStats stats = player.play(f);
         const double wall =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
                 .count();
@@ -109,10 +108,8 @@ int runBenchFrame(std::span<const std::string> args) {
             frame[name] += ms;
             gpu += ms;
         };
-        for (const fluid::PassRecord& p : stats.passes)
-            add(simulationRow(p.name), p.gpuMs);
-        for (const gpu::PassTime& p : renderer.passTimes())
-            add("render/" + p.name, p.milliseconds);
+        for (const fluid::PassRecord& p : stats.passes) // the drawing's as "render/<pass>"
+            add(p.name.rfind("render/", 0) == 0 ? p.name : simulationRow(p.name), p.gpuMs);
         // A pass missing from some frames (a grid asleep) counts 0 there.
         const size_t timedSoFar = frameWall.size();
         for (const std::string& name : rowOrder) {
@@ -136,8 +133,8 @@ int runBenchFrame(std::span<const std::string> args) {
     std::printf("frame benchmark on %s (%s)\n%s at %ux%u, %u samples per pixel, smoke grid "
                 "%ux%ux%u (%u steps per frame); median of %u frames after %u warm-up frames\n\n",
                 ctx.info().name.c_str(), ctx.info().driverInfo.c_str(), s.file.c_str(),
-                s.output.width, s.output.height, uint32_t(renderer.target().samples), grid[0],
-                grid[1], grid[2], stepsPerFrame, timed.value(), warmup.value());
+                s.output.width, s.output.height, uint32_t(player.renderer().target().samples),
+                grid[0], grid[1], grid[2], stepsPerFrame, timed.value(), warmup.value());
     std::printf("%-32s %10s %8s\n", "pass", "GPU ms", "share");
     nlohmann::json passes = nlohmann::json::object();
     for (const std::string& name : rowOrder) {
@@ -155,7 +152,7 @@ int runBenchFrame(std::span<const std::string> args) {
                                    {"size", {s.output.width, s.output.height}},
                                    {"grid", grid},
                                    {"steps_per_frame", stepsPerFrame},
-                                   {"samples", uint32_t(renderer.target().samples)},
+                                   {"samples", uint32_t(player.renderer().target().samples)},
                                    {"frames", timed.value()},
                                    {"frame_ms", wallMs},
                                    {"gpu_ms", gpuMs},

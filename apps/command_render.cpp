@@ -5,8 +5,8 @@
 
 #include "core/gpu/commands.h"
 #include "fluid/scene_simulation.h"
-#include "render/frame_renderer.h"
 #include "render/image_output.h"
+#include "render/scene_player.h"
 
 #include <cstdio>
 #include <cstdlib>
@@ -67,15 +67,13 @@ int runRender(std::span<const std::string> args) {
     if (!created) return exitCode;
     fluid::SceneSimulation& sim = *created;
     // 4x multisampling for anti-aliased edges (fewer where the device allows fewer).
-    render::FrameRenderer renderer(ctx, sim, s.output.width, s.output.height);
+    render::ScenePlayer player(ctx, sim, s.output.width, s.output.height);
+    render::FrameRenderer& renderer = player.renderer();
 
     Progress progress("rendering", sim.frameCount());
     nlohmann::json frames = nlohmann::json::array();
     for (uint32_t f = 0; f < sim.frameCount(); ++f) {
-        gpu::submitOneShot(ctx, [&](VkCommandBuffer cmd) { renderer.record(cmd, sim, f); });
-        fluid::SimulationFrameStats stats = sim.finishFrame();
-        for (const gpu::PassTime& p : renderer.passTimes())
-            stats.passes.push_back({"render/" + p.name, 0, p.milliseconds});
+        const fluid::SimulationFrameStats stats = player.play(f);
         const std::vector<uint8_t> rgba = render::readColor(ctx, renderer.target());
         if (Status written = render::writePng(outDir + "/" + frameName(f), s.output.width,
                                               s.output.height, rgba);

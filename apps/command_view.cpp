@@ -13,6 +13,7 @@
 #include "fluid/scene_simulation.h"
 #include "render/frame_renderer.h"
 #include "render/image_output.h"
+#include "render/scene_player.h"
 #include "render/text_overlay.h"
 
 #define GLFW_INCLUDE_VULKAN
@@ -92,10 +93,11 @@ public:
         auto created = fluid::SceneSimulation::create(ctx_, scene_.scene, scene_.character);
         if (!created) return created.error();
         sim_ = std::move(created).value();
-        if (!renderer_) {
-            renderer_ = std::make_unique<render::FrameRenderer>(
-                ctx_, *sim_, scene_.scene.output.width, scene_.scene.output.height, samples_);
-        }
+        if (!player_)
+            player_ = std::make_unique<render::ScenePlayer>(ctx_, *sim_, scene_.scene.output.width,
+                                                            scene_.scene.output.height, samples_);
+        else
+            player_->setSimulation(*sim_);
         shown_ = -1;
         return Ok{};
     }
@@ -117,21 +119,17 @@ public:
     void record(VkCommandBuffer cmd, bool advance) {
         if (advance || shown_ < 0) {
             ++shown_;
-            renderer_->record(cmd, *sim_, uint32_t(shown_));
-            pendingFinish_ = true;
+            player_->record(cmd, uint32_t(shown_));
         } else {
-            renderer_->recordDraw(cmd, *sim_, sim_->frameTime(uint32_t(shown_)));
+            player_->recordRedraw(cmd, sim_->frameTime(uint32_t(shown_)));
         }
     }
-    void finish() {
-        if (pendingFinish_) sim_->finishFrame();
-        pendingFinish_ = false;
-    }
+    void finish() { player_->finish(); }
 
     int shown() const { return shown_; }
     uint32_t frameCount() const { return sim_->frameCount(); }
     float fps() const { return float(scene_.scene.output.fps); }
-    render::FrameRenderer& renderer() { return *renderer_; }
+    render::FrameRenderer& renderer() { return player_->renderer(); }
     const scene::Scene& scene() const { return scene_.scene; }
 
 private:
@@ -139,9 +137,8 @@ private:
     const SceneArgument& scene_;
     VkSampleCountFlagBits samples_;
     std::unique_ptr<fluid::SceneSimulation> sim_;
-    std::unique_ptr<render::FrameRenderer> renderer_;
+    std::unique_ptr<render::ScenePlayer> player_;
     int shown_ = -1;
-    bool pendingFinish_ = false;
 };
 
 void say(const std::string& line) {

@@ -67,4 +67,33 @@ std::vector<PassTime> GpuTimer::results() const {
     return times;
 }
 
+PrimitiveCounter::PrimitiveCounter(const Context& ctx) {
+    VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+    info.queryType = VK_QUERY_TYPE_PIPELINE_STATISTICS;
+    info.queryCount = 1;
+    info.pipelineStatistics = VK_QUERY_PIPELINE_STATISTIC_CLIPPING_INVOCATIONS_BIT;
+    VkQueryPool pool = VK_NULL_HANDLE;
+    if (vkCreateQueryPool(ctx.device(), &info, nullptr, &pool) == VK_SUCCESS)
+        pool_ = UniqueQueryPool(ctx.device(), pool);
+}
+
+void PrimitiveCounter::begin(VkCommandBuffer cmd) const {
+    if (!valid()) return;
+    vkCmdResetQueryPool(cmd, pool_.get(), 0, 1);
+    vkCmdBeginQuery(cmd, pool_.get(), 0, 0);
+}
+
+void PrimitiveCounter::end(VkCommandBuffer cmd) const {
+    if (valid()) vkCmdEndQuery(cmd, pool_.get(), 0);
+}
+
+uint64_t PrimitiveCounter::result() const {
+    uint64_t count = 0;
+    if (valid())
+        MFX_VK_CHECK(vkGetQueryPoolResults(pool_.device(), pool_.get(), 0, 1, sizeof count, &count,
+                                           sizeof count,
+                                           VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+    return count;
+}
+
 } // namespace mfx::gpu

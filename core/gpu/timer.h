@@ -48,6 +48,22 @@ private:
     bool open_ = false;
 };
 
+// Counts the primitives that reach the clipper between begin() and end() of one recording (a
+// pipeline-statistics query: clipping invocations). Without the pipelineStatisticsQuery feature
+// it is not valid() and counts nothing.
+class PrimitiveCounter {
+public:
+    explicit PrimitiveCounter(const Context& ctx);
+    bool valid() const { return static_cast<bool>(pool_); }
+    void begin(VkCommandBuffer cmd) const;
+    void end(VkCommandBuffer cmd) const;
+    // After the recording finished: the count (0 when not valid).
+    uint64_t result() const;
+
+private:
+    UniqueQueryPool pool_;
+};
+
 // Brackets one pass for as long as it lives.
 class ScopedPass {
 public:
