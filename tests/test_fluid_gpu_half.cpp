@@ -12,6 +12,7 @@
 #include "fluid/reference/reference_solver.h"
 #include "fluid/scenarios.h"
 #include "fluid/smoke_solver.h"
+#include "tests/fluid_side_by_side.h"
 #include "tests/fluid_test_util.h"
 #include "tests/gpu_test.h"
 
@@ -143,32 +144,21 @@ TEST_F(GpuTest, HalfStorageRoundsLikeTheReference) {
 // pressure 0.7%, divergence 3%); the pressure is held to fp16's own bound against fp32 after 100
 // steps (2%, test_fluid_accuracy.cpp), the divergence not at all (it is near 0 after projection).
 TEST_F(GpuTest, HalfStorageHundredStepsStayCloseToReference) {
-    auto scenario = fluid::makeScenario("puff", {16, 16, 16});
-    ASSERT_TRUE(scenario.ok()) << scenario.error().message;
-    const fluid::Scenario& s = scenario.value();
-    SolverOptions options = s.options;
-    options.storage = Storage::Float16;
-    auto created = fluid::SmokeSolver::create(ctx(), options);
-    ASSERT_TRUE(created.ok()) << created.error().message;
-    fluid::SmokeSolver& gpu = *created.value();
-    fluid::ReferenceSolver cpu(options);
-    gpu.setState(s.initial);
-    cpu.setState(s.initial);
-    for (uint32_t step = 0; step < 100; ++step) {
-        const auto emitters = s.emitters(step);
-        ASSERT_TRUE(gpu.setEmitters(emitters).ok());
-        gpu.step();
-        cpu.step(emitters);
-    }
-    const FieldState cpuState = cpu.state();
-    const fluid::StateDifference d = fluid::difference(gpu.state(), cpuState);
+    SideBySide run;
+    runSideBySide(
+        ctx(), "puff", {16, 16, 16}, 100, [&](SolverOptions& o) { o.storage = Storage::Float16; },
+        run);
+    if (HasFatalFailure()) return;
+    const SolverOptions& options = run.options;
+    const FieldState& cpuState = run.cpu;
+    const fluid::StateDifference& d = run.difference;
     std::printf("  fp16: velocity %.3g, pressure %.3g, pigment %.3g, divergence %.3g\n",
                 d.velocity.relL2, d.pressure.relL2, d.pigment.relL2, d.divergence.relL2);
     EXPECT_LE(d.velocity.relL2, 0.005);
     EXPECT_LE(d.pigment.relL2, 0.005);
     EXPECT_LE(d.pressure.relL2, 0.02);
     EXPECT_GT(fluid::computeDiagnostics(options, cpuState).kineticEnergy, 1e-6);
-    EXPECT_EQ(fluid::computeDiagnostics(options, gpu.state()).nonFinite, 0u);
+    EXPECT_EQ(fluid::computeDiagnostics(options, run.gpu).nonFinite, 0u);
 }
 
 } // namespace

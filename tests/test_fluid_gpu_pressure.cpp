@@ -7,6 +7,7 @@
 #include "fluid/reference/reference_solver.h"
 #include "fluid/scenarios.h"
 #include "fluid/smoke_solver.h"
+#include "tests/fluid_side_by_side.h"
 #include "tests/fluid_test_util.h"
 #include "tests/gpu_test.h"
 
@@ -388,25 +389,14 @@ class GpuPressureStepsTest : public GpuTest,
                              public ::testing::WithParamInterface<PressureSolver> {};
 
 TEST_P(GpuPressureStepsTest, HundredStepsStayCloseToReference) {
-    auto scenario = fluid::makeScenario("puff", {16, 16, 16});
-    ASSERT_TRUE(scenario.ok()) << scenario.error().message;
-    const fluid::Scenario& s = scenario.value();
-    SolverOptions options = s.options;
-    options.pressureSolver = GetParam();
-    auto created = fluid::SmokeSolver::create(ctx(), options);
-    ASSERT_TRUE(created.ok()) << created.error().message;
-    fluid::SmokeSolver& gpu = *created.value();
-    fluid::ReferenceSolver cpu(options);
-    gpu.setState(s.initial);
-    cpu.setState(s.initial);
-    for (uint32_t step = 0; step < 100; ++step) {
-        const auto emitters = s.emitters(step);
-        ASSERT_TRUE(gpu.setEmitters(emitters).ok());
-        gpu.step();
-        cpu.step(emitters);
-    }
-    const FieldState cpuState = cpu.state();
-    const fluid::StateDifference d = fluid::difference(gpu.state(), cpuState);
+    SideBySide run;
+    runSideBySide(
+        ctx(), "puff", {16, 16, 16}, 100, [&](SolverOptions& o) { o.pressureSolver = GetParam(); },
+        run);
+    if (HasFatalFailure()) return;
+    const SolverOptions& options = run.options;
+    const FieldState& cpuState = run.cpu;
+    const fluid::StateDifference& d = run.difference;
     std::printf("  %s: velocity %.3g, pressure %.3g, pigment %.3g, divergence %.3g\n",
                 fluid::pressureSolverName(GetParam()), d.velocity.relL2, d.pressure.relL2,
                 d.pigment.relL2, d.divergence.relL2);
@@ -416,7 +406,7 @@ TEST_P(GpuPressureStepsTest, HundredStepsStayCloseToReference) {
     EXPECT_LE(d.divergence.relL2, 1e-4);
     const fluid::Diagnostics diagnostics = fluid::computeDiagnostics(options, cpuState);
     EXPECT_GT(diagnostics.kineticEnergy, 1e-6);
-    EXPECT_EQ(fluid::computeDiagnostics(options, gpu.state()).nonFinite, 0u);
+    EXPECT_EQ(fluid::computeDiagnostics(options, run.gpu).nonFinite, 0u);
 }
 
 INSTANTIATE_TEST_SUITE_P(GpuPressure, GpuPressureStepsTest,

@@ -4,6 +4,7 @@
 #include "fluid/reference/reference_solver.h"
 #include "fluid/scenarios.h"
 #include "fluid/smoke_solver.h"
+#include "tests/fluid_side_by_side.h"
 #include "tests/gpu_test.h"
 
 namespace mfx::test {
@@ -19,29 +20,17 @@ class FluidStepsTest : public GpuTest, public ::testing::WithParamInterface<cons
 constexpr double kHundredStepTolerance = 1e-4;
 
 TEST_P(FluidStepsTest, HundredStepsStayCloseToReference) {
-    auto scenario = fluid::makeScenario(GetParam(), {16, 16, 16});
-    ASSERT_TRUE(scenario.ok()) << scenario.error().message;
-    const fluid::Scenario& s = scenario.value();
-    auto created = fluid::SmokeSolver::create(ctx(), s.options);
-    ASSERT_TRUE(created.ok()) << created.error().message;
-    fluid::SmokeSolver& gpu = *created.value();
-    fluid::ReferenceSolver cpu(s.options);
-    gpu.setState(s.initial);
-    cpu.setState(s.initial);
-    for (uint32_t step = 0; step < 100; ++step) {
-        const auto emitters = s.emitters(step);
-        ASSERT_TRUE(gpu.setEmitters(emitters).ok());
-        gpu.step();
-        cpu.step(emitters);
-    }
-    const fluid::FieldState cpuState = cpu.state();
-    const fluid::StateDifference d = fluid::difference(gpu.state(), cpuState);
+    SideBySide run;
+    runSideBySide(ctx(), GetParam(), {16, 16, 16}, 100, nullptr, run);
+    if (HasFatalFailure()) return;
+    const fluid::FieldState& cpuState = run.cpu;
+    const fluid::StateDifference& d = run.difference;
     EXPECT_LE(d.velocity.relL2, kHundredStepTolerance);
     EXPECT_LE(d.pressure.relL2, kHundredStepTolerance);
     EXPECT_LE(d.pigment.relL2, kHundredStepTolerance);
     EXPECT_LE(d.divergence.relL2, kHundredStepTolerance);
     // Something happened: the flow is not at rest and there is pigment.
-    const fluid::Diagnostics diagnostics = fluid::computeDiagnostics(s.options, cpuState);
+    const fluid::Diagnostics diagnostics = fluid::computeDiagnostics(run.options, cpuState);
     EXPECT_GT(diagnostics.kineticEnergy, 1e-6);
     EXPECT_GT(diagnostics.totalPigment.w, 1e-6);
     EXPECT_EQ(diagnostics.nonFinite, 0u);

@@ -4,6 +4,7 @@
 #include "fluid/reference/reference_solver.h"
 #include "fluid/scene_scenario.h"
 #include "tests/gpu_test.h"
+#include "tests/moving_point.h"
 
 #include <cmath>
 
@@ -187,42 +188,10 @@ TEST_F(SceneScenarioTest, CpuReferenceRunLeavesPigmentAndFiniteFields) {
     EXPECT_GT(speed, 0.0);
 }
 
-// A character of one joint carrying one vertex, sliding along +x at 1.5 m/s.
-anim::Character slidingPoint() {
-    anim::Character c;
-    c.name = "point";
-    c.nodes.push_back(anim::Node{});
-    c.nodes[0].name = "root";
-    anim::Skin skin;
-    skin.joints = {0};
-    skin.inverseBind = {glm::mat4(1.0f)};
-    c.skins.push_back(skin);
-    anim::Primitive p;
-    p.positions = {glm::vec3(0.0f)};
-    p.normals = {glm::vec3(0, 1, 0)};
-    p.joints = {glm::uvec4(0)};
-    p.weights = {glm::vec4(1, 0, 0, 0)};
-    p.skin = 0;
-    c.meshes.push_back(anim::Mesh{});
-    c.meshes[0].name = "dot";
-    c.meshes[0].primitives.push_back(p);
-    anim::Clip clip;
-    clip.name = "slide";
-    clip.duration = 2.0f;
-    anim::Channel ch;
-    ch.node = 0;
-    ch.path = anim::Path::Translation;
-    ch.times = {0.0f, 2.0f};
-    ch.values = {glm::vec4(-1.5f, 0.6f, 0.0f, 0.0f), glm::vec4(1.5f, 0.6f, 0.0f, 0.0f)};
-    clip.channels.push_back(ch);
-    c.clips.push_back(clip);
-    return c;
-}
-
 // A grid that follows the character moves by whole cells; its records, moved back by as much,
 // are those of a grid that stays where it was placed.
 TEST_F(SceneScenarioTest, FollowingGridIsRecordedWhereItWasPlaced) {
-    const anim::Character point = slidingPoint();
+    const anim::Character point = movingPoint();
     Result<scene::Scene> parsed = scene::parseScene(R"({
         "character": {"source": "point.gltf"},
         "output": {"fps": 30, "frames": 24},

@@ -7,6 +7,7 @@
 #include "fluid/reference/reference_solver.h"
 #include "fluid/scene_simulation.h"
 #include "tests/gpu_test.h"
+#include "tests/moving_point.h"
 
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
@@ -94,41 +95,6 @@ TEST_F(SceneSimulationTest, SmokeSleepsAfterItsWindowAndWakesForTheNext) {
     ASSERT_GE(asleepFrom, 0) << "the grid never went to sleep";
     EXPECT_LE(asleepFrom, 9 + 30); // within a second of the window's end
     EXPECT_EQ(wokeAt, 48);         // 1.6 s at 30 fps
-}
-
-// A character of one joint carrying one vertex, moving along +x at 1.5 m/s.
-anim::Character movingPoint() {
-    anim::Character c;
-    c.name = "point";
-    anim::Node root;
-    root.name = "root";
-    c.nodes.push_back(root);
-    anim::Skin skin;
-    skin.name = "skin";
-    skin.joints = {0};
-    skin.inverseBind = {glm::mat4(1.0f)};
-    c.skins.push_back(skin);
-    anim::Mesh mesh;
-    mesh.name = "dot";
-    anim::Primitive p;
-    p.positions = {glm::vec3(0.0f)};
-    p.normals = {glm::vec3(0, 1, 0)};
-    p.joints = {glm::uvec4(0)};
-    p.weights = {glm::vec4(1, 0, 0, 0)};
-    p.skin = 0;
-    mesh.primitives.push_back(p);
-    c.meshes.push_back(mesh);
-    anim::Clip clip;
-    clip.name = "slide";
-    clip.duration = 2.0f;
-    anim::Channel ch;
-    ch.node = 0;
-    ch.path = anim::Path::Translation;
-    ch.times = {0.0f, 2.0f};
-    ch.values = {glm::vec4(-1.5f, 0.6f, 0.0f, 0.0f), glm::vec4(1.5f, 0.6f, 0.0f, 0.0f)};
-    clip.channels.push_back(ch);
-    c.clips.push_back(clip);
-    return c;
 }
 
 TEST_F(SceneSimulationTest, OneMovingVertexPushesTheRightCellsLikeTheReference) {
