@@ -13,6 +13,8 @@
 #include "apps/svg_plot.h"
 
 #include "core/gpu/commands.h"
+#include "fluid/accuracy.h"
+#include "fluid/field_compare.h"
 #include "fluid/reference/reference_solver.h"
 #include "fluid/scenarios.h"
 #include "fluid/scene_scenario.h"
@@ -79,95 +81,6 @@ std::vector<Config> configs() {
                        [a](SolverOptions& o) { o.advection = a; }});
     out.push_back({"fp16 (jacobi 20)", [](SolverOptions& o) { o.storage = Storage::Float16; }});
     return out;
-}
-
-// Relative L2 difference of two equally long float arrays (0 when both are 0).
-double relativeL2(std::span<const float> a, std::span<const float> b) {
-    double diff = 0.0, norm = 0.0;
-    for (size_t i = 0; i < a.size() && i < b.size(); ++i) {
-        diff += (double(a[i]) - double(b[i])) * (double(a[i]) - double(b[i]));
-        norm += double(b[i]) * double(b[i]);
-    }
-    return norm > 0.0 ? std::sqrt(diff / norm) : std::sqrt(diff);
-}
-
-std::vector<float> velocity(const FieldState& s) {
-    std::vector<float> v = s.velocityX;
-    v.insert(v.end(), s.velocityY.begin(), s.velocityY.end());
-    v.insert(v.end(), s.velocityZ.begin(), s.velocityZ.end());
-    return v;
-}
-
-// A state on a grid twice as fine, restricted to `coarse`: pigment as the mean of the 8 fine
-// cells of a coarse cell, a face velocity as the mean of the 4 fine faces on the coarse face.
-FieldState restrictToCoarse(const FieldState& fine, const fluid::GridShape& coarse) {
-    FieldState out = FieldState::zero(coarse);
-    const fluid::GridShape& f = fine.grid;
-    for (uint32_t z = 0; z < coarse.cellsZ; ++z)
-        for (uint32_t y = 0; y < coarse.cellsY; ++y)
-            for (uint32_t x = 0; x < coarse.cellsX; ++x)
-                for (int c = 0; c < 4; ++c) {
-                    double sum = 0.0;
-                    for (uint32_t k = 0; k < 8; ++k)
-                        sum += double(fine.pigment[f.index(2 * x + (k & 1), 2 * y + (k >> 1 & 1),
-                                                           2 * z + (k >> 2 & 1)) *
-                                                       4 +
-                                                   size_t(c)]);
-                    out.pigment[coarse.index(x, y, z) * 4 + size_t(c)] = float(sum / 8.0);
-                }
-    for (int c = 0; c < 3; ++c) {
-        const glm::uvec3 n = fluid::faceExtent(coarse, c), nf = fluid::faceExtent(f, c);
-        const std::vector<float>& src = c == 0   ? fine.velocityX
-                                        : c == 1 ? fine.velocityY
-                                                 : fine.velocityZ;
-        std::vector<float>& dst = c == 0 ? out.velocityX : c == 1 ? out.velocityY : out.velocityZ;
-        const int a = (c + 1) % 3, b = (c + 2) % 3;
-        for (uint32_t z = 0; z < n.z; ++z)
-            for (uint32_t y = 0; y < n.y; ++y)
-                for (uint32_t x = 0; x < n.x; ++x) {
-                    const glm::uvec3 q(x, y, z);
-                    double sum = 0.0;
-                    for (uint32_t k = 0; k < 4; ++k) {
-                        glm::uvec3 p = 2u * q;
-                        p[a] += k & 1;
-                        p[b] += k >> 1;
-                        sum += double(src[p.x + size_t(nf.x) * (p.y + size_t(nf.y) * p.z)]);
-                    }
-                    dst[x + size_t(n.x) * (y + size_t(n.y) * z)] = float(sum / 4.0);
-                }
-    }
-    return out;
-}
-
-// K steps of `scenario` on the CPU reference; `exact` replaces the pressure solve by the exact
-// one.
-FieldState referenceRun(const fluid::Scenario& scenario, const SolverOptions& options,
-                        uint32_t steps, bool exact) {
-    fluid::ReferenceSolver ref(options);
-    ref.setState(scenario.initial);
-    for (uint32_t s = 0; s < steps; ++s) {
-        const std::vector<shared::FluidEmitter> emitters = scenario.emitters(s);
-        for (uint32_t sub = 0; sub < options.substeps; ++sub)
-            for (fluid::Stage stage : fluid::kStepOrder) {
-                if (exact && stage == fluid::Stage::SolvePressure)
-                    ref.solvePressureExact();
-                else
-                    ref.runStage(stage, emitters);
-            }
-    }
-    return ref.state();
-}
-
-// ||div after projection|| / ||div before|| of a state whose divergence field holds the
-// divergence the last pressure solve started from.
-double divergenceLeft(const SolverOptions& options, const FieldState& state) {
-    fluid::ReferenceSolver ref(options);
-    ref.setState(state);
-    ref.computeDivergence();
-    const FieldState after = ref.state();
-    const std::vector<float> zero(state.divergence.size(), 0.0f);
-    const double before = relativeL2(state.divergence, zero);
-    return before > 0.0 ? relativeL2(after.divergence, zero) / before : 0.0;
 }
 
 struct Row {
@@ -371,11 +284,11 @@ int runBenchAccuracy(std::span<const std::string> args) {
         const fluid::Scenario scenario = makeScenario(name, n).value();
         const fluid::Scenario fineScenario = makeScenario(name, 2 * n).value();
         // The yardsticks: exact pressure, fp32, semi-Lagrangian, on this grid and twice as fine.
-        const FieldState exact = referenceRun(scenario, scenario.options, K, true);
+        const FieldState exact = fluid::referenceRun(scenario, scenario.options, K, true);
         SolverOptions fineOptions = fineScenario.options;
         fineOptions.dt = scenario.options.dt;
-        const FieldState fine = restrictToCoarse(referenceRun(fineScenario, fineOptions, K, true),
-                                                 scenario.options.grid);
+        const FieldState fine = fluid::restrictToCoarse(
+            fluid::referenceRun(fineScenario, fineOptions, K, true), scenario.options.grid);
         for (const Config& config : all) {
             Row row{name, config.name};
             SolverOptions o = scenario.options;
@@ -413,13 +326,15 @@ int runBenchAccuracy(std::span<const std::string> args) {
                 row.pressureMs = median(pressureMs);
             } else {
                 row.note = created.error().message;
-                result = referenceRun(scenario, o, K, false);
+                result = fluid::referenceRun(scenario, o, K, false);
             }
-            row.divergence = divergenceLeft(o, result);
-            row.velocityError = relativeL2(velocity(result), velocity(exact));
-            row.pigmentError = relativeL2(result.pigment, exact.pigment);
-            row.velocityFine = relativeL2(velocity(result), velocity(fine));
-            row.pigmentFine = relativeL2(result.pigment, fine.pigment);
+            row.divergence = fluid::divergenceLeft(o, result);
+            const fluid::StateDifference toExact = fluid::difference(result, exact);
+            const fluid::StateDifference toFine = fluid::difference(result, fine);
+            row.velocityError = toExact.velocity.relL2;
+            row.pigmentError = toExact.pigment.relL2;
+            row.velocityFine = toFine.velocity.relL2;
+            row.pigmentFine = toFine.pigment.relL2;
             rows.push_back(row);
             progress.update(++done);
         }
