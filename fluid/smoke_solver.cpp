@@ -435,44 +435,17 @@ void SmokeSolver::copyToImages(
     if (copies.empty()) return;
     // The dispatches that wrote the buffers → the copies, each image in TRANSFER_DST_OPTIMAL (its
     // contents are replaced whole) → every later command, the images back in GENERAL.
-    auto transition = [&](VkImageLayout from, VkImageLayout to, VkPipelineStageFlags2 srcStage,
-                          VkAccessFlags2 srcAccess, VkPipelineStageFlags2 dstStage,
-                          VkAccessFlags2 dstAccess) {
-        VkMemoryBarrier2 memory{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-        memory.srcStageMask = srcStage;
-        memory.srcAccessMask = srcAccess;
-        memory.dstStageMask = dstStage;
-        memory.dstAccessMask = dstAccess;
-        std::vector<VkImageMemoryBarrier2> images;
-        for (const auto& [buffer, image] : copies) {
-            VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-            b.srcStageMask = srcStage;
-            b.srcAccessMask = srcAccess;
-            b.dstStageMask = dstStage;
-            b.dstAccessMask = dstAccess;
-            b.oldLayout = from;
-            b.newLayout = to;
-            b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-            b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-            b.image = image->get();
-            b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-            images.push_back(b);
-        }
-        VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-        dependency.memoryBarrierCount = 1;
-        dependency.pMemoryBarriers = &memory;
-        dependency.imageMemoryBarrierCount = uint32_t(images.size());
-        dependency.pImageMemoryBarriers = images.data();
-        vkCmdPipelineBarrier2(cmd, &dependency);
-    };
+    std::vector<VkImage> images;
+    for (const auto& copy : copies)
+        images.push_back(copy.second->get());
     const VkPipelineStageFlags2 all =
         VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
     const VkAccessFlags2 everything =
         VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
         VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT;
-    transition(VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, all,
-               VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT, all,
-               everything);
+    gpu::imageBarriers(cmd, images, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                       all, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                       all, everything);
     for (const auto& [buffer, image] : copies) {
         VkBufferImageCopy region{};
         region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
@@ -480,9 +453,9 @@ void SmokeSolver::copyToImages(
         vkCmdCopyBufferToImage(cmd, buffer->get(), image->get(),
                                VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
     }
-    transition(VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL, all,
-               VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT, all,
-               everything);
+    gpu::imageBarriers(cmd, images, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
+                       all, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                       all, everything);
 }
 
 template <typename MakeWrites>

@@ -203,10 +203,10 @@ Image createImage(const Context& ctx, const ImageDesc& desc) {
 
 namespace {
 
-void layoutBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect,
-                   VkImageLayout oldLayout, VkImageLayout newLayout, VkPipelineStageFlags2 srcStage,
-                   VkAccessFlags2 srcAccess, VkPipelineStageFlags2 dstStage,
-                   VkAccessFlags2 dstAccess) {
+VkImageMemoryBarrier2 layoutChange(VkImage image, VkImageAspectFlags aspect,
+                                   VkImageLayout oldLayout, VkImageLayout newLayout,
+                                   VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                                   VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
     VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
     barrier.srcStageMask = srcStage;
     barrier.srcAccessMask = srcAccess;
@@ -218,6 +218,15 @@ void layoutBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect
     barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
     barrier.image = image;
     barrier.subresourceRange = {aspect, 0, 1, 0, 1};
+    return barrier;
+}
+
+void layoutBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect,
+                   VkImageLayout oldLayout, VkImageLayout newLayout, VkPipelineStageFlags2 srcStage,
+                   VkAccessFlags2 srcAccess, VkPipelineStageFlags2 dstStage,
+                   VkAccessFlags2 dstAccess) {
+    const VkImageMemoryBarrier2 barrier =
+        layoutChange(image, aspect, oldLayout, newLayout, srcStage, srcAccess, dstStage, dstAccess);
     VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
     dependency.imageMemoryBarrierCount = 1;
     dependency.pImageMemoryBarriers = &barrier;
@@ -225,6 +234,27 @@ void layoutBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect
 }
 
 } // namespace
+
+void imageBarriers(VkCommandBuffer cmd, std::span<const VkImage> images, VkImageLayout oldLayout,
+                   VkImageLayout newLayout, VkPipelineStageFlags2 srcStage,
+                   VkAccessFlags2 srcAccess, VkPipelineStageFlags2 dstStage,
+                   VkAccessFlags2 dstAccess) {
+    VkMemoryBarrier2 memory{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+    memory.srcStageMask = srcStage;
+    memory.srcAccessMask = srcAccess;
+    memory.dstStageMask = dstStage;
+    memory.dstAccessMask = dstAccess;
+    std::vector<VkImageMemoryBarrier2> barriers;
+    for (VkImage image : images)
+        barriers.push_back(layoutChange(image, VK_IMAGE_ASPECT_COLOR_BIT, oldLayout, newLayout,
+                                        srcStage, srcAccess, dstStage, dstAccess));
+    VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dependency.memoryBarrierCount = 1;
+    dependency.pMemoryBarriers = &memory;
+    dependency.imageMemoryBarrierCount = uint32_t(barriers.size());
+    dependency.pImageMemoryBarriers = barriers.data();
+    vkCmdPipelineBarrier2(cmd, &dependency);
+}
 
 void imageBarrier(VkCommandBuffer cmd, Image& image, VkImageLayout newLayout,
                   VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,

@@ -104,6 +104,14 @@ void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageLayout oldLayout,
                   VkImageLayout newLayout, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
                   VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
 
+// One dependency for several colour images that move together from `oldLayout` to `newLayout`,
+// with a global memory barrier of the same stages and accesses (for buffers written or read on
+// either side): one vkCmdPipelineBarrier2 however many images. Layouts are not tracked.
+void imageBarriers(VkCommandBuffer cmd, std::span<const VkImage> images, VkImageLayout oldLayout,
+                   VkImageLayout newLayout, VkPipelineStageFlags2 srcStage,
+                   VkAccessFlags2 srcAccess, VkPipelineStageFlags2 dstStage,
+                   VkAccessFlags2 dstAccess);
+
 // Records a global memory barrier (buffers, and images that keep their layout).
 void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
                    VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
