@@ -1,7 +1,7 @@
 // The smoke pass: every smoke grid of a simulation ray-marched through its pigment volume and
 // composited over the rendered picture, after the scene and effect passes: the march stops at the
-// scene's depth, and smoke behind a surface fades out over `fadeDistance` (docs/architecture.md "Formulas"),
-// so it meets the floor and the character softly.
+// scene's depth, and smoke behind a surface fades out over `fadeDistance` (docs/architecture.md
+// "Formulas"), so it meets the floor and the character softly.
 //
 // Per grid, all on the GPU (the CPU never waits for it):
 // - pigmentBounds (shaders/pigment_bounds.comp) finds the box of cells that hold pigment; the

@@ -4,10 +4,10 @@
 #include "core/gpu/program.h"
 #include "render/image_output.h"
 #include "render/render_target.h"
-#include "tests/test_scene_pass.h"
 #include "shaders/embedded.h"
 #include "shaders/shared/selftest.h"
 #include "tests/gpu_test.h"
+#include "tests/test_scene_pass.h"
 
 #include <algorithm>
 #include <cmath>

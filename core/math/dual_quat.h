@@ -1,7 +1,7 @@
 // Unit dual quaternions for rigid transforms (rotation + translation), the blending rule of dual
 // quaternion skinning, and the split of an affine matrix into translation, rotation and scale.
-// docs/architecture.md "Formulas": skinning blends dual quaternions with the sign rule against the first
-// joint and blends scale linearly; trajectory sub-samples blend two dual quaternions with the
+// docs/architecture.md "Formulas": skinning blends dual quaternions with the sign rule against the
+// first joint and blends scale linearly; trajectory sub-samples blend two dual quaternions with the
 // same rule (Kavan et al., "Geometric skinning with approximate dual quaternion blending", 2008).
 #pragma once
 
