@@ -1,6 +1,5 @@
 #include "apps/commands.h"
 
-#include "core/anim/sampling.h"
 #include "core/scene/scene_fit.h"
 
 #include <algorithm>
@@ -138,15 +137,12 @@ bool loadSceneArgument(const cli::ParsedArgs& parsed, SceneArgument& out, int& e
     if (preview) {
         // One line: the clip, the size and the bones the preview's effects were bound to.
         const anim::Clip& clip = scene::sceneClip(out.scene, out.character);
-        const scene::Bounds first = scene::poseBounds(
-            out.character,
-            anim::samplePose(out.character, &clip, out.scene.character.start, anim::Wrap::Clamp));
         std::string bones = notes.empty() ? std::string() : notes.front();
         const size_t bound = bones.find("\": ");
         if (bound != std::string::npos) bones = bones.substr(bound + 3);
         std::printf("preview of %s: clip \"%s\" (%.3g s), %.2f m tall; effects %s\n",
                     parsed.positional[0].c_str(), clip.name.c_str(), double(clip.duration),
-                    double(first.empty() ? 0.0f : first.size().y), bones.c_str());
+                    double(scene::characterHeight(out.scene, out.character)), bones.c_str());
     } else {
         for (const std::string& note : notes)
             std::printf("%s\n", note.c_str());

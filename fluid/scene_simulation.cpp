@@ -190,9 +190,7 @@ glm::mat4 SceneSimulation::placement() const {
 }
 
 bool SceneSimulation::effectLive(const scene::EffectSpec& e, float time) const {
-    // Half a frame of slack so a window boundary on a frame time is inside it.
-    const float slack = 0.5f / scene_.output.fps;
-    return time + slack >= e.start && (!e.end || time <= *e.end + slack);
+    return scene::effectLive(scene_, e, time);
 }
 
 // The grid is centred on the bounds its effects' vertices sweep over their windows (sampled at

@@ -234,23 +234,35 @@ std::string listBoneNames(const Character& character) {
     return out;
 }
 
+namespace {
+
+std::string groupList() {
+    std::string out;
+    for (const std::string& g : boneGroupNames())
+        out += (out.empty() ? "" : ", ") + g;
+    return out;
+}
+
+// The bones of a known group, or the refusal naming it and the bones there are.
+Result<std::vector<std::string>> groupBones(const Character& character, const std::string& group) {
+    std::vector<std::string> out = resolveBoneGroup(character, group);
+    if (out.empty())
+        return Error{"group \"" + group +
+                     "\": no bone of this rig is recognised as one (README.md \"Your own "
+                     "character\"); name its bones instead; bones are: " +
+                     listBoneNames(character)};
+    return out;
+}
+
+} // namespace
+
 Result<std::vector<std::string>> resolveBoneEntry(const Character& character,
                                                   const std::string& entry) {
     if (entry.size() > 1 && entry[0] == '@') { // "@spine": the group, even where a bone is "spine"
         const std::string group = entry.substr(1);
-        if (!isBoneGroup(group)) {
-            std::string groupList;
-            for (const std::string& g : boneGroupNames())
-                groupList += (groupList.empty() ? "" : ", ") + g;
-            return Error{"no bone group \"" + group + "\"; groups are: " + groupList};
-        }
-        std::vector<std::string> out = resolveBoneGroup(character, group);
-        if (out.empty())
-            return Error{"group \"" + group +
-                         "\": no bone of this rig is recognised as one (README.md \"Your own "
-                         "character\"); name its bones instead; bones are: " +
-                         listBoneNames(character)};
-        return out;
+        if (!isBoneGroup(group))
+            return Error{"no bone group \"" + group + "\"; groups are: " + groupList()};
+        return groupBones(character, group);
     }
     if (character.findNode(entry)) return std::vector<std::string>{entry};
     if (isGlobPattern(entry)) {
@@ -262,19 +274,8 @@ Result<std::vector<std::string>> resolveBoneEntry(const Character& character,
                          "\" matches no bone; bones are: " + listBoneNames(character)};
         return out;
     }
-    if (isBoneGroup(entry)) {
-        std::vector<std::string> out = resolveBoneGroup(character, entry);
-        if (out.empty())
-            return Error{"group \"" + entry +
-                         "\": no bone of this rig is recognised as one (README.md \"Your own "
-                         "character\"); name its bones instead; bones are: " +
-                         listBoneNames(character)};
-        return out;
-    }
-    std::string groupList;
-    for (const std::string& g : boneGroupNames())
-        groupList += (groupList.empty() ? "" : ", ") + g;
-    return Error{"no bone or bone group \"" + entry + "\"; groups are: " + groupList +
+    if (isBoneGroup(entry)) return groupBones(character, entry);
+    return Error{"no bone or bone group \"" + entry + "\"; groups are: " + groupList() +
                  "; bones are: " + listBoneNames(character)};
 }
 

@@ -66,13 +66,6 @@ std::vector<uint32_t> sampledFrames(uint32_t frames) {
     return out;
 }
 
-// Whether scene time `time` lies in effect `e`'s window, with half a frame of slack at each end
-// (the rule the simulation plays effects by).
-bool live(const Scene& scene, const EffectSpec& e, float time) {
-    const float slack = 0.5f / scene.output.fps;
-    return time + slack >= e.start && (!e.end || time <= *e.end + slack);
-}
-
 trajectory::Selection selectionOf(const EffectSpec& e) {
     trajectory::Selection s;
     s.meshes = e.meshes;
@@ -98,9 +91,10 @@ float peakBoneSpeed(const Scene& scene, const anim::Character& character, const 
         const float t = float(f) * dt;
         const float clipTime = clipTimeAt(scene, character, t);
         // Not across a loop's wrap (the pose jumps back there) nor outside the window.
-        if (!live(scene, e, t) || clipTime < previousClipTime) previous.clear();
+        const bool isLive = effectLive(scene, e, t);
+        if (!isLive || clipTime < previousClipTime) previous.clear();
         previousClipTime = clipTime;
-        if (!live(scene, e, t)) continue;
+        if (!isLive) continue;
         const anim::Pose pose = poseAtSceneTime(scene, character, t);
         std::vector<glm::vec3> now;
         for (int n : nodes)
@@ -161,10 +155,7 @@ uint32_t targetCount(const EffectSpec& e) {
 void scaleLengthDefaults(Scene& scene, const anim::Character& character,
                          std::vector<std::string>* notes) {
     if (scene.effects.empty()) return;
-    const anim::Pose first = anim::samplePose(character, &sceneClip(scene, character),
-                                              scene.character.start, anim::Wrap::Clamp);
-    const Bounds b = poseBounds(character, first);
-    const float height = b.empty() ? 0.0f : b.size().y;
+    const float height = characterHeight(scene, character);
     if (!(height > 0.0f) || (height >= kSaneHeightLow && height <= kSaneHeightHigh)) return;
     const float unit = height / kDefaultHeight;
     std::vector<std::string> scaled;
@@ -252,6 +243,17 @@ void frameCamera(Scene& scene, const anim::Character& character) {
 
 } // namespace
 
+float characterHeight(const Scene& scene, const anim::Character& character) {
+    if (character.clips.empty()) return 0.0f;
+    const Bounds b = poseBounds(character, poseAtSceneTime(scene, character, 0.0f));
+    return b.empty() ? 0.0f : b.size().y;
+}
+
+bool effectLive(const Scene& scene, const EffectSpec& e, float time) {
+    const float slack = 0.5f / scene.output.fps;
+    return time + slack >= e.start && (!e.end || time <= *e.end + slack);
+}
+
 glm::mat4 characterPlacement(const Scene& scene) {
     return glm::translate(glm::mat4(1.0f), scene.character.position) *
            glm::rotate(glm::mat4(1.0f), glm::radians(scene.character.yawDegrees),
@@ -300,10 +302,7 @@ float chooseCharacterScale(const Scene& scene, const anim::Character& character,
                            const std::string& where, std::string* note) {
     if (note) note->clear();
     if (character.clips.empty()) return 1.0f;
-    const anim::Pose first = anim::samplePose(character, &sceneClip(scene, character),
-                                              scene.character.start, anim::Wrap::Clamp);
-    const Bounds b = poseBounds(character, first);
-    const float height = b.empty() ? 0.0f : b.size().y;
+    const float height = characterHeight(scene, character);
     float factor = 1.0f;
     std::string why;
     if (scene.character.scale) {
@@ -408,7 +407,7 @@ std::vector<std::string> motionlessEffects(const Scene& scene, const anim::Chara
         std::vector<glm::vec3> previous;
         for (uint32_t f = 0; f < frames; ++f) {
             const float t = float(f) * dt;
-            if (!live(scene, e, t)) continue;
+            if (!effectLive(scene, e, t)) continue;
             everLive = true;
             // Each live frame's segment runs from the previous frame's pose to this one.
             if (previous.empty()) previous = positions(std::max(t - dt, 0.0f));

@@ -49,6 +49,12 @@ glm::mat4 characterPlacement(const Scene& scene);
 // most about `maxVertices` vertices a primitive are visited (an even stride through each).
 Bounds poseBounds(const anim::Character& character, const anim::Pose& pose,
                   size_t maxVertices = 4096);
+// The height of the character's skinned vertices at the first frame played (0 without vertices).
+float characterHeight(const Scene& scene, const anim::Character& character);
+// Whether scene time `time` is inside effect `e`'s window, with half a frame of slack at each end
+// (so a boundary on a frame time is inside it): the rule every effect is played by.
+bool effectLive(const Scene& scene, const EffectSpec& e, float time);
+
 // The bounds of the placed character over every frame of the scene's played range.
 Bounds animatedBounds(const Scene& scene, const anim::Character& character);
 
