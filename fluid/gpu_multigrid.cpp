@@ -377,15 +377,7 @@ gpu::Program& GpuMultigrid::program(Kernel kernel) {
     gpu::ComputeProgramDesc desc;
     desc.name = sources[kernel].name;
     desc.spirv = sources[kernel].spirv;
-    // Bindings as in shaders/pressure_solve_common.glsl: 9 and 10 storage images, the rest
-    // storage buffers.
-    for (uint32_t b = 0; b < 12; ++b)
-        desc.bindings.push_back({b,
-                                 b == 9 || b == 10 ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE
-                                                   : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-                                 VK_SHADER_STAGE_COMPUTE_BIT});
     desc.pushConstantSize = sizeof(shared::PressureDispatch);
-    desc.maxSets = 4;
     // Ids 0-2: the workgroup shape; 3-4: a brick's rows and layers; 5-7: the transfers' slots;
     // 8: the V-cycle's kind (MGPCG's symmetric one, or the multigrid solver's).
     const bool fused = kernel == CycleCoarseLevels;
@@ -439,26 +431,22 @@ void GpuMultigrid::run(VkCommandBuffer cmd, Kernel kernel,
                        const shared::PressureDispatch& constants, Grid grid, bool indirect,
                        int gridLevel) {
     gpu::Program& prog = program(kernel);
-    const auto key = std::make_tuple(int(kernel), pressure_->get(), out_->get());
-    auto it = sets_.find(key);
-    if (it == sets_.end()) {
-        const gpu::DescriptorWrite writes[] = {
-            gpu::bindBuffer(0, levelTable_),
-            gpu::bindBuffer(1, axisCells_),
-            gpu::bindBuffer(2, restrictions_),
-            gpu::bindBuffer(3, coarsestMatrix_),
-            gpu::bindBuffer(4, vectors_),
-            gpu::bindBuffer(5, vectors_),
-            gpu::bindBuffer(6, partials_),
-            gpu::bindBuffer(7, scalars_),
-            gpu::bindBuffer(8, arguments_),
-            gpu::bindImage(9, *divergence_, VK_IMAGE_LAYOUT_GENERAL),
-            gpu::bindImage(10, *pressure_, VK_IMAGE_LAYOUT_GENERAL),
-            gpu::bindBuffer(11, *out_),
-        };
-        it = sets_.emplace(key, prog.createSet(ctx_, writes)).first;
-    }
-    prog.bind(cmd, it->second);
+    // Every kernel binds the same resources (shaders/pressure_solve_common.glsl).
+    const gpu::DescriptorWrite writes[] = {
+        gpu::bindBuffer(0, levelTable_),
+        gpu::bindBuffer(1, axisCells_),
+        gpu::bindBuffer(2, restrictions_),
+        gpu::bindBuffer(3, coarsestMatrix_),
+        gpu::bindBuffer(4, vectors_),
+        gpu::bindBuffer(5, vectors_),
+        gpu::bindBuffer(6, partials_),
+        gpu::bindBuffer(7, scalars_),
+        gpu::bindBuffer(8, arguments_),
+        gpu::bindImage(9, *divergence_, VK_IMAGE_LAYOUT_GENERAL),
+        gpu::bindImage(10, *pressure_, VK_IMAGE_LAYOUT_GENERAL),
+        gpu::bindBuffer(11, *out_),
+    };
+    prog.bind(cmd, writes);
     prog.push(cmd, constants);
     ++dispatches_;
     const size_t levelCount = levels_.size();

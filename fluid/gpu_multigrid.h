@@ -155,8 +155,6 @@ private:
     gpu::Buffer argumentsTemplate_; // workgroup; copied in at each solve
 
     std::array<gpu::Program, KernelCount> programs_;
-    // Descriptor sets per program and (pressure image, output buffer).
-    std::map<std::tuple<int, VkImage, VkBuffer>, VkDescriptorSet> sets_;
     const gpu::Image* divergence_ = nullptr;
     const gpu::Image* pressure_ = nullptr;
     const gpu::Buffer* out_ = nullptr;

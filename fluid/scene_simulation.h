@@ -143,8 +143,9 @@ public:
     const std::vector<TrajectoryEffect>& trajectories() const { return trajectories_; }
     const std::vector<SmokeGrid>& smokeGrids() const { return grids_; }
     uint64_t fluidBytes() const;
-    // Different for every simulation this process creates (a renderer that caches descriptor
-    // sets of a simulation's images knows from it when they belong to one that is gone).
+    // Different for every simulation this process creates: a pass that keeps a history of frames
+    // (FrameHistory, render/effect_geometry.h) knows from it when a restarted view began a new
+    // simulation.
     uint64_t serial() const { return serial_; }
 
 private:

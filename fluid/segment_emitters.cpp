@@ -7,10 +7,6 @@
 
 namespace mfx::fluid {
 
-namespace {
-constexpr uint32_t kMaxSets = 32;
-}
-
 uint32_t emitterCount(uint32_t vertexCount, const CouplingParameters& parameters) {
     if (vertexCount <= parameters.maxEmitters) return vertexCount;
     const uint32_t perVertex = std::max(parameters.samplesPerVertex, 1u);
@@ -36,15 +32,11 @@ std::vector<shared::FluidEmitter> segmentEmitters(std::span<const shared::Trajec
     return out;
 }
 
-SegmentEmitters::SegmentEmitters(const gpu::Context& ctx) : ctx_(ctx) {
+SegmentEmitters::SegmentEmitters(const gpu::Context& ctx) {
     gpu::ComputeProgramDesc desc;
     desc.name = "segment_emitters";
     desc.spirv = shaders::segment_emitters_comp;
-    for (uint32_t b = 0; b < 2; ++b)
-        desc.bindings.push_back(
-            {b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT});
     desc.pushConstantSize = sizeof(shared::SegmentEmitterConstants);
-    desc.maxSets = kMaxSets;
     program_ = gpu::createComputeProgram(ctx, desc);
 }
 
@@ -53,18 +45,6 @@ uint32_t SegmentEmitters::record(VkCommandBuffer cmd, const gpu::Buffer& ring, u
                                  uint32_t firstEmitter, const CouplingParameters& parameters) {
     const uint32_t count = emitterCount(vertexCount, parameters);
     if (count == 0) return 0;
-    const auto key = std::make_pair(ring.get(), emitters.get());
-    auto it = sets_.find(key);
-    if (it == sets_.end()) {
-        if (sets_.size() == kMaxSets) {
-            program_.resetSets(ctx_);
-            sets_.clear();
-        }
-        it = sets_
-                 .emplace(key, program_.createSet(
-                                   ctx_, {gpu::bindBuffer(0, ring), gpu::bindBuffer(1, emitters)}))
-                 .first;
-    }
     shared::SegmentEmitterConstants c{};
     c.gridOrigin = glm::vec4(parameters.gridOrigin, parameters.radius);
     c.firstVertex = firstVertex;
@@ -73,7 +53,7 @@ uint32_t SegmentEmitters::record(VkCommandBuffer cmd, const gpu::Buffer& ring, u
     c.firstEmitter = firstEmitter;
     c.strength = parameters.strength;
     c.samplesPerVertex = parameters.samplesPerVertex;
-    program_.bind(cmd, it->second);
+    program_.bind(cmd, {gpu::bindBuffer(0, ring), gpu::bindBuffer(1, emitters)});
     program_.push(cmd, c);
     vkCmdDispatch(cmd, gpu::groupCount(count, MFX_COUPLING_GROUP_SIZE), 1, 1);
     gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,

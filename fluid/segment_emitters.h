@@ -47,9 +47,7 @@ public:
                     const CouplingParameters& parameters);
 
 private:
-    const gpu::Context& ctx_;
     gpu::Program program_;
-    std::map<std::pair<VkBuffer, VkBuffer>, VkDescriptorSet> sets_;
 };
 
 } // namespace mfx::fluid

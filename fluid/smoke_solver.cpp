@@ -2,7 +2,6 @@
 
 #include "core/gpu/commands.h"
 #include "core/gpu/context.h"
-#include "shaders/embedded.h"
 #include "shaders/shared/fluid.h"
 
 #include <algorithm>
@@ -10,110 +9,10 @@
 
 namespace mfx::fluid {
 
-// The variant of a stage's shader for the solver's storage: binary16 images with fp16
-// (shaders/field_formats.glsl).
-#define MFX_FIELD_SHADER(name) (options_.storage == Storage::Float16 ? name##_half : name)
-
 namespace {
-
-// Sampled too: a renderer ray-marches the pigment (in GENERAL layout, as the solver keeps it).
-constexpr VkImageUsageFlags kFieldUsage =
-    VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
-    VK_IMAGE_USAGE_SAMPLED_BIT;
-constexpr uint32_t kSetsPerProgram = 16;
-// Cells per solve_pressure invocation: 4 along x (fixed by the shader, and the cells per element
-// of the packed buffers) by kPressureRows along y by kPressureLayers along z.
-constexpr uint32_t kPressureBrickX = 4;
-constexpr uint32_t kPressureRows = 4;
-constexpr uint32_t kPressureLayers = 4;
-
-gpu::BindingDesc uniformBinding(uint32_t binding) {
-    return {binding, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT};
-}
-gpu::BindingDesc bufferBinding(uint32_t binding) {
-    return {binding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT};
-}
-
-// A compute program whose binding 0 is the parameters uniform and bindings 1..images are storage
-// images (with binding `bufferAt`, if any, and those in `bufferMask` storage buffers instead);
-// `extra` gives specialization constants from id 11 on.
-gpu::Program makeProgram(const gpu::Context& ctx, const SolverOptions& options, const char* name,
-                         std::span<const uint32_t> spirv, uint32_t target, uint32_t bindingCount,
-                         uint32_t bufferAt = 0, std::span<const uint32_t> extra = {},
-                         uint32_t bufferMask = 0) {
-    gpu::ComputeProgramDesc desc;
-    desc.name = name;
-    desc.spirv = spirv;
-    desc.bindings.push_back(uniformBinding(0));
-    for (uint32_t b = 1; b < bindingCount; ++b)
-        desc.bindings.push_back(b == bufferAt || (bufferMask >> b & 1u) != 0
-                                    ? bufferBinding(b)
-                                    : gpu::BindingDesc{b, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-                                                       VK_SHADER_STAGE_COMPUTE_BIT});
-    desc.pushConstantSize = sizeof(shared::FluidDispatch);
-    desc.maxSets = kSetsPerProgram;
-    // Constant ids as in shaders/fluid_common.glsl: target, the six boundary kinds, integrator.
-    desc.specialization = {target};
-    for (const FaceBoundary& face : options.boundaries)
-        desc.specialization.push_back(uint32_t(face.kind));
-    desc.specialization.push_back(uint32_t(options.integrator));
-    for (uint32_t size : options.workgroup) // ids 8-10: the workgroup shape
-        desc.specialization.push_back(size);
-    desc.specialization.insert(desc.specialization.end(), extra.begin(), extra.end()); // ids 11-
-    return gpu::createComputeProgram(ctx, desc);
-}
 
 gpu::DescriptorWrite storage(uint32_t binding, const gpu::Image& image) {
     return gpu::bindImage(binding, image, VK_IMAGE_LAYOUT_GENERAL);
-}
-
-// The formats of the stored fields (velocity and pressure; pigment) for the options' storage.
-VkFormat scalarFormat(const SolverOptions& options) {
-    return options.storage == Storage::Float16 ? VK_FORMAT_R16_SFLOAT : VK_FORMAT_R32_SFLOAT;
-}
-VkFormat rgbaFormat(const SolverOptions& options) {
-    return options.storage == Storage::Float16 ? VK_FORMAT_R16G16B16A16_SFLOAT
-                                               : VK_FORMAT_R32G32B32A32_SFLOAT;
-}
-
-bool isHalf(VkFormat format) {
-    return format == VK_FORMAT_R16_SFLOAT || format == VK_FORMAT_R16G16B16A16_SFLOAT;
-}
-
-// IEEE 754-2008 binary16 bits of `v`, rounded to nearest with ties to even (the rounding of
-// fluid/reference/half_storage.cpp); magnitudes that round above 65504 become infinite.
-uint16_t toHalfBits(float v) {
-    uint32_t bits = 0;
-    std::memcpy(&bits, &v, sizeof bits);
-    const uint16_t sign = uint16_t((bits >> 16) & 0x8000u);
-    const uint32_t magnitude = bits & 0x7fffffffu;
-    if (magnitude >= 0x7f800000u) // infinity, NaN (kept quiet)
-        return uint16_t(sign | 0x7c00u | (magnitude > 0x7f800000u ? 0x200u : 0u));
-    if (magnitude >= 0x477ff000u) return uint16_t(sign | 0x7c00u); // rounds to >= 65520
-    if (magnitude < 0x38800000u) { // below 2^-14: a subnormal half, in units of 2^-24
-        const float units = std::nearbyint(std::abs(v) * 16777216.0f); // exact scaling
-        return uint16_t(sign | uint16_t(units));
-    }
-    // Normal: drop 13 fraction bits, rounding to nearest even (a carry may bump the exponent).
-    const uint32_t rebased = magnitude - (112u << 23);
-    const uint32_t dropped = rebased & 0x1fffu;
-    uint32_t half = rebased >> 13;
-    if (dropped > 0x1000u || (dropped == 0x1000u && (half & 1u))) ++half;
-    return uint16_t(sign | half);
-}
-
-float fromHalfBits(uint16_t h) {
-    const uint32_t sign = uint32_t(h & 0x8000u) << 16;
-    const uint32_t exponent = (h >> 10) & 0x1fu, fraction = h & 0x3ffu;
-    if (exponent == 0) { // zero or subnormal
-        const float value = float(fraction) / 16777216.0f;
-        return sign ? -value : value;
-    }
-    const uint32_t bits = exponent == 31 ? sign | 0x7f800000u | (fraction << 13)
-                                         : sign | ((exponent + 112u) << 23) | (fraction << 13);
-    float value = 0.0f;
-    std::memcpy(&value, &bits, sizeof value);
-    return value;
 }
 
 } // namespace
@@ -156,74 +55,7 @@ Result<std::unique_ptr<SmokeSolver>> SmokeSolver::create(const gpu::Context& ctx
 }
 
 SmokeSolver::SmokeSolver(const gpu::Context& ctx, const SolverOptions& options)
-    : ctx_(ctx), options_(options),
-      cells_(options.grid.cellsX, options.grid.cellsY, options.grid.cellsZ) {
-    auto makeImage = [&](glm::uvec3 extent, VkFormat format, const char* name) {
-        gpu::ImageDesc desc;
-        desc.extent = {extent.x, extent.y, extent.z};
-        desc.format = format;
-        desc.usage = kFieldUsage;
-        desc.is3D = true;
-        desc.debugName = name;
-        return gpu::createImage(ctx, desc);
-    };
-    for (int set = 0; set < 3; ++set)
-        for (int c = 0; c < 3; ++c)
-            velocity_[set][c] =
-                makeImage(faceExtent(options.grid, c), scalarFormat(options), "velocity");
-    for (int i = 0; i < 2; ++i) {
-        pigment_[i] = makeImage(cells_, rgbaFormat(options), "pigment");
-        pressure_[i] = makeImage(cells_, scalarFormat(options), "pressure");
-    }
-    divergence_ = makeImage(cells_, VK_FORMAT_R32_SFLOAT, "divergence");
-    // Four x-consecutive cells per vec4 (shaders/solve_pressure.comp). A grid too large for one
-    // storage buffer solves on the r32f images alone (placeholders fill the unused bindings).
-    VkDeviceSize packedBytes = VkDeviceSize((cells_.x + kPressureBrickX - 1) / kPressureBrickX) *
-                               cells_.y * cells_.z * 4 * sizeof(float);
-    packedSolve_ = packedBytes <= ctx.limits().maxStorageBufferRange;
-    if (!packedSolve_) packedBytes = 4 * sizeof(float);
-    for (gpu::Buffer& buffer : packedPressure_)
-        buffer = gpu::createBuffer(ctx, packedBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                   gpu::MemoryUsage::DeviceLocal, "packed pressure");
-    packedDivergence_ = gpu::createBuffer(ctx, packedBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                          gpu::MemoryUsage::DeviceLocal, "packed divergence");
-    vorticity_ = makeImage(cells_, VK_FORMAT_R32G32B32A32_SFLOAT, "vorticity");
-    force_ = makeImage(cells_, VK_FORMAT_R32G32B32A32_SFLOAT, "confinement force");
-    // Stages that write a whole field write it here first (shaders/fluid_common.glsl): one buffer
-    // per velocity component, the first also large enough for four floats per cell.
-    VkDeviceSize faceFloats = 0;
-    for (int c = 0; c < 3; ++c) {
-        const glm::uvec3 n = faceExtent(options.grid, c);
-        faceFloats = std::max<VkDeviceSize>(faceFloats, VkDeviceSize(n.x) * n.y * n.z);
-    }
-    const VkDeviceSize cellFloats = VkDeviceSize(cells_.x) * cells_.y * cells_.z * 4;
-    for (int c = 0; c < 3; ++c)
-        scratch_[c] = gpu::createBuffer(
-            ctx, (c == 0 ? std::max(faceFloats, cellFloats) : faceFloats) * sizeof(float),
-            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-            gpu::MemoryUsage::DeviceLocal, "field output");
-
-    // Everything starts at rest, in GENERAL layout for the whole of its life.
-    gpu::submitOneShot(ctx, [&](VkCommandBuffer cmd) {
-        auto clear = [&](gpu::Image& image) {
-            gpu::transitionImage(cmd, image, VK_IMAGE_LAYOUT_GENERAL);
-            const VkClearColorValue zero{};
-            const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-            vkCmdClearColorImage(cmd, image.get(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
-        };
-        for (auto& set : velocity_)
-            for (auto& image : set)
-                clear(image);
-        for (auto& image : pigment_)
-            clear(image);
-        for (auto& image : pressure_)
-            clear(image);
-        clear(divergence_);
-        clear(vorticity_);
-        clear(force_);
-        barrier(cmd);
-    });
-
+    : ctx_(ctx), options_(options), fields_(ctx, options), programs_(ctx, options) {
     parameters_ =
         gpu::createBuffer(ctx, sizeof(shared::FluidParameters), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                           gpu::MemoryUsage::Upload, "fluid parameters");
@@ -236,119 +68,15 @@ SmokeSolver::SmokeSolver(const gpu::Context& ctx, const SolverOptions& options)
         gpu::createBuffer(ctx, 4 * sizeof(shared::SplatRegion),
                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
                           gpu::MemoryUsage::DeviceLocal, "fluid splat regions");
-
     writeParameters();
 }
 
-// Programs are compiled on first use: a solver that never runs a stage never pays for its
-// pipeline (on a CPU driver each compile costs tens of milliseconds).
-gpu::Program& SmokeSolver::program(Stage stage, int part, uint32_t target) {
-    using namespace mfx::shaders;
-    gpu::Program& slot = programs_[{int(stage), part, target}];
-    if (slot.pipeline() != VK_NULL_HANDLE) return slot;
-    switch (stage) {
-    case Stage::SplatImpulses:
-        slot = part == 0
-                   ? makeProgram(ctx_, options_, "splat_impulses",
-                                 MFX_FIELD_SHADER(splat_impulses_comp), target, 7, 1, {}, 1u << 6)
-                   : makeProgram(ctx_, options_, "emitter_bounds", emitter_bounds_comp, 0, 3, 1, {},
-                                 1u << 2);
-        break;
-    case Stage::AdvectVelocity: { // part: the pass (MFX_ADVECT_*), constant id 11
-        const uint32_t pass[] = {uint32_t(part)};
-        slot = makeProgram(ctx_, options_, "advect_velocity",
-                           MFX_FIELD_SHADER(advect_velocity_comp), target, 6, 4, pass);
-        break;
-    }
-    case Stage::AdvectPigment: {
-        const uint32_t pass[] = {uint32_t(part)};
-        slot = makeProgram(ctx_, options_, "advect_pigment", MFX_FIELD_SHADER(advect_pigment_comp),
-                           target, 7, 5, pass);
-        break;
-    }
-    case Stage::ApplyBuoyancy:
-        slot = makeProgram(ctx_, options_, "apply_buoyancy", MFX_FIELD_SHADER(apply_buoyancy_comp),
-                           target, 4, 3);
-        break;
-    case Stage::VorticityConfinement:
-        slot = part == 0   ? makeProgram(ctx_, options_, "compute_vorticity",
-                                         MFX_FIELD_SHADER(compute_vorticity_comp), target, 5, 4)
-               : part == 1 ? makeProgram(ctx_, options_, "confinement_force",
-                                         confinement_force_comp, target, 3, 2)
-                           : makeProgram(ctx_, options_, "apply_vorticity_force",
-                                         MFX_FIELD_SHADER(apply_vorticity_force_comp), target, 8, 0,
-                                         {}, 0xe0u);
-        break;
-    case Stage::DiffuseViscosity:
-        slot = makeProgram(ctx_, options_, "diffuse_viscosity",
-                           MFX_FIELD_SHADER(diffuse_viscosity_comp), target, 10);
-        break;
-    case Stage::ApplyBoundaries:
-        slot = makeProgram(ctx_, options_, "apply_boundaries",
-                           MFX_FIELD_SHADER(apply_boundaries_comp), target, 4);
-        break;
-    case Stage::ComputeDivergence:
-        slot = makeProgram(ctx_, options_, "compute_divergence",
-                           MFX_FIELD_SHADER(compute_divergence_comp), target, 5, 4);
-        break;
-    case Stage::SolvePressure: {
-        // Constant ids 11-13: which side is packed (part), the layers and rows of a brick;
-        // bindings 4-7 are storage buffers.
-        const uint32_t brick[] = {uint32_t(part), kPressureLayers, kPressureRows};
-        slot = makeProgram(ctx_, options_, "solve_pressure", MFX_FIELD_SHADER(solve_pressure_comp),
-                           target, 8, 0, brick, 0xf0u);
-        break;
-    }
-    case Stage::Project:
-        slot = makeProgram(ctx_, options_, "project", MFX_FIELD_SHADER(project_comp), target, 6, 5);
-        break;
-    }
-    return slot;
-}
-
 void SmokeSolver::setState(const FieldState& state) {
-    auto upload = [&](gpu::Image& image, const std::vector<float>& values) {
-        if (isHalf(image.format)) { // rounded as every stage's store rounds
-            std::vector<uint16_t> half(values.size());
-            std::transform(values.begin(), values.end(), half.begin(), toHalfBits);
-            gpu::uploadImage(ctx_, image, std::as_bytes(std::span<const uint16_t>(half)),
-                             VK_IMAGE_LAYOUT_GENERAL);
-            return;
-        }
-        gpu::uploadImage(ctx_, image, std::as_bytes(std::span<const float>(values)),
-                         VK_IMAGE_LAYOUT_GENERAL);
-    };
-    upload(velocity_[currentVelocity_][0], state.velocityX);
-    upload(velocity_[currentVelocity_][1], state.velocityY);
-    upload(velocity_[currentVelocity_][2], state.velocityZ);
-    upload(pressure_[currentPressure_], state.pressure);
-    upload(divergence_, state.divergence);
-    upload(pigment_[currentPigment_], state.pigment);
+    fields_.upload(ctx_, state);
 }
 
 FieldState SmokeSolver::state() {
-    auto read = [&](gpu::Image& image) {
-        const std::vector<std::byte> bytes = gpu::readImage(ctx_, image);
-        if (isHalf(image.format)) {
-            std::vector<uint16_t> half(bytes.size() / sizeof(uint16_t));
-            std::memcpy(half.data(), bytes.data(), half.size() * sizeof(uint16_t));
-            std::vector<float> values(half.size());
-            std::transform(half.begin(), half.end(), values.begin(), fromHalfBits);
-            return values;
-        }
-        std::vector<float> values(bytes.size() / sizeof(float));
-        std::memcpy(values.data(), bytes.data(), values.size() * sizeof(float));
-        return values;
-    };
-    FieldState state;
-    state.grid = options_.grid;
-    state.velocityX = read(velocity_[currentVelocity_][0]);
-    state.velocityY = read(velocity_[currentVelocity_][1]);
-    state.velocityZ = read(velocity_[currentVelocity_][2]);
-    state.pressure = read(pressure_[currentPressure_]);
-    state.divergence = read(divergence_);
-    state.pigment = read(pigment_[currentPigment_]);
-    return state;
+    return fields_.download(ctx_, options_.grid);
 }
 
 Status SmokeSolver::setEmitters(std::span<const shared::FluidEmitter> emitters) {
@@ -365,17 +93,8 @@ Status SmokeSolver::setEmitters(std::span<const shared::FluidEmitter> emitters) 
 }
 
 void SmokeSolver::setEmitterBuffer(const gpu::Buffer& buffer, uint32_t count) {
-    if (buffer.get() != emitterBuffer_) {
-        // The splat program's sets name the old buffer: drop them all.
-        for (auto& [key, splat] : programs_) {
-            if (std::get<0>(key) != int(Stage::SplatImpulses)) continue; // and emitter_bounds
-            splat.resetSets(ctx_);
-            std::erase_if(sets_,
-                          [&](const auto& entry) { return std::get<0>(entry.first) == &splat; });
-        }
-        emitterBuffer_ = buffer.get();
-        emitterBufferSize_ = buffer.size;
-    }
+    emitterBuffer_ = buffer.get();
+    emitterBufferSize_ = buffer.size;
     emitterCount_ = std::min<uint32_t>(count, uint32_t(buffer.size / sizeof(shared::FluidEmitter)));
 }
 
@@ -393,11 +112,10 @@ void SmokeSolver::barrier(VkCommandBuffer cmd) const {
             VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT);
 }
 
-void SmokeSolver::dispatch(VkCommandBuffer cmd, gpu::Program& program, VkDescriptorSet set,
-                           glm::uvec3 extent, glm::uvec3 origin) const {
-    program.bind(cmd, set);
-    const shared::FluidDispatch dispatch{0, origin.x, origin.y, origin.z};
-    program.push(cmd, dispatch);
+void SmokeSolver::dispatch(VkCommandBuffer cmd, gpu::Program& program,
+                           std::span<const gpu::DescriptorWrite> writes, glm::uvec3 extent) const {
+    program.bind(cmd, writes);
+    program.push(cmd, shared::FluidDispatch{0, 0, 0, 0});
     ++dispatches_;
     const std::array<uint32_t, 3>& group = options_.workgroup;
     vkCmdDispatch(cmd, gpu::groupCount(extent.x, group[0]), gpu::groupCount(extent.y, group[1]),
@@ -414,20 +132,8 @@ void SmokeSolver::copyToImages(
         barrier(cmd);
         for (const auto& [buffer, image] : converted) {
             const bool rgba = image->format == VK_FORMAT_R16G16B16A16_SFLOAT;
-            gpu::Program& prog = storeHalf_[rgba ? 1 : 0];
-            if (!prog.pipeline())
-                prog = makeProgram(ctx_, options_, "store_half",
-                                   rgba ? shaders::store_half_comp_rgba : shaders::store_half_comp,
-                                   0, 3, 1);
-            const auto key = std::make_pair(buffer->get(), image->get());
-            auto it = storeHalfSets_.find(key);
-            if (it == storeHalfSets_.end())
-                it = storeHalfSets_
-                         .emplace(key, prog.createSet(ctx_, {gpu::bindBuffer(0, parameters_),
-                                                             gpu::bindBuffer(1, *buffer),
-                                                             storage(2, *image)}))
-                         .first;
-            dispatch(cmd, prog, it->second,
+            const gpu::DescriptorWrite writes[] = {gpu::bindBuffer(1, *buffer), storage(2, *image)};
+            dispatch(cmd, programs_.get(rgba ? "store_half_rgba" : "store_half"), writes,
                      glm::uvec3(image->extent.width, image->extent.height, image->extent.depth));
         }
         barrier(cmd);
@@ -458,62 +164,43 @@ void SmokeSolver::copyToImages(
                        all, everything);
 }
 
-template <typename MakeWrites>
-VkDescriptorSet SmokeSolver::set(gpu::Program& program, std::tuple<int, int, int> key,
-                                 MakeWrites makeWrites) {
-    const auto fullKey = std::make_tuple(static_cast<const gpu::Program*>(&program),
-                                         std::get<0>(key), std::get<1>(key), std::get<2>(key));
-    if (auto it = sets_.find(fullKey); it != sets_.end()) return it->second;
-    std::vector<gpu::DescriptorWrite> writes{gpu::bindBuffer(0, parameters_)};
-    makeWrites(writes);
-    VkDescriptorSet created = program.createSet(ctx_, writes);
-    sets_.emplace(fullKey, created);
-    return created;
-}
-
-void SmokeSolver::addVelocity(std::vector<gpu::DescriptorWrite>& writes, int velocitySet,
-                              uint32_t firstBinding) const {
-    for (uint32_t c = 0; c < 3; ++c)
-        writes.push_back(storage(firstBinding + c, velocity_[velocitySet][c]));
+SmokeSolver::Writes SmokeSolver::withVelocity(int set) const {
+    const auto& v = fields_.velocity[size_t(set)];
+    return {gpu::bindBuffer(0, parameters_), storage(1, v[0]), storage(2, v[1]), storage(3, v[2])};
 }
 
 // --- Stages -------------------------------------------------------------------------------------
 
 void SmokeSolver::splatImpulses(VkCommandBuffer cmd) {
     if (emitterCount_ == 0) return;
-    const int v = currentVelocity_, p = currentPigment_;
+    SmokeFields& f = fields_;
     gpu::DescriptorWrite emitters;
     emitters.binding = 1;
     emitters.buffer = {emitterBuffer_, 0, emitterBufferSize_};
-    gpu::DescriptorWrite regions;
-    regions.binding = 6;
-    regions.buffer = {splatRegions_.get(), 0, splatRegions_.size};
     // The emitters' bounding box, per target, as indirect dispatches (emitters may be written on
     // the GPU, so only the GPU knows where they are).
-    gpu::Program& bounds = program(Stage::SplatImpulses, 1);
-    bounds.bind(cmd, set(bounds, {0, 0, 0}, [&](auto& w) {
-                    w.push_back(emitters);
-                    gpu::DescriptorWrite out = regions;
-                    out.binding = 2;
-                    w.push_back(out);
-                }));
+    programs_.get("emitter_bounds")
+        .bind(cmd, {gpu::bindBuffer(0, parameters_), emitters, gpu::bindBuffer(2, splatRegions_)});
     ++dispatches_;
     vkCmdDispatch(cmd, 1, 1, 1);
     gpu::memoryBarrier(
         cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
         VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
         VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
-    auto writes = [&](auto& w) {
-        w.push_back(emitters);
-        addVelocity(w, v, 2);
-        w.push_back(storage(5, pigment_[p]));
-        w.push_back(regions);
+    const auto& v = f.velocity[size_t(f.currentVelocity)];
+    const gpu::DescriptorWrite writes[] = {
+        gpu::bindBuffer(0, parameters_),
+        emitters,
+        storage(2, v[0]),
+        storage(3, v[1]),
+        storage(4, v[2]),
+        storage(5, f.pigment[size_t(f.currentPigment)]),
+        gpu::bindBuffer(6, splatRegions_),
     };
     for (uint32_t target = 0; target < 4; ++target) {
-        gpu::Program& prog = program(Stage::SplatImpulses, 0, target);
-        prog.bind(cmd, set(prog, {v, p, 0}, writes));
-        const shared::FluidDispatch unused{0, 0, 0, 0};
-        prog.push(cmd, unused);
+        gpu::Program& prog = programs_.get("splat_impulses", target);
+        prog.bind(cmd, writes);
+        prog.push(cmd, shared::FluidDispatch{0, 0, 0, 0});
         ++dispatches_;
         vkCmdDispatchIndirect(cmd, splatRegions_.get(), target * sizeof(shared::SplatRegion));
     }
@@ -536,198 +223,171 @@ std::vector<uint32_t> SmokeSolver::advectionPasses() const {
 }
 
 void SmokeSolver::advectVelocity(VkCommandBuffer cmd) {
-    const int from = currentVelocity_, to = 1 - currentVelocity_;
+    SmokeFields& f = fields_;
+    const int from = f.currentVelocity, to = 1 - f.currentVelocity;
+    auto& out = f.velocity[size_t(to)];
     for (uint32_t pass : advectionPasses()) {
         for (uint32_t c = 0; c < 3; ++c) {
-            gpu::Program& prog = program(Stage::AdvectVelocity, int(pass), c);
-            VkDescriptorSet s = set(prog, {from, 0, 0}, [&](auto& w) {
-                addVelocity(w, from, 1);
-                w.push_back(gpu::bindBuffer(4, scratch_[c]));
-                w.push_back(storage(5, velocity_[to][c]));
-            });
-            dispatch(cmd, prog, s, faceExtent(options_.grid, int(c)));
+            Writes w = withVelocity(from);
+            w.push_back(gpu::bindBuffer(4, f.scratch[c]));
+            w.push_back(storage(5, out[c]));
+            dispatch(cmd, programs_.get("advect_velocity", c, pass), w,
+                     faceExtent(options_.grid, int(c)));
         }
-        copyToImages(cmd, {{&scratch_[0], &velocity_[to][0]},
-                           {&scratch_[1], &velocity_[to][1]},
-                           {&scratch_[2], &velocity_[to][2]}});
+        copyToImages(
+            cmd, {{&f.scratch[0], &out[0]}, {&f.scratch[1], &out[1]}, {&f.scratch[2], &out[2]}});
     }
-    currentVelocity_ = to;
+    f.currentVelocity = to;
 }
 
 void SmokeSolver::advectPigment(VkCommandBuffer cmd) {
-    const int v = currentVelocity_, from = currentPigment_, to = 1 - currentPigment_;
+    SmokeFields& f = fields_;
+    const int from = f.currentPigment, to = 1 - f.currentPigment;
     for (uint32_t pass : advectionPasses()) {
-        gpu::Program& prog = program(Stage::AdvectPigment, int(pass), MFX_TARGET_PIGMENT);
-        VkDescriptorSet s = set(prog, {v, from, 0}, [&](auto& w) {
-            addVelocity(w, v, 1);
-            w.push_back(storage(4, pigment_[from]));
-            w.push_back(gpu::bindBuffer(5, scratch_[0]));
-            w.push_back(storage(6, pigment_[to]));
-        });
-        dispatch(cmd, prog, s, cells_);
-        copyToImages(cmd, {{&scratch_[0], &pigment_[to]}});
+        Writes w = withVelocity(f.currentVelocity);
+        w.push_back(storage(4, f.pigment[size_t(from)]));
+        w.push_back(gpu::bindBuffer(5, f.scratch[0]));
+        w.push_back(storage(6, f.pigment[size_t(to)]));
+        dispatch(cmd, programs_.get("advect_pigment", MFX_TARGET_PIGMENT, pass), w, f.cells);
+        copyToImages(cmd, {{&f.scratch[0], &f.pigment[size_t(to)]}});
     }
-    currentPigment_ = to;
+    f.currentPigment = to;
 }
 
 void SmokeSolver::applyBuoyancy(VkCommandBuffer cmd) {
     if (options_.buoyancy == 0.0f) return;
-    const int v = currentVelocity_, p = currentPigment_;
-    gpu::Program& prog = program(Stage::ApplyBuoyancy, 0, MFX_TARGET_VELOCITY_Y);
-    VkDescriptorSet s = set(prog, {v, p, 0}, [&](auto& w) {
-        w.push_back(storage(1, velocity_[v][1]));
-        w.push_back(storage(2, pigment_[p]));
-        w.push_back(gpu::bindBuffer(3, scratch_[1]));
-    });
-    dispatch(cmd, prog, s, faceExtent(options_.grid, 1));
-    copyToImages(cmd, {{&scratch_[1], &velocity_[v][1]}});
+    SmokeFields& f = fields_;
+    gpu::Image& velocityY = f.velocity[size_t(f.currentVelocity)][1];
+    const gpu::DescriptorWrite writes[] = {gpu::bindBuffer(0, parameters_), storage(1, velocityY),
+                                           storage(2, f.pigment[size_t(f.currentPigment)]),
+                                           gpu::bindBuffer(3, f.scratch[1])};
+    dispatch(cmd, programs_.get("apply_buoyancy", MFX_TARGET_VELOCITY_Y), writes,
+             faceExtent(options_.grid, 1));
+    copyToImages(cmd, {{&f.scratch[1], &velocityY}});
 }
 
 void SmokeSolver::vorticityConfinement(VkCommandBuffer cmd) {
     if (options_.vorticity == 0.0f) return;
     // Vorticity per cell, then the confinement force per cell, then the faces.
-    const int v = currentVelocity_;
-    gpu::Program& compute = program(Stage::VorticityConfinement, 0, 0);
-    dispatch(cmd, compute,
-             set(compute, {v, 0, 0},
-                 [&](auto& w) {
-                     addVelocity(w, v, 1);
-                     w.push_back(gpu::bindBuffer(4, scratch_[0]));
-                 }),
-             cells_);
-    copyToImages(cmd, {{&scratch_[0], &vorticity_}});
-    gpu::Program& force = program(Stage::VorticityConfinement, 1, 0);
-    dispatch(cmd, force,
-             set(force, {0, 0, 0},
-                 [&](auto& w) {
-                     w.push_back(storage(1, vorticity_));
-                     w.push_back(gpu::bindBuffer(2, scratch_[0]));
-                 }),
-             cells_);
-    copyToImages(cmd, {{&scratch_[0], &force_}});
-    gpu::Program& apply = program(Stage::VorticityConfinement, 2, 0);
-    dispatch(cmd, apply,
-             set(apply, {v, 0, 0},
-                 [&](auto& w) {
-                     addVelocity(w, v, 1);
-                     w.push_back(storage(4, force_));
-                     for (uint32_t c = 0; c < 3; ++c)
-                         w.push_back(gpu::bindBuffer(5 + c, scratch_[c]));
-                 }),
-             cells_ + glm::uvec3(1));
-    copyToImages(cmd, {{&scratch_[0], &velocity_[v][0]},
-                       {&scratch_[1], &velocity_[v][1]},
-                       {&scratch_[2], &velocity_[v][2]}});
+    SmokeFields& f = fields_;
+    Writes vorticity = withVelocity(f.currentVelocity);
+    vorticity.push_back(gpu::bindBuffer(4, f.scratch[0]));
+    dispatch(cmd, programs_.get("compute_vorticity"), vorticity, f.cells);
+    copyToImages(cmd, {{&f.scratch[0], &f.vorticity}});
+
+    const gpu::DescriptorWrite force[] = {gpu::bindBuffer(0, parameters_), storage(1, f.vorticity),
+                                          gpu::bindBuffer(2, f.scratch[0])};
+    dispatch(cmd, programs_.get("confinement_force"), force, f.cells);
+    copyToImages(cmd, {{&f.scratch[0], &f.force}});
+
+    Writes apply = withVelocity(f.currentVelocity);
+    apply.push_back(storage(4, f.force));
+    for (uint32_t c = 0; c < 3; ++c)
+        apply.push_back(gpu::bindBuffer(5 + c, f.scratch[c]));
+    dispatch(cmd, programs_.get("apply_vorticity_force"), apply, f.cells + glm::uvec3(1));
+    auto& v = f.velocity[size_t(f.currentVelocity)];
+    copyToImages(cmd, {{&f.scratch[0], &v[0]}, {&f.scratch[1], &v[1]}, {&f.scratch[2], &v[2]}});
 }
 
 void SmokeSolver::diffuseViscosity(VkCommandBuffer cmd) {
     const uint32_t sweeps = options_.viscosityIterations;
     if (options_.viscosity == 0.0f || sweeps == 0) return;
-    const int source = currentVelocity_, other = 1 - currentVelocity_, scratch = 2;
+    SmokeFields& f = fields_;
+    const int source = f.currentVelocity, other = 1 - f.currentVelocity, scratch = 2;
     // Alternate between `other` and the scratch set so that the last sweep lands in `other`.
     int in = source;
     int out = sweeps % 2 == 1 ? other : scratch;
     for (uint32_t sweep = 0; sweep < sweeps; ++sweep) {
-        auto writes = [&](auto& w) {
-            addVelocity(w, source, 1);
-            addVelocity(w, in, 4);
-            addVelocity(w, out, 7);
-        };
-        for (uint32_t c = 0; c < 3; ++c) {
-            gpu::Program& prog = program(Stage::DiffuseViscosity, 0, c);
-            dispatch(cmd, prog, set(prog, {source, in, out}, writes),
+        Writes w = withVelocity(source);
+        for (uint32_t c = 0; c < 3; ++c)
+            w.push_back(storage(4 + c, f.velocity[size_t(in)][c]));
+        for (uint32_t c = 0; c < 3; ++c)
+            w.push_back(storage(7 + c, f.velocity[size_t(out)][c]));
+        for (uint32_t c = 0; c < 3; ++c)
+            dispatch(cmd, programs_.get("diffuse_viscosity", c), w,
                      faceExtent(options_.grid, int(c)));
-        }
         barrier(cmd);
         in = out;
         out = out == other ? scratch : other;
     }
-    currentVelocity_ = other;
+    f.currentVelocity = other;
 }
 
 void SmokeSolver::applyBoundaries(VkCommandBuffer cmd) {
-    const int v = currentVelocity_;
+    const Writes w = withVelocity(fields_.currentVelocity);
     for (uint32_t c = 0; c < 3; ++c) {
-        gpu::Program& prog = program(Stage::ApplyBoundaries, 0, c);
         glm::uvec3 layers = faceExtent(options_.grid, int(c));
         layers[int(c)] = 2; // only the two boundary layers of faces normal to c
-        dispatch(cmd, prog, set(prog, {v, 0, 0}, [&](auto& w) { addVelocity(w, v, 1); }), layers);
+        dispatch(cmd, programs_.get("apply_boundaries", c), w, layers);
     }
     barrier(cmd);
 }
 
 void SmokeSolver::computeDivergence(VkCommandBuffer cmd) {
-    const int v = currentVelocity_;
-    gpu::Program& prog = program(Stage::ComputeDivergence);
-    VkDescriptorSet s = set(prog, {v, 0, 0}, [&](auto& w) {
-        addVelocity(w, v, 1);
-        w.push_back(gpu::bindBuffer(4, scratch_[0]));
-    });
-    dispatch(cmd, prog, s, cells_);
-    copyToImages(cmd, {{&scratch_[0], &divergence_}});
+    SmokeFields& f = fields_;
+    Writes w = withVelocity(f.currentVelocity);
+    w.push_back(gpu::bindBuffer(4, f.scratch[0]));
+    dispatch(cmd, programs_.get("compute_divergence"), w, f.cells);
+    copyToImages(cmd, {{&f.scratch[0], &f.divergence}});
 }
 
 void SmokeSolver::solvePressure(VkCommandBuffer cmd) {
+    SmokeFields& f = fields_;
     if (multigrid_) {
         // The other solvers write the solution x-fastest into a buffer, copied over the live image.
-        dispatches_ +=
-            multigrid_->record(cmd, divergence_, pressure_[currentPressure_], scratch_[0]);
-        copyToImages(cmd, {{&scratch_[0], &pressure_[currentPressure_]}});
+        gpu::Image& pressure = f.pressure[size_t(f.currentPressure)];
+        dispatches_ += multigrid_->record(cmd, f.divergence, pressure, f.scratch[0]);
+        copyToImages(cmd, {{&f.scratch[0], &pressure}});
         return;
     }
     if (!options_.warmStart) {
         const VkClearColorValue zero{};
         const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-        vkCmdClearColorImage(cmd, pressure_[currentPressure_].get(), VK_IMAGE_LAYOUT_GENERAL, &zero,
-                             1, &range);
+        vkCmdClearColorImage(cmd, f.pressure[size_t(f.currentPressure)].get(),
+                             VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
         barrier(cmd);
     }
     // Bricks of 4 x kPressureRows x kPressureLayers cells. Between the first and the last sweep
     // pressure and divergence live packed (shaders/solve_pressure.comp): the first sweep reads
     // the live r32f image, the last writes the other one.
     const uint32_t sweeps = options_.jacobiIterations;
-    const glm::uvec3 bricks((cells_.x + kPressureBrickX - 1) / kPressureBrickX,
-                            (cells_.y + kPressureRows - 1) / kPressureRows,
-                            (cells_.z + kPressureLayers - 1) / kPressureLayers);
-    int packedIn = 0;
+    const glm::uvec3 bricks((f.cells.x + kPressureBrickX - 1) / kPressureBrickX,
+                            (f.cells.y + kPressureRows - 1) / kPressureRows,
+                            (f.cells.z + kPressureLayers - 1) / kPressureLayers);
+    size_t packedIn = 0;
     for (uint32_t sweep = 0; sweep < sweeps; ++sweep) {
         const bool first = sweep == 0, last = sweep + 1 == sweeps;
-        const uint32_t mode = packedSolve_ ? (first ? 0u : 1u) | (last ? 0u : 2u) : 0u;
-        gpu::Program& prog = program(Stage::SolvePressure, int(mode));
-        const int in = currentPressure_, out = 1 - currentPressure_;
-        const int packedOut = 1 - packedIn;
-        VkDescriptorSet s = set(prog, {in, packedIn, 0}, [&](auto& w) {
-            w.push_back(storage(1, divergence_));
-            w.push_back(storage(2, pressure_[in]));
-            w.push_back(storage(3, pressure_[out]));
-            w.push_back(gpu::bindBuffer(4, packedDivergence_));
-            w.push_back(gpu::bindBuffer(5, packedPressure_[packedIn]));
-            w.push_back(gpu::bindBuffer(6, packedPressure_[packedOut]));
-            w.push_back(gpu::bindBuffer(7, packedPressure_[packedIn]));
-        });
-        dispatch(cmd, prog, s, bricks);
+        const uint32_t mode = f.packedSolve ? (first ? 0u : 1u) | (last ? 0u : 2u) : 0u;
+        const size_t in = size_t(f.currentPressure), out = 1 - in, packedOut = 1 - packedIn;
+        const gpu::DescriptorWrite writes[] = {
+            gpu::bindBuffer(0, parameters_),
+            storage(1, f.divergence),
+            storage(2, f.pressure[in]),
+            storage(3, f.pressure[out]),
+            gpu::bindBuffer(4, f.packedDivergence),
+            gpu::bindBuffer(5, f.packedPressure[packedIn]),
+            gpu::bindBuffer(6, f.packedPressure[packedOut]),
+            gpu::bindBuffer(7, f.packedPressure[packedIn]),
+        };
+        dispatch(cmd, programs_.get("solve_pressure", 0, mode), writes, bricks);
         barrier(cmd);
         if (mode & 2u)
             packedIn = packedOut;
         else
-            currentPressure_ = out; // this sweep wrote the other r32f image
+            f.currentPressure = int(out); // this sweep wrote the other r32f image
     }
 }
 
 void SmokeSolver::project(VkCommandBuffer cmd) {
-    const int v = currentVelocity_, p = currentPressure_;
+    SmokeFields& f = fields_;
+    auto& v = f.velocity[size_t(f.currentVelocity)];
     for (uint32_t c = 0; c < 3; ++c) {
-        gpu::Program& prog = program(Stage::Project, 0, c);
-        VkDescriptorSet s = set(prog, {v, p, 0}, [&](auto& w) {
-            addVelocity(w, v, 1);
-            w.push_back(storage(4, pressure_[p]));
-            w.push_back(gpu::bindBuffer(5, scratch_[c]));
-        });
-        dispatch(cmd, prog, s, faceExtent(options_.grid, int(c)));
+        Writes w = withVelocity(f.currentVelocity);
+        w.push_back(storage(4, f.pressure[size_t(f.currentPressure)]));
+        w.push_back(gpu::bindBuffer(5, f.scratch[c]));
+        dispatch(cmd, programs_.get("project", c), w, faceExtent(options_.grid, int(c)));
     }
-    copyToImages(cmd, {{&scratch_[0], &velocity_[v][0]},
-                       {&scratch_[1], &velocity_[v][1]},
-                       {&scratch_[2], &velocity_[v][2]}});
+    copyToImages(cmd, {{&f.scratch[0], &v[0]}, {&f.scratch[1], &v[1]}, {&f.scratch[2], &v[2]}});
 }
 
 // --- Recording
@@ -793,49 +453,20 @@ void SmokeSolver::recordStep(VkCommandBuffer cmd, gpu::GpuTimer* timer) {
 }
 
 uint64_t SmokeSolver::memoryBytes() const {
-    uint64_t bytes = 0;
-    auto image = [&](const gpu::Image& i) {
-        if (i)
-            bytes += uint64_t(i.extent.width) * i.extent.height * i.extent.depth *
-                     gpu::formatTexelSize(i.format);
-    };
-    for (const auto& set : velocity_)
-        for (const gpu::Image& i : set)
-            image(i);
-    for (const gpu::Image& i : pigment_)
-        image(i);
-    for (const gpu::Image& i : pressure_)
-        image(i);
-    image(divergence_);
-    image(vorticity_);
-    image(force_);
-    for (const gpu::Buffer& b : scratch_)
-        bytes += b.size;
-    for (const gpu::Buffer& b : packedPressure_)
-        bytes += b.size;
-    bytes += packedDivergence_.size + parameters_.size + ownEmitters_.size;
+    uint64_t bytes = fields_.memoryBytes() + parameters_.size + ownEmitters_.size;
     if (multigrid_) bytes += multigrid_->memoryBytes();
     return bytes;
 }
 
 void SmokeSolver::recordMeasureActivity(VkCommandBuffer cmd, const gpu::Buffer& out) {
-    if (!activityProgram_.pipeline())
-        activityProgram_ = makeProgram(ctx_, options_, "measure_activity",
-                                       MFX_FIELD_SHADER(shaders::measure_activity_comp), 0, 6, 5);
     vkCmdFillBuffer(cmd, out.get(), 0, 2 * sizeof(uint32_t), 0);
     gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-    const auto key = std::make_tuple(currentVelocity_, currentPigment_, out.get());
-    auto it = activitySets_.find(key);
-    if (it == activitySets_.end()) {
-        std::vector<gpu::DescriptorWrite> writes{gpu::bindBuffer(0, parameters_)};
-        addVelocity(writes, currentVelocity_, 1);
-        writes.push_back(storage(4, pigment_[currentPigment_]));
-        writes.push_back(gpu::bindBuffer(5, out));
-        it = activitySets_.emplace(key, activityProgram_.createSet(ctx_, writes)).first;
-    }
-    dispatch(cmd, activityProgram_, it->second, cells_);
+    Writes w = withVelocity(fields_.currentVelocity);
+    w.push_back(storage(4, fields_.pigment[size_t(fields_.currentPigment)]));
+    w.push_back(gpu::bindBuffer(5, out));
+    dispatch(cmd, programs_.get("measure_activity"), w, fields_.cells);
     gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
                        VK_ACCESS_2_HOST_READ_BIT);
@@ -851,52 +482,6 @@ void SmokeSolver::step() {
 
 void SmokeSolver::runStage(Stage stage) {
     gpu::submitOneShot(ctx_, [&](VkCommandBuffer cmd) { recordStage(cmd, stage); });
-}
-
-void SmokeSolver::recordShift(VkCommandBuffer cmd, glm::ivec3 cells) {
-    if (cells == glm::ivec3(0)) return;
-    gpu::memoryBarrier(
-        cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
-        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
-            VK_ACCESS_2_TRANSFER_WRITE_BIT,
-        VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
-        VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT);
-    // Each field into its ping-pong partner: cleared, then the overlap copied across.
-    auto shift = [&](const gpu::Image& from, const gpu::Image& to) {
-        const VkClearColorValue zero{};
-        VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-        vkCmdClearColorImage(cmd, to.get(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
-        const glm::ivec3 size(int(from.extent.width), int(from.extent.height),
-                              int(from.extent.depth));
-        const glm::ivec3 extent = size - glm::abs(cells);
-        if (glm::any(glm::lessThanEqual(extent, glm::ivec3(0)))) return; // moved past it all
-        const glm::ivec3 src = glm::max(cells, glm::ivec3(0));
-        const glm::ivec3 dst = glm::max(-cells, glm::ivec3(0));
-        VkImageCopy region{};
-        region.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-        region.dstSubresource = region.srcSubresource;
-        region.srcOffset = {src.x, src.y, src.z};
-        region.dstOffset = {dst.x, dst.y, dst.z};
-        region.extent = {uint32_t(extent.x), uint32_t(extent.y), uint32_t(extent.z)};
-        gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
-                           VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
-                           VK_ACCESS_2_TRANSFER_WRITE_BIT);
-        vkCmdCopyImage(cmd, from.get(), VK_IMAGE_LAYOUT_GENERAL, to.get(), VK_IMAGE_LAYOUT_GENERAL,
-                       1, &region);
-    };
-    for (int c = 0; c < 3; ++c)
-        shift(velocity_[size_t(currentVelocity_)][size_t(c)],
-              velocity_[size_t(1 - currentVelocity_)][size_t(c)]);
-    shift(pigment_[size_t(currentPigment_)], pigment_[size_t(1 - currentPigment_)]);
-    shift(pressure_[size_t(currentPressure_)], pressure_[size_t(1 - currentPressure_)]);
-    currentVelocity_ = 1 - currentVelocity_;
-    currentPigment_ = 1 - currentPigment_;
-    currentPressure_ = 1 - currentPressure_;
-    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT |
-                           VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
-                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
-                           VK_ACCESS_2_TRANSFER_READ_BIT);
 }
 
 } // namespace mfx::fluid

@@ -17,11 +17,9 @@ namespace mfx::render {
 
 namespace {
 
-constexpr uint32_t kBindings = 10;
-
 gpu::Program computeProgram(const gpu::Context& ctx, const char* name,
                             std::span<const uint32_t> spirv) {
-    return storageComputeProgram(ctx, name, spirv, kBindings, sizeof(shared::AfterimageConstants));
+    return storageComputeProgram(ctx, name, spirv, sizeof(shared::AfterimageConstants));
 }
 
 // The edges of a triangle list, each once (Smith 2016, Sec. 5.1.2: the adjacency the arcs'
@@ -143,16 +141,12 @@ AfterimagePass::AfterimagePass(const gpu::Context& ctx, const scene::Scene& scen
     weld_ = computeProgram(ctx, "afterimage_weld", shaders::afterimage_weld_comp);
     build_ = computeProgram(ctx, "afterimage_build", shaders::afterimage_build_comp);
     for (Effect& effect : effects_) {
-        const gpu::DescriptorWrite writes[kBindings] = {
+        effect.resources = {
             gpu::bindBuffer(0, effect.skinned),    gpu::bindBuffer(1, effect.history),
             gpu::bindBuffer(2, effect.colours),    gpu::bindBuffer(3, effect.pushed),
             gpu::bindBuffer(4, effect.primitives), gpu::bindBuffer(5, effect.output),
             gpu::bindBuffer(6, effect.indices),    gpu::bindBuffer(7, effect.counters),
             gpu::bindBuffer(8, effect.decided),    gpu::bindBuffer(9, effect.copies)};
-        effect.recordSet = record_.createSet(ctx, writes);
-        effect.smearSet = smear_.createSet(ctx, writes);
-        effect.weldSet = weld_.createSet(ctx, writes);
-        effect.buildSet = build_.createSet(ctx, writes);
     }
 
     gpu::GraphicsProgramDesc smear =
@@ -173,9 +167,6 @@ AfterimagePass::AfterimagePass(const gpu::Context& ctx, const scene::Scene& scen
     arcDraw_ = gpu::createGraphicsProgram(ctx, arcs);
     frame_ = gpu::createBuffer(ctx, sizeof(shared::SceneFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                gpu::MemoryUsage::Upload, "afterimage frame");
-    smearDrawSet_ = smearDraw_.createSet(ctx, {gpu::bindBuffer(0, frame_)});
-    lineDrawSet_ = lineDraw_.createSet(ctx, {gpu::bindBuffer(0, frame_)});
-    arcDrawSet_ = arcDraw_.createSet(ctx, {gpu::bindBuffer(0, frame_)});
 }
 
 void AfterimagePass::advance(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
@@ -236,7 +227,7 @@ void AfterimagePass::advance(VkCommandBuffer cmd, const fluid::SceneSimulation& 
 
         const uint32_t vertexGroups =
             gpu::groupCount(effect.vertexCount, MFX_AFTERIMAGE_GROUP_SIZE);
-        record_.bind(cmd, effect.recordSet);
+        record_.bind(cmd, effect.resources);
         record_.push(cmd, c);
         vkCmdDispatch(cmd, vertexGroups, 1, 1);
         // Outside its window the effect records its history (so it enters the window with the
@@ -244,16 +235,16 @@ void AfterimagePass::advance(VkCommandBuffer cmd, const fluid::SceneSimulation& 
         const bool live = simulation.effectLive(e, time);
         if (live) {
             computeToComputeBarrier(cmd);
-            smear_.bind(cmd, effect.smearSet);
+            smear_.bind(cmd, effect.resources);
             smear_.push(cmd, c);
             vkCmdDispatch(cmd, vertexGroups, 1, 1);
             computeToComputeBarrier(cmd);
-            weld_.bind(cmd, effect.weldSet);
+            weld_.bind(cmd, effect.resources);
             weld_.push(cmd, c);
             vkCmdDispatch(cmd, vertexGroups, 1, 1);
             if (effect.primitiveCount > 0) {
                 computeToComputeBarrier(cmd);
-                build_.bind(cmd, effect.buildSet);
+                build_.bind(cmd, effect.resources);
                 build_.push(cmd, c);
                 vkCmdDispatch(
                     cmd, gpu::groupCount(effect.primitiveCount, MFX_AFTERIMAGE_GROUP_SIZE), 1, 1);
@@ -263,8 +254,9 @@ void AfterimagePass::advance(VkCommandBuffer cmd, const fluid::SceneSimulation& 
     computeToDrawBarrier(cmd);
 }
 
-uint32_t AfterimagePass::draw(VkCommandBuffer cmd, const scene::Scene& scene,
-                              const SceneCamera& camera, std::span<const uint8_t> shown) {
+uint32_t AfterimagePass::draw(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
+                              const SceneCamera& camera, float, std::span<const uint8_t> shown) {
+    const scene::Scene& scene = simulation.scene();
     if (effects_.empty() || !history_.recorded()) return 0;
     const shared::SceneFrame frame = sceneFrame(scene, camera);
     std::memcpy(frame_.mapped, &frame, sizeof frame);
@@ -279,7 +271,7 @@ uint32_t AfterimagePass::draw(VkCommandBuffer cmd, const scene::Scene& scene,
         d.timing = glm::vec4(0.0f, 1.0f, effect.spec.width, 1.0f / scene.output.fps);
         d.tint = glm::vec4(1.0f);
         if (variant == scene::AfterimageVariant::Smear) {
-            smearDraw_.bind(cmd, smearDrawSet_);
+            smearDraw_.bind(cmd, {gpu::bindBuffer(0, frame_)});
             smearDraw_.push(cmd, d);
             VkBuffer vb = effect.pushed.get();
             vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
@@ -289,8 +281,7 @@ uint32_t AfterimagePass::draw(VkCommandBuffer cmd, const scene::Scene& scene,
         } else {
             gpu::Program& program =
                 variant == scene::AfterimageVariant::SpeedLines ? lineDraw_ : arcDraw_;
-            program.bind(cmd, variant == scene::AfterimageVariant::SpeedLines ? lineDrawSet_
-                                                                              : arcDrawSet_);
+            program.bind(cmd, {gpu::bindBuffer(0, frame_)});
             program.push(cmd, d);
             VkBuffer vb = effect.output.get();
             vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);

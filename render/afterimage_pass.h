@@ -27,6 +27,7 @@
 #include "core/scene/scene.h"
 #include "core/trajectory/trajectory_source.h"
 #include "render/effect_geometry.h"
+#include "render/effect_kind_pass.h"
 #include "render/scene_camera.h"
 #include "shaders/shared/afterimage.h"
 #include "shaders/shared/trajectory.h"
@@ -41,7 +42,7 @@ class SceneSimulation;
 
 namespace mfx::render {
 
-class AfterimagePass {
+class AfterimagePass : public EffectKindPass {
 public:
     // The scene's afterimage_smear effects on `character` (which must outlive the pass), drawn
     // into targets of `samples` samples. Effects whose selection leaves no vertex are left out
@@ -54,12 +55,14 @@ public:
 
     // Records frame `frame` of `simulation` (its pose is the frame's: after recordFrame): the
     // skinning, the ring's advance and the geometry. The previous recording must have finished.
-    void advance(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation, uint32_t frame);
+    void advance(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
+                 uint32_t frame) override;
     // Records the draws of the geometry last built (inside rendering; the effect pass's target
     // formats). With `shown` non-empty, only effects whose entry (index in scene.effects) is
     // non-zero. Returns the number of draws.
-    uint32_t draw(VkCommandBuffer cmd, const scene::Scene& scene, const SceneCamera& camera,
-                  std::span<const uint8_t> shown = {});
+    uint32_t draw(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
+                  const SceneCamera& camera, float time,
+                  std::span<const uint8_t> shown = {}) override;
 
     // After the recording has finished executing, what effect `effect` (its index in
     // scene.effects) built: all zero for an effect that is not an afterimage_smear.
@@ -90,8 +93,8 @@ private:
         uint32_t vertexCount = 0, primitiveCount = 0, historySlots = 2, outputCapacity = 0;
         gpu::Buffer input, palette, skinned, history, colours, decided, copies, pushed, primitives,
             output, indices, counters;
-        VkDescriptorSet recordSet = VK_NULL_HANDLE, smearSet = VK_NULL_HANDLE,
-                        weldSet = VK_NULL_HANDLE, buildSet = VK_NULL_HANDLE;
+        // What each of the effect's compute programs binds (shaders/<kind>_common.glsl).
+        std::vector<gpu::DescriptorWrite> resources;
         std::vector<uint32_t> copyTable; // as uploaded to `copies`
         uint32_t newest = 0, filled = 0;
     };
@@ -103,8 +106,6 @@ private:
     gpu::Program record_, smear_, weld_, build_;
     gpu::Program smearDraw_, lineDraw_, arcDraw_;
     gpu::Buffer frame_;
-    VkDescriptorSet smearDrawSet_ = VK_NULL_HANDLE, lineDrawSet_ = VK_NULL_HANDLE,
-                    arcDrawSet_ = VK_NULL_HANDLE;
     std::vector<Effect> effects_;
     FrameHistory history_;
     glm::vec3 lastRoot_{0.0f};

@@ -26,9 +26,6 @@ CharacterPass::CharacterPass(const gpu::Context& ctx, const anim::Character& cha
     desc.name = "character";
     desc.vertex = shaders::character_vert;
     desc.fragment = shaders::character_frag;
-    desc.bindings = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
-                      VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT},
-                     {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT}};
     desc.pushConstantSize = sizeof(shared::SceneObject);
     desc.vertexStride = sizeof(shared::SkinVertexOut);
     desc.attributes = {{0, VK_FORMAT_R32G32B32A32_SFLOAT, 0},
@@ -74,10 +71,9 @@ CharacterPass::CharacterPass(const gpu::Context& ctx, const anim::Character& cha
     gpu::submitOneShot(ctx, [&](VkCommandBuffer cmd) {
         gpu::transitionImage(cmd, shadowMap_, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     });
-    set_ = program_.createSet(
-        ctx, {gpu::bindBuffer(0, frame_),
-              gpu::bindImage(1, shadowMap_, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                             shadowSampler_.get())});
+    resources_ = {gpu::bindBuffer(0, frame_),
+                  gpu::bindImage(1, shadowMap_, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                                 shadowSampler_.get())};
 
     for (const anim::Mesh& mesh : character.meshes)
         for (const anim::Primitive& p : mesh.primitives) {
@@ -213,7 +209,7 @@ void CharacterPass::draw(VkCommandBuffer cmd, const SceneCamera& camera) {
     const shared::SceneFrame frame =
         sceneFrame(scene_, camera, lightViewProjection_, shadowReady_ ? kShadowSize : 0);
     std::memcpy(frame_.mapped, &frame, sizeof frame);
-    program_.bind(cmd, set_);
+    program_.bind(cmd, resources_);
     const VkDeviceSize offset = 0;
     auto drawMesh = [&](const gpu::Buffer& vertices, const gpu::Buffer& indices, uint32_t count,
                         glm::vec3 colour) {

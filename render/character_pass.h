@@ -57,7 +57,7 @@ private:
     gpu::UniqueSampler shadowSampler_;
     glm::mat4 lightViewProjection_{1.0f};
     bool shadowReady_ = false;
-    VkDescriptorSet set_ = VK_NULL_HANDLE;
+    std::vector<gpu::DescriptorWrite> resources_; // the frame and the shadow map
     std::vector<Part> parts_;
     std::vector<StageMesh> stage_;
 };

@@ -13,16 +13,11 @@
 namespace mfx::render {
 
 gpu::Program storageComputeProgram(const gpu::Context& ctx, const char* name,
-                                   std::span<const uint32_t> spirv, uint32_t bindingCount,
-                                   uint32_t pushConstantSize) {
+                                   std::span<const uint32_t> spirv, uint32_t pushConstantSize) {
     gpu::ComputeProgramDesc desc;
     desc.name = name;
     desc.spirv = spirv;
-    for (uint32_t b = 0; b < bindingCount; ++b)
-        desc.bindings.push_back(
-            {b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT});
     desc.pushConstantSize = pushConstantSize;
-    desc.maxSets = 64;
     return gpu::createComputeProgram(ctx, desc);
 }
 
@@ -30,7 +25,6 @@ gpu::GraphicsProgramDesc trajectoryDrawDesc(const char* name, VkPrimitiveTopolog
                                             VkSampleCountFlagBits samples, bool depthWrite) {
     gpu::GraphicsProgramDesc desc;
     desc.name = name;
-    desc.bindings = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_ALL_GRAPHICS}};
     desc.pushConstantSize = sizeof(shared::EffectDraw);
     desc.vertexStride = sizeof(shared::TrajectoryVertex);
     desc.attributes = {{0, VK_FORMAT_R32G32B32A32_SFLOAT, 0},
@@ -74,12 +68,12 @@ void skinSource(VkCommandBuffer cmd, anim::SkinVertices& skinning, const anim::C
     skinning.record(cmd, palette, uint32_t(joints.size()), input, skinned, vertexCount);
 }
 
-void drawBuiltTriangles(VkCommandBuffer cmd, gpu::Program& program, VkDescriptorSet set,
+void drawBuiltTriangles(VkCommandBuffer cmd, gpu::Program& program, const gpu::Buffer& frame,
                         const gpu::Buffer& vertices, const gpu::Buffer& counters, float fps) {
     shared::EffectDraw d{};
     d.timing = glm::vec4(0.0f, 1.0f, 0.0f, 1.0f / fps);
     d.tint = glm::vec4(1.0f);
-    program.bind(cmd, set);
+    program.bind(cmd, {gpu::bindBuffer(0, frame)});
     program.push(cmd, d);
     const VkBuffer vb = vertices.get();
     const VkDeviceSize offset = 0;

@@ -40,10 +40,9 @@ const Effect* findEffect(const std::vector<Effect>& effects, size_t index) {
     return nullptr;
 }
 
-// A compute program whose bindings 0..bindingCount-1 are all storage buffers.
+// A compute program of an effect's history (its bindings read from `spirv`).
 gpu::Program storageComputeProgram(const gpu::Context& ctx, const char* name,
-                                   std::span<const uint32_t> spirv, uint32_t bindingCount,
-                                   uint32_t pushConstantSize);
+                                   std::span<const uint32_t> spirv, uint32_t pushConstantSize);
 
 // A pipeline drawing shared::TrajectoryVertex as the effect pass does (render/effect_pass.cpp):
 // the scene frame at binding 0, shared::EffectDraw as push constants, premultiplied alpha, depth
@@ -71,7 +70,7 @@ void skinSource(VkCommandBuffer cmd, anim::SkinVertices& skinning, const anim::C
 // Records the unsorted, non-indexed draw of the triangles a build wrote into `vertices`, its
 // VkDrawIndirectCommand at the start of `counters`. Every vertex is drawn at time 0 with sample
 // time 0, so effect_common.glsl applies no age fade: the alpha is in the vertex colour.
-void drawBuiltTriangles(VkCommandBuffer cmd, gpu::Program& program, VkDescriptorSet set,
+void drawBuiltTriangles(VkCommandBuffer cmd, gpu::Program& program, const gpu::Buffer& frame,
                         const gpu::Buffer& vertices, const gpu::Buffer& counters, float fps);
 
 // The copies of a vertex at one bind-pose position (a seam: one point with several normals) welded
@@ -83,19 +82,19 @@ struct Welding {
 Welding weldByPosition(std::span<const shared::SkinVertexIn> vertices);
 
 // Writes the scene frame of `camera` into `frame` (host-visible) and draws the built triangles of
-// each shown entry of `effects` (their `output` and `counters`) with `program` and `set`. Returns
-// the number of draws.
+// each shown entry of `effects` (their `output` and `counters`) with `program`, which binds the
+// frame. Returns the number of draws.
 template <class Effect>
 uint32_t drawBuiltEffects(VkCommandBuffer cmd, const std::vector<Effect>& effects,
                           const scene::Scene& scene, const SceneCamera& camera,
                           std::span<const uint8_t> shown, const gpu::Buffer& frame,
-                          gpu::Program& program, VkDescriptorSet set) {
+                          gpu::Program& program) {
     const shared::SceneFrame values = sceneFrame(scene, camera);
     std::memcpy(frame.mapped, &values, sizeof values);
     uint32_t draws = 0;
     for (const Effect& effect : effects) {
         if (!effectShown(shown, effect.index)) continue;
-        drawBuiltTriangles(cmd, program, set, effect.output, effect.counters, scene.output.fps);
+        drawBuiltTriangles(cmd, program, frame, effect.output, effect.counters, scene.output.fps);
         ++draws;
     }
     return draws;

@@ -10,53 +10,26 @@
 
 namespace mfx::render {
 
-namespace {
-
-gpu::GraphicsProgramDesc effectDesc(const char* name, VkPrimitiveTopology topology,
-                                    VkSampleCountFlagBits samples) {
-    gpu::GraphicsProgramDesc desc;
-    desc.name = name;
-    desc.bindings = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_ALL_GRAPHICS}};
-    desc.pushConstantSize = sizeof(shared::EffectDraw);
-    desc.vertexStride = sizeof(shared::TrajectoryVertex);
-    desc.attributes = {{0, VK_FORMAT_R32G32B32A32_SFLOAT, 0},
-                       {1, VK_FORMAT_R32G32B32A32_SFLOAT, 16},
-                       {2, VK_FORMAT_R32G32B32A32_SFLOAT, 32}};
-    desc.topology = topology;
-    desc.colorFormats = {kColorFormat};
-    desc.depthFormat = kDepthFormat;
-    desc.depthTest = true;
-    desc.depthWrite = false;
-    desc.blend = gpu::BlendMode::PremultipliedAlpha;
-    desc.samples = samples;
-    return desc;
-}
-
-} // namespace
-
 EffectPass::EffectPass(const gpu::Context& ctx, VkSampleCountFlagBits samples) : ctx_(ctx) {
     gpu::GraphicsProgramDesc volume =
-        effectDesc("effect_volume", VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, samples);
+        trajectoryDrawDesc("effect_volume", VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, samples, false);
     volume.vertex = shaders::effect_volume_vert;
     volume.fragment = shaders::effect_volume_frag;
     volumes_ = gpu::createGraphicsProgram(ctx, volume);
     gpu::GraphicsProgramDesc line =
-        effectDesc("effect_lines", VK_PRIMITIVE_TOPOLOGY_LINE_LIST, samples);
+        trajectoryDrawDesc("effect_lines", VK_PRIMITIVE_TOPOLOGY_LINE_LIST, samples, false);
     line.vertex = shaders::effect_lines_vert;
     line.geometry = shaders::effect_lines_geom;
     line.fragment = shaders::effect_lines_frag;
     lines_ = gpu::createGraphicsProgram(ctx, line);
     gpu::GraphicsProgramDesc particle =
-        effectDesc("effect_particles", VK_PRIMITIVE_TOPOLOGY_POINT_LIST, samples);
+        trajectoryDrawDesc("effect_particles", VK_PRIMITIVE_TOPOLOGY_POINT_LIST, samples, false);
     particle.vertex = shaders::effect_particles_vert;
     particle.geometry = shaders::effect_particles_geom;
     particle.fragment = shaders::effect_particles_frag;
     particles_ = gpu::createGraphicsProgram(ctx, particle);
     frame_ = gpu::createBuffer(ctx, sizeof(shared::SceneFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                gpu::MemoryUsage::Upload, "effect frame");
-    volumeSet_ = volumes_.createSet(ctx, {gpu::bindBuffer(0, frame_)});
-    lineSet_ = lines_.createSet(ctx, {gpu::bindBuffer(0, frame_)});
-    particleSet_ = particles_.createSet(ctx, {gpu::bindBuffer(0, frame_)});
 }
 
 uint32_t EffectPass::draw(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
@@ -70,9 +43,6 @@ uint32_t EffectPass::draw(VkCommandBuffer cmd, const fluid::SceneSimulation& sim
         gpu::Program& program = type == scene::EffectType::MotionBlur   ? volumes_
                                 : type == scene::EffectType::SpeedLines ? lines_
                                                                         : particles_;
-        VkDescriptorSet set = type == scene::EffectType::MotionBlur   ? volumeSet_
-                              : type == scene::EffectType::SpeedLines ? lineSet_
-                                                                      : particleSet_;
         for (const fluid::SceneSimulation::TrajectoryEffect& effect : simulation.trajectories()) {
             if (effect.spec->type != type) continue;
             const size_t index = simulation.effectIndex(effect);
@@ -80,7 +50,7 @@ uint32_t EffectPass::draw(VkCommandBuffer cmd, const fluid::SceneSimulation& sim
             const trajectory::Queue& queue = *effect.queue;
             const auto live = queue.liveSegments();
             if (live.empty()) continue;
-            program.bind(cmd, set);
+            program.bind(cmd, {gpu::bindBuffer(0, frame_)});
             shared::EffectDraw d{};
             d.timing = glm::vec4(now, float(effect.spec->lifetime) / simulation.scene().output.fps,
                                  type == scene::EffectType::SpeedLines ? effect.spec->width

@@ -10,13 +10,14 @@
 #include "core/gpu/program.h"
 #include "core/gpu/resources.h"
 #include "fluid/scene_simulation.h"
+#include "render/effect_kind_pass.h"
 #include "render/scene_camera.h"
 
 #include <span>
 
 namespace mfx::render {
 
-class EffectPass {
+class EffectPass : public EffectKindPass {
 public:
     explicit EffectPass(const gpu::Context& ctx,
                         VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT);
@@ -25,14 +26,15 @@ public:
     // `now`; with `shown` non-empty, only the effects whose entry (by index in scene.effects) is
     // non-zero. Returns the number of draws recorded.
     uint32_t draw(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
-                  const SceneCamera& camera, float now, std::span<const uint8_t> shown = {});
+                  const SceneCamera& camera, float now,
+                  std::span<const uint8_t> shown = {}) override;
+    // The queues advance with the simulation (SceneSimulation::recordFrame): nothing to do.
+    void advance(VkCommandBuffer, const fluid::SceneSimulation&, uint32_t) override {}
 
 private:
     const gpu::Context& ctx_;
     gpu::Program volumes_, lines_, particles_;
     gpu::Buffer frame_;
-    VkDescriptorSet volumeSet_ = VK_NULL_HANDLE, lineSet_ = VK_NULL_HANDLE,
-                    particleSet_ = VK_NULL_HANDLE;
 };
 
 } // namespace mfx::render

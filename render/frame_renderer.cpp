@@ -7,11 +7,8 @@ FrameRenderer::FrameRenderer(const gpu::Context& ctx, const fluid::SceneSimulati
     : ctx_(ctx),
       target_(createRenderTarget(ctx, width, height, supportedSamples(ctx, wantedSamples))),
       scenePass_(ctx, simulation.character(), simulation.scene(), target_.samples),
-      effectPass_(ctx, target_.samples),
-      afterimagePass_(ctx, simulation.scene(), simulation.character(), target_.samples),
-      sweptVolumePass_(ctx, simulation.scene(), simulation.character(), target_.samples),
-      silhouetteShellPass_(ctx, simulation.scene(), simulation.character(), target_.samples),
-      smokePass_(ctx), camera_(makeCamera(simulation.scene().camera, float(width) / float(height))),
+      effectPasses_(makeEffectPasses(ctx, simulation, target_.samples)), smokePass_(ctx),
+      camera_(makeCamera(simulation.scene().camera, float(width) / float(height))),
       timer_(ctx, uint32_t(std::size(kFramePassNames))),
       shown_(simulation.scene().effects.size(), 1) {}
 
@@ -36,9 +33,9 @@ void FrameRenderer::recordFrame(VkCommandBuffer cmd, const fluid::SceneSimulatio
     {
         gpu::ScopedPass pass(timer_, cmd, "skin");
         scenePass_.skin(cmd, simulation.framePose(), simulation.placement());
-        if (frame) afterimagePass_.advance(cmd, simulation, *frame);
-        if (frame) sweptVolumePass_.advance(cmd, simulation, *frame);
-        if (frame) silhouetteShellPass_.advance(cmd, simulation, *frame);
+        if (frame)
+            for (const auto& effects : effectPasses_)
+                effects->advance(cmd, simulation, *frame);
     }
     {
         gpu::ScopedPass pass(timer_, cmd, "shadow");
@@ -51,11 +48,9 @@ void FrameRenderer::recordFrame(VkCommandBuffer cmd, const fluid::SceneSimulatio
     }
     {
         gpu::ScopedPass pass(timer_, cmd, "effects");
-        // The smear first: by default an opaque copy of the mesh, it writes depth.
-        draws_ = afterimagePass_.draw(cmd, simulation.scene(), camera_, shown_);
-        draws_ += sweptVolumePass_.draw(cmd, simulation.scene(), camera_, shown_);
-        draws_ += silhouetteShellPass_.draw(cmd, simulation.scene(), camera_, shown_);
-        draws_ += effectPass_.draw(cmd, simulation, camera_, time, shown_);
+        draws_ = 0;
+        for (const auto& effects : effectPasses_)
+            draws_ += effects->draw(cmd, simulation, camera_, time, shown_);
         endRendering(cmd);
     }
     gpu::ScopedPass pass(timer_, cmd, "smoke");

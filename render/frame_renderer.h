@@ -6,22 +6,20 @@
 
 #include "core/gpu/timer.h"
 #include "fluid/scene_simulation.h"
-#include "render/afterimage_pass.h"
 #include "render/character_pass.h"
-#include "render/effect_pass.h"
+#include "render/effect_kind_pass.h"
 #include "render/render_target.h"
-#include "render/silhouette_shell_pass.h"
 #include "render/smoke_pass.h"
-#include "render/swept_volume_pass.h"
 
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace mfx::render {
 
 // The passes a frame records, in order, by the names their timings carry ("skin" includes the
-// afterimage smears', swept volumes' and silhouette shells' skinning, history and geometry;
-// "effects" their draws).
+// effect passes' advance: the afterimage smears', swept volumes' and silhouette shells' skinning,
+// history and geometry; "effects" the effect passes' draws).
 inline constexpr const char* kFramePassNames[] = {"skin", "shadow", "scene", "effects", "smoke"};
 
 class FrameRenderer {
@@ -53,23 +51,25 @@ public:
     uint32_t effectDraws() const { return draws_; }
 
     RenderTarget& target() { return target_; }
-    const AfterimagePass& afterimages() const { return afterimagePass_; }
-    const SweptVolumePass& sweptVolumes() const { return sweptVolumePass_; }
-    const SilhouetteShellPass& silhouetteShells() const { return silhouetteShellPass_; }
+    // The frame's effect pass of type `Pass` (render/effect_kinds.cpp); null when the scene has
+    // no effect it draws.
+    template <class Pass>
+    const Pass* effectPass() const {
+        for (const auto& pass : effectPasses_)
+            if (const auto* p = dynamic_cast<const Pass*>(pass.get())) return p;
+        return nullptr;
+    }
     const SceneCamera& camera() const { return camera_; }
 
 private:
-    // recordDraw; with `frame`, the afterimage smears also advance to that simulation frame.
+    // recordDraw; with `frame`, the effect passes also advance to that simulation frame.
     void recordFrame(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation, float time,
                      const uint32_t* frame);
 
     const gpu::Context& ctx_;
     RenderTarget target_;
     CharacterPass scenePass_;
-    EffectPass effectPass_;
-    AfterimagePass afterimagePass_;
-    SweptVolumePass sweptVolumePass_;
-    SilhouetteShellPass silhouetteShellPass_;
+    std::vector<std::unique_ptr<EffectKindPass>> effectPasses_; // in draw order
     SmokePass smokePass_;
     SceneCamera camera_;
     gpu::GpuTimer timer_;

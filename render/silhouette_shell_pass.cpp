@@ -15,12 +15,9 @@ namespace mfx::render {
 
 namespace {
 
-constexpr uint32_t kBindings = 10;
-
 gpu::Program computeProgram(const gpu::Context& ctx, const char* name,
                             std::span<const uint32_t> spirv) {
-    return storageComputeProgram(ctx, name, spirv, kBindings,
-                                 sizeof(shared::SilhouetteShellConstants));
+    return storageComputeProgram(ctx, name, spirv, sizeof(shared::SilhouetteShellConstants));
 }
 
 void computeToTransfer(VkCommandBuffer cmd) {
@@ -152,15 +149,12 @@ SilhouetteShellPass::SilhouetteShellPass(const gpu::Context& ctx, const scene::S
     update_ = computeProgram(ctx, "silhouette_shell_update", shaders::silhouette_shell_update_comp);
     build_ = computeProgram(ctx, "silhouette_shell_build", shaders::silhouette_shell_build_comp);
     for (Effect& effect : effects_) {
-        const gpu::DescriptorWrite writes[kBindings] = {
+        effect.resources = {
             gpu::bindBuffer(0, effect.skinned),   gpu::bindBuffer(1, effect.adjacency),
             gpu::bindBuffer(2, effect.triangles), gpu::bindBuffer(3, effect.current),
             gpu::bindBuffer(4, effect.last),      gpu::bindBuffer(5, effect.states),
             gpu::bindBuffer(6, effect.history),   gpu::bindBuffer(7, effect.colours),
             gpu::bindBuffer(8, effect.output),    gpu::bindBuffer(9, effect.counters)};
-        effect.normalsSet = normals_.createSet(ctx, writes);
-        effect.updateSet = update_.createSet(ctx, writes);
-        effect.buildSet = build_.createSet(ctx, writes);
     }
 
     // Translucent and unsorted, like the swept volume: the strips do not write depth.
@@ -171,7 +165,6 @@ SilhouetteShellPass::SilhouetteShellPass(const gpu::Context& ctx, const scene::S
     shellDraw_ = gpu::createGraphicsProgram(ctx, shell);
     frame_ = gpu::createBuffer(ctx, sizeof(shared::SceneFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                gpu::MemoryUsage::Upload, "shell frame");
-    drawSet_ = shellDraw_.createSet(ctx, {gpu::bindBuffer(0, frame_)});
 }
 
 void SilhouetteShellPass::advance(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
@@ -212,7 +205,7 @@ void SilhouetteShellPass::advance(VkCommandBuffer cmd, const fluid::SceneSimulat
         c.initialAlpha = e.shell.initialAlpha;
         c.fadeOut = e.shell.fadeOut;
 
-        normals_.bind(cmd, effect.normalsSet);
+        normals_.bind(cmd, effect.resources);
         normals_.push(cmd, c);
         vkCmdDispatch(cmd, gpu::groupCount(effect.vertexCount, MFX_SHELL_GROUP_SIZE), 1, 1);
         computeToComputeBarrier(cmd);
@@ -227,7 +220,7 @@ void SilhouetteShellPass::advance(VkCommandBuffer cmd, const fluid::SceneSimulat
                 effect.newest = (effect.newest + 1) % effect.historySlots;
                 c.newest = effect.newest;
                 c.update = u;
-                update_.bind(cmd, effect.updateSet);
+                update_.bind(cmd, effect.resources);
                 update_.push(cmd, c);
                 vkCmdDispatch(cmd, gpu::groupCount(effect.triangleCount, MFX_SHELL_GROUP_SIZE), 1,
                               1);
@@ -248,17 +241,19 @@ void SilhouetteShellPass::advance(VkCommandBuffer cmd, const fluid::SceneSimulat
         // the right history) but builds nothing.
         const bool live = simulation.effectLive(e, time);
         if (!live) continue;
-        build_.bind(cmd, effect.buildSet);
+        build_.bind(cmd, effect.resources);
         build_.push(cmd, c);
         vkCmdDispatch(cmd, gpu::groupCount(effect.triangleCount, MFX_SHELL_GROUP_SIZE), 1, 1);
     }
     computeToDrawBarrier(cmd);
 }
 
-uint32_t SilhouetteShellPass::draw(VkCommandBuffer cmd, const scene::Scene& scene,
-                                   const SceneCamera& camera, std::span<const uint8_t> shown) {
+uint32_t SilhouetteShellPass::draw(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
+                                   const SceneCamera& camera, float,
+                                   std::span<const uint8_t> shown) {
+    const scene::Scene& scene = simulation.scene();
     if (effects_.empty() || !history_.recorded()) return 0;
-    return drawBuiltEffects(cmd, effects_, scene, camera, shown, frame_, shellDraw_, drawSet_);
+    return drawBuiltEffects(cmd, effects_, scene, camera, shown, frame_, shellDraw_);
 }
 
 const SilhouetteShellPass::Effect* SilhouetteShellPass::find(size_t effect) const {

@@ -24,6 +24,7 @@
 #include "core/scene/scene.h"
 #include "core/trajectory/trajectory_source.h"
 #include "render/effect_geometry.h"
+#include "render/effect_kind_pass.h"
 #include "render/scene_camera.h"
 #include "shaders/shared/silhouette_shell.h"
 #include "shaders/shared/trajectory.h"
@@ -47,7 +48,7 @@ struct ShellCadence {
     uint32_t framesPerUpdate = 1; // recorded frames from one update to the next
 };
 
-class SilhouetteShellPass {
+class SilhouetteShellPass : public EffectKindPass {
 public:
     // The scene's silhouette_shell effects on `character` (which must outlive the pass), drawn
     // into targets of `samples` samples. Effects whose selection leaves no triangle are left out.
@@ -60,12 +61,14 @@ public:
     // Records frame `frame` of `simulation` (its pose is the frame's: after recordFrame): the
     // skinning, the silhouette updates since the last frame and the shell. The previous recording
     // must have finished.
-    void advance(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation, uint32_t frame);
+    void advance(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
+                 uint32_t frame) override;
     // Records the draws of the shell last built (inside rendering; the effect pass's target
     // formats). With `shown` non-empty, only effects whose entry (index in scene.effects) is
     // non-zero. Returns the number of draws.
-    uint32_t draw(VkCommandBuffer cmd, const scene::Scene& scene, const SceneCamera& camera,
-                  std::span<const uint8_t> shown = {});
+    uint32_t draw(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
+                  const SceneCamera& camera, float time,
+                  std::span<const uint8_t> shown = {}) override;
 
     // After the recording has finished executing, what effect `effect` (its index in
     // scene.effects) built: all zero for an effect that is not a silhouette_shell.
@@ -100,8 +103,8 @@ private:
         bool updated = false;           // whether the last recorded frame updated
         gpu::Buffer input, palette, skinned, adjacency, triangles, current, last, states, history,
             colours, output, counters;
-        VkDescriptorSet normalsSet = VK_NULL_HANDLE, updateSet = VK_NULL_HANDLE,
-                        buildSet = VK_NULL_HANDLE;
+        // What each of the effect's compute programs binds (shaders/<kind>_common.glsl).
+        std::vector<gpu::DescriptorWrite> resources;
         uint32_t newest = 0;
     };
     const Effect* find(size_t effect) const;
@@ -111,7 +114,6 @@ private:
     anim::SkinVertices skinning_;
     gpu::Program normals_, update_, build_, shellDraw_;
     gpu::Buffer frame_;
-    VkDescriptorSet drawSet_ = VK_NULL_HANDLE;
     std::vector<Effect> effects_;
     FrameHistory history_;
 };

@@ -10,17 +10,12 @@ namespace mfx::render {
 
 namespace {
 
-constexpr uint32_t kMaxSets = 32;
 constexpr uint32_t kBoxVertices = 36; // six faces, two triangles each (shaders/smoke.vert)
 constexpr VkFormat kFluidColorFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkFormat kFluidDistanceFormat = VK_FORMAT_R32_SFLOAT;
 
 uint32_t divisorOf(SmokeResolution resolution) {
     return resolution == SmokeResolution::Full ? 1u : 2u;
-}
-
-gpu::BindingDesc sampled(uint32_t binding) {
-    return {binding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT};
 }
 
 } // namespace
@@ -31,10 +26,7 @@ SmokePass::SmokePass(const gpu::Context& ctx) : ctx_(ctx) {
         gpu::ComputeProgramDesc bounds;
         bounds.name = "pigment_bounds";
         bounds.spirv = half ? shaders::pigment_bounds_comp_half : shaders::pigment_bounds_comp;
-        bounds.bindings = {{0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
-                           {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}};
         bounds.pushConstantSize = sizeof(shared::PigmentBoundsDispatch);
-        bounds.maxSets = kMaxSets;
         boundsPrograms_[half ? 1 : 0] = gpu::createComputeProgram(ctx, bounds);
     }
     volumeSampler_ =
@@ -47,23 +39,19 @@ SmokePass::SmokePass(const gpu::Context& ctx) : ctx_(ctx) {
 SmokePass::Programs& SmokePass::programsFor(uint32_t divisor) {
     auto it = programs_.find(divisor);
     if (it != programs_.end()) return it->second;
-    const gpu::BindingDesc box{2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_VERTEX_BIT};
     Programs programs;
     gpu::GraphicsProgramDesc march;
     march.name = "smoke";
     march.vertex = shaders::smoke_vert;
     march.fragment = shaders::smoke_frag;
-    march.bindings = {sampled(0), sampled(1), box};
     march.pushConstantSize = sizeof(shared::SmokeDraw);
     march.specialization = {divisor};
     march.colorFormats = {kFluidColorFormat, kFluidDistanceFormat};
     march.blend = gpu::BlendMode::Opaque;
-    march.maxSets = kMaxSets;
     programs.march = gpu::createGraphicsProgram(ctx_, march);
     gpu::GraphicsProgramDesc composite = march;
     composite.name = "smoke_composite";
     composite.fragment = shaders::smoke_composite_frag;
-    composite.bindings = {sampled(0), sampled(1), box, sampled(3)};
     composite.colorFormats = {kColorFormat};
     composite.blend = gpu::BlendMode::PremultipliedAlpha;
     programs.composite = gpu::createGraphicsProgram(ctx_, composite);
@@ -74,7 +62,6 @@ void SmokePass::prepareFluidBuffer(const RenderTarget& target, uint32_t divisor)
     if (fluid_.divisor == divisor && fluid_.targetWidth == target.width &&
         fluid_.targetHeight == target.height)
         return;
-    resetSets(); // the composite's sets name the fluid buffer
     gpu::ImageDesc desc;
     desc.extent = {(target.width + divisor - 1) / divisor, (target.height + divisor - 1) / divisor,
                    1};
@@ -90,56 +77,8 @@ void SmokePass::prepareFluidBuffer(const RenderTarget& target, uint32_t divisor)
     fluid_.targetHeight = target.height;
 }
 
-void SmokePass::resetSets() {
-    for (gpu::Program& bounds : boundsPrograms_)
-        bounds.resetSets(ctx_);
-    for (auto& [divisor, programs] : programs_) {
-        programs.march.resetSets(ctx_);
-        programs.composite.resetSets(ctx_);
-    }
-    sets_.clear();
-}
-
-std::vector<SmokePass::Sets> SmokePass::setsFor(std::span<const Volume> volumes,
-                                                const gpu::Image& depth, Programs& programs) {
-    auto keyOf = [&](size_t slot) {
-        return std::make_tuple(fluid_.divisor, slot, volumes[slot].pigment->view.get(),
-                               depth.view.get());
-    };
-    size_t missing = 0;
-    for (size_t i = 0; i < volumes.size(); ++i)
-        missing += sets_.count(keyOf(i)) == 0 ? 1 : 0;
-    // Sets are freed only all at once, and never between the volumes of one draw.
-    if (sets_.size() + missing > kMaxSets) resetSets();
-    std::vector<Sets> result;
-    for (size_t i = 0; i < volumes.size(); ++i) {
-        auto it = sets_.find(keyOf(i));
-        if (it == sets_.end()) {
-            const gpu::Image& pigment = *volumes[i].pigment;
-            const gpu::Buffer& box = bounds_[i];
-            const VkImageLayout read = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
-            Sets sets;
-            sets.bounds = boundsFor(pigment).createSet(
-                ctx_,
-                {gpu::bindImage(0, pigment, VK_IMAGE_LAYOUT_GENERAL), gpu::bindBuffer(1, box)});
-            sets.march = programs.march.createSet(
-                ctx_,
-                {gpu::bindImage(0, pigment, VK_IMAGE_LAYOUT_GENERAL, volumeSampler_.get()),
-                 gpu::bindImage(1, depth, read, nearestSampler_.get()), gpu::bindBuffer(2, box)});
-            sets.composite = programs.composite.createSet(
-                ctx_,
-                {gpu::bindImage(0, fluid_.color, read, nearestSampler_.get()),
-                 gpu::bindImage(1, fluid_.distance, read, nearestSampler_.get()),
-                 gpu::bindBuffer(2, box), gpu::bindImage(3, depth, read, nearestSampler_.get())});
-            it = sets_.emplace(keyOf(i), sets).first;
-        }
-        result.push_back(it->second);
-    }
-    return result;
-}
-
 void SmokePass::findPigmentBounds(VkCommandBuffer cmd, std::span<const Volume> volumes,
-                                  std::span<const Sets> sets, const SmokeLook& look) {
+                                  const SmokeLook& look) {
     // Each volume's box emptied, after the previous draw's reads of it.
     gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT, 0,
                        VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
@@ -159,7 +98,8 @@ void SmokePass::findPigmentBounds(VkCommandBuffer cmd, std::span<const Volume> v
         d.size = glm::uvec4(shape.cellsX, shape.cellsY, shape.cellsZ, 0u);
         d.threshold = look.pigmentThreshold;
         gpu::Program& bounds = boundsFor(*volumes[i].pigment);
-        bounds.bind(cmd, sets[i].bounds);
+        bounds.bind(cmd, {gpu::bindImage(0, *volumes[i].pigment, VK_IMAGE_LAYOUT_GENERAL),
+                          gpu::bindBuffer(1, bounds_[i])});
         bounds.push(cmd, d);
         vkCmdDispatch(cmd, gpu::groupCount(shape.cellsX, MFX_PIGMENT_BOUNDS_GROUP_X),
                       gpu::groupCount(shape.cellsY, MFX_PIGMENT_BOUNDS_GROUP_Y),
@@ -173,10 +113,6 @@ void SmokePass::findPigmentBounds(VkCommandBuffer cmd, std::span<const Volume> v
 uint32_t SmokePass::draw(VkCommandBuffer cmd, RenderTarget& target,
                          const fluid::SceneSimulation& simulation, const SceneCamera& camera,
                          std::span<const uint8_t> shown, const SmokeLook& look) {
-    if (simulation.serial() != simulation_) {
-        resetSets();
-        simulation_ = simulation.serial();
-    }
     std::vector<Volume> volumes;
     for (const fluid::SceneSimulation::SmokeGrid& grid : simulation.smokeGrids()) {
         bool visible = shown.empty();
@@ -198,7 +134,6 @@ void SmokePass::draw(VkCommandBuffer cmd, RenderTarget& target, std::span<const 
                      const SceneCamera& camera, const scene::LightSpec& key,
                      const SmokeLook& look) {
     if (volumes.empty()) return;
-    if (volumes.size() > kMaxSets) throw std::logic_error("SmokePass: too many volumes");
     const uint32_t divisor = divisorOf(look.resolution);
     Programs& programs = programsFor(divisor);
     prepareFluidBuffer(target, divisor);
@@ -207,9 +142,7 @@ void SmokePass::draw(VkCommandBuffer cmd, RenderTarget& target, std::span<const 
             gpu::createBuffer(ctx_, sizeof(shared::PigmentBounds),
                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                               gpu::MemoryUsage::DeviceLocal, "smoke pigment bounds"));
-    const std::vector<Sets> sets = setsFor(volumes, target.depth, programs);
-
-    findPigmentBounds(cmd, volumes, sets, look);
+    findPigmentBounds(cmd, volumes, look);
     // The scene's depth as a texture.
     gpu::imageBarrier(cmd, target.depth, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                       VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT |
@@ -219,6 +152,8 @@ void SmokePass::draw(VkCommandBuffer cmd, RenderTarget& target, std::span<const 
                       VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
 
     const VkExtent3D fluidSize = fluid_.color.extent;
+    const VkImageLayout read = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    const VkSampler nearest = nearestSampler_.get();
     for (size_t i = 0; i < volumes.size(); ++i) {
         const Volume& v = volumes[i];
         const fluid::GridShape& shape = v.shape;
@@ -259,7 +194,9 @@ void SmokePass::draw(VkCommandBuffer cmd, RenderTarget& target, std::span<const 
         vkCmdSetViewport(cmd, 0, 1, &viewport);
         const VkRect2D scissor{{0, 0}, {fluidSize.width, fluidSize.height}};
         vkCmdSetScissor(cmd, 0, 1, &scissor);
-        programs.march.bind(cmd, sets[i].march);
+        programs.march.bind(
+            cmd, {gpu::bindImage(0, *v.pigment, VK_IMAGE_LAYOUT_GENERAL, volumeSampler_.get()),
+                  gpu::bindImage(1, target.depth, read, nearest), gpu::bindBuffer(2, bounds_[i])});
         programs.march.push(cmd, d);
         vkCmdDraw(cmd, kBoxVertices, 1, 0, 0);
         vkCmdEndRendering(cmd);
@@ -272,7 +209,10 @@ void SmokePass::draw(VkCommandBuffer cmd, RenderTarget& target, std::span<const 
                               VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
                               VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
         beginCompositing(cmd, target);
-        programs.composite.bind(cmd, sets[i].composite);
+        programs.composite.bind(cmd, {gpu::bindImage(0, fluid_.color, read, nearest),
+                                      gpu::bindImage(1, fluid_.distance, read, nearest),
+                                      gpu::bindBuffer(2, bounds_[i]),
+                                      gpu::bindImage(3, target.depth, read, nearest)});
         programs.composite.push(cmd, d);
         vkCmdDraw(cmd, kBoxVertices, 1, 0, 0);
         vkCmdEndRendering(cmd);

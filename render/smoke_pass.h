@@ -57,8 +57,6 @@ public:
     //
     // The pass keeps one fluid buffer for the target's size and the look's resolution; a draw with
     // another size or resolution replaces it, so no earlier draw may still be executing then.
-    // A draw of another simulation than the last one (a restarted view) forgets the descriptor
-    // sets made for the last one's images.
     uint32_t draw(VkCommandBuffer cmd, RenderTarget& target,
                   const fluid::SceneSimulation& simulation, const SceneCamera& camera,
                   std::span<const uint8_t> shown = {}, const SmokeLook& look = {});
@@ -69,12 +67,8 @@ public:
         fluid::GridShape shape;
         glm::vec3 origin{0.0f};
     };
-    // The pass caches descriptor sets by the volumes' image views: a caller that destroys a
-    // volume's image must call forgetVolumes() before drawing again (a new image may reuse the
-    // destroyed one's handle), once no draw that used it is still executing.
     void draw(VkCommandBuffer cmd, RenderTarget& target, std::span<const Volume> volumes,
               const SceneCamera& camera, const scene::LightSpec& key, const SmokeLook& look = {});
-    void forgetVolumes() { resetSets(); }
 
 private:
     // The march and composite programs for one fluid buffer divisor (1 or 2).
@@ -87,21 +81,11 @@ private:
         uint32_t divisor = 0;
         uint32_t targetWidth = 0, targetHeight = 0;
     };
-    // The descriptor sets of one volume: its pigment, the pigment box buffer of its place in the
-    // draw, the scene's depth and the fluid buffer.
-    struct Sets {
-        VkDescriptorSet bounds = VK_NULL_HANDLE;
-        VkDescriptorSet march = VK_NULL_HANDLE;
-        VkDescriptorSet composite = VK_NULL_HANDLE;
-    };
 
     Programs& programsFor(uint32_t divisor);
     void prepareFluidBuffer(const RenderTarget& target, uint32_t divisor);
-    std::vector<Sets> setsFor(std::span<const Volume> volumes, const gpu::Image& depth,
-                              Programs& programs);
-    void resetSets();
     void findPigmentBounds(VkCommandBuffer cmd, std::span<const Volume> volumes,
-                           std::span<const Sets> sets, const SmokeLook& look);
+                           const SmokeLook& look);
 
     const gpu::Context& ctx_;
     gpu::Program& boundsFor(const gpu::Image& pigment) {
@@ -112,8 +96,6 @@ private:
     gpu::UniqueSampler volumeSampler_, nearestSampler_;
     FluidBuffer fluid_;
     std::vector<gpu::Buffer> bounds_; // shared::PigmentBounds of the i-th volume of a draw
-    std::map<std::tuple<uint32_t, size_t, VkImageView, VkImageView>, Sets> sets_;
-    uint64_t simulation_ = 0; // the serial of the simulation drawn last
 };
 
 } // namespace mfx::render

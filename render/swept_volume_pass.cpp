@@ -16,11 +16,9 @@ namespace mfx::render {
 
 namespace {
 
-constexpr uint32_t kBindings = 7;
-
 gpu::Program computeProgram(const gpu::Context& ctx, const char* name,
                             std::span<const uint32_t> spirv) {
-    return storageComputeProgram(ctx, name, spirv, kBindings, sizeof(shared::SweptVolumeConstants));
+    return storageComputeProgram(ctx, name, spirv, sizeof(shared::SweptVolumeConstants));
 }
 
 uint32_t filterCode(scene::SweptFilter filter) {
@@ -123,14 +121,11 @@ SweptVolumePass::SweptVolumePass(const gpu::Context& ctx, const scene::Scene& sc
     motion_ = computeProgram(ctx, "swept_volume_motion", shaders::swept_volume_motion_comp);
     build_ = computeProgram(ctx, "swept_volume_build", shaders::swept_volume_build_comp);
     for (Effect& effect : effects_) {
-        const gpu::DescriptorWrite writes[kBindings] = {
+        effect.resources = {
             gpu::bindBuffer(0, effect.skinned), gpu::bindBuffer(1, effect.history),
             gpu::bindBuffer(2, effect.colours), gpu::bindBuffer(3, effect.triangles),
             gpu::bindBuffer(4, effect.edges),   gpu::bindBuffer(5, effect.output),
             gpu::bindBuffer(6, effect.counters)};
-        effect.recordSet = record_.createSet(ctx, writes);
-        effect.motionSet = motion_.createSet(ctx, writes);
-        effect.buildSet = build_.createSet(ctx, writes);
     }
 
     // Translucent and unsorted, as the paper draws it (Sec. 5.1: few of its polygons overlap), so
@@ -142,7 +137,6 @@ SweptVolumePass::SweptVolumePass(const gpu::Context& ctx, const scene::Scene& sc
     volumeDraw_ = gpu::createGraphicsProgram(ctx, volume);
     frame_ = gpu::createBuffer(ctx, sizeof(shared::SceneFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                gpu::MemoryUsage::Upload, "swept frame");
-    drawSet_ = volumeDraw_.createSet(ctx, {gpu::bindBuffer(0, frame_)});
 }
 
 void SweptVolumePass::advance(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
@@ -182,7 +176,7 @@ void SweptVolumePass::advance(VkCommandBuffer cmd, const fluid::SceneSimulation&
         c.temporalFilter = filterCode(e.swept.filter);
         c.alphaFloor = e.swept.alphaFloor;
 
-        record_.bind(cmd, effect.recordSet);
+        record_.bind(cmd, effect.resources);
         record_.push(cmd, c);
         vkCmdDispatch(cmd, gpu::groupCount(effect.vertexCount, MFX_SWEPT_GROUP_SIZE), 1, 1);
         // Outside its window the effect records its history (so it enters the window with the
@@ -190,11 +184,11 @@ void SweptVolumePass::advance(VkCommandBuffer cmd, const fluid::SceneSimulation&
         const bool live = simulation.effectLive(e, time);
         if (!live) continue;
         computeToComputeBarrier(cmd);
-        motion_.bind(cmd, effect.motionSet);
+        motion_.bind(cmd, effect.resources);
         motion_.push(cmd, c);
         vkCmdDispatch(cmd, 1, 1, 1);
         computeToComputeBarrier(cmd);
-        build_.bind(cmd, effect.buildSet);
+        build_.bind(cmd, effect.resources);
         build_.push(cmd, c);
         vkCmdDispatch(
             cmd, gpu::groupCount(effect.edgeCount + effect.triangleCount, MFX_SWEPT_GROUP_SIZE), 1,
@@ -203,10 +197,11 @@ void SweptVolumePass::advance(VkCommandBuffer cmd, const fluid::SceneSimulation&
     computeToDrawBarrier(cmd);
 }
 
-uint32_t SweptVolumePass::draw(VkCommandBuffer cmd, const scene::Scene& scene,
-                               const SceneCamera& camera, std::span<const uint8_t> shown) {
+uint32_t SweptVolumePass::draw(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
+                               const SceneCamera& camera, float, std::span<const uint8_t> shown) {
+    const scene::Scene& scene = simulation.scene();
     if (effects_.empty() || !history_.recorded()) return 0;
-    return drawBuiltEffects(cmd, effects_, scene, camera, shown, frame_, volumeDraw_, drawSet_);
+    return drawBuiltEffects(cmd, effects_, scene, camera, shown, frame_, volumeDraw_);
 }
 
 const SweptVolumePass::Effect* SweptVolumePass::find(size_t effect) const {

@@ -24,6 +24,7 @@
 #include "core/scene/scene.h"
 #include "core/trajectory/trajectory_source.h"
 #include "render/effect_geometry.h"
+#include "render/effect_kind_pass.h"
 #include "render/scene_camera.h"
 #include "shaders/shared/swept_volume.h"
 #include "shaders/shared/trajectory.h"
@@ -38,7 +39,7 @@ class SceneSimulation;
 
 namespace mfx::render {
 
-class SweptVolumePass {
+class SweptVolumePass : public EffectKindPass {
 public:
     // The scene's swept_volume effects on `character` (which must outlive the pass), drawn into
     // targets of `samples` samples. Effects whose selection leaves no vertex are left out (the
@@ -51,12 +52,14 @@ public:
 
     // Records frame `frame` of `simulation` (its pose is the frame's: after recordFrame): the
     // skinning, the ring's advance and the geometry. The previous recording must have finished.
-    void advance(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation, uint32_t frame);
+    void advance(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
+                 uint32_t frame) override;
     // Records the draws of the geometry last built (inside rendering; the effect pass's target
     // formats). With `shown` non-empty, only effects whose entry (index in scene.effects) is
     // non-zero. Returns the number of draws.
-    uint32_t draw(VkCommandBuffer cmd, const scene::Scene& scene, const SceneCamera& camera,
-                  std::span<const uint8_t> shown = {});
+    uint32_t draw(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
+                  const SceneCamera& camera, float time,
+                  std::span<const uint8_t> shown = {}) override;
 
     // After the recording has finished executing, what effect `effect` (its index in
     // scene.effects) built: all zero for an effect that is not a swept_volume.
@@ -83,8 +86,8 @@ private:
         trajectory::Source source;
         uint32_t vertexCount = 0, triangleCount = 0, edgeCount = 0, historySlots = 2;
         gpu::Buffer input, palette, skinned, history, colours, triangles, edges, output, counters;
-        VkDescriptorSet recordSet = VK_NULL_HANDLE, motionSet = VK_NULL_HANDLE,
-                        buildSet = VK_NULL_HANDLE;
+        // What each of the effect's compute programs binds (shaders/<kind>_common.glsl).
+        std::vector<gpu::DescriptorWrite> resources;
         uint32_t newest = 0, filled = 0;
     };
     const Effect* find(size_t effect) const;
@@ -94,7 +97,6 @@ private:
     anim::SkinVertices skinning_;
     gpu::Program record_, motion_, build_, volumeDraw_;
     gpu::Buffer frame_;
-    VkDescriptorSet drawSet_ = VK_NULL_HANDLE;
     std::vector<Effect> effects_;
     FrameHistory history_;
 };

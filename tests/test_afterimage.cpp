@@ -219,14 +219,16 @@ TEST_F(AfterimageTest, APausedFrameDoesNotChange) {
                            [&](VkCommandBuffer cmd) { renderer.record(cmd, *sim.value(), f); });
         sim.value()->finishFrame();
     }
-    const auto smear = renderer.afterimages().geometry(0);
-    ASSERT_GT(renderer.afterimages().counts(0).triangles, 0u);
+    const render::AfterimagePass* pass = renderer.effectPass<render::AfterimagePass>();
+    ASSERT_NE(pass, nullptr);
+    const auto smear = pass->geometry(0);
+    ASSERT_GT(pass->counts(0).triangles, 0u);
     const std::vector<uint8_t> picture = render::readColor(ctx(), renderer.target());
     for (int redraw = 0; redraw < 3; ++redraw) {
         gpu::submitOneShot(ctx(), [&](VkCommandBuffer cmd) {
             renderer.recordDraw(cmd, *sim.value(), sim.value()->frameTime(kSwingFrame));
         });
-        EXPECT_TRUE(sameGeometry(smear, renderer.afterimages().geometry(0)));
+        EXPECT_TRUE(sameGeometry(smear, pass->geometry(0)));
         EXPECT_EQ(picture, render::readColor(ctx(), renderer.target()));
     }
 }

@@ -21,8 +21,6 @@ gpu::Program makeSaxpy(const gpu::Context& ctx) {
     gpu::ComputeProgramDesc desc;
     desc.name = "selftest_saxpy";
     desc.spirv = shaders::selftest_saxpy_comp;
-    desc.bindings = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
-                     {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}};
     desc.pushConstantSize = sizeof(shared::SaxpyConstants);
     return gpu::createComputeProgram(ctx, desc);
 }
@@ -48,12 +46,10 @@ void runSaxpy(const gpu::Context& ctx, uint32_t bufferCount, uint32_t count, flo
     gpu::uploadBuffer(ctx, yBuffer, std::span<const float>(y));
 
     gpu::Program saxpy = makeSaxpy(ctx);
-    VkDescriptorSet set =
-        saxpy.createSet(ctx, {gpu::bindBuffer(0, xBuffer), gpu::bindBuffer(1, yBuffer)});
     const shared::SaxpyConstants constants{a, count, iterations, 0};
     gpu::submitOneShot(ctx, [&](VkCommandBuffer cmd) {
         if (timer) timer->reset(cmd);
-        saxpy.bind(cmd, set);
+        saxpy.bind(cmd, {gpu::bindBuffer(0, xBuffer), gpu::bindBuffer(1, yBuffer)});
         saxpy.push(cmd, constants);
         if (timer) timer->begin(cmd, "saxpy");
         vkCmdDispatch(cmd, gpu::groupCount(count, MFX_SAXPY_GROUP_SIZE), 1, 1);
@@ -107,13 +103,10 @@ TEST_F(ComputeTest, FillsA3DStorageImageWithSpecializedPattern) {
     gpu::ComputeProgramDesc programDesc;
     programDesc.name = "selftest_fill_volume";
     programDesc.spirv = shaders::selftest_fill_volume_comp;
-    programDesc.bindings = {{0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT}};
     programDesc.pushConstantSize = sizeof(shared::FillVolumeConstants);
     const float scale = 2.0f;
     programDesc.specialization = {std::bit_cast<uint32_t>(scale)};
     gpu::Program fill = gpu::createComputeProgram(ctx(), programDesc);
-    VkDescriptorSet set =
-        fill.createSet(ctx(), {gpu::bindImage(0, volume, VK_IMAGE_LAYOUT_GENERAL)});
 
     const float offset = 3.0f;
     shared::FillVolumeConstants constants{};
@@ -121,7 +114,7 @@ TEST_F(ComputeTest, FillsA3DStorageImageWithSpecializedPattern) {
     constants.offset = offset;
     gpu::submitOneShot(ctx(), [&](VkCommandBuffer cmd) {
         gpu::transitionImage(cmd, volume, VK_IMAGE_LAYOUT_GENERAL);
-        fill.bind(cmd, set);
+        fill.bind(cmd, {gpu::bindImage(0, volume, VK_IMAGE_LAYOUT_GENERAL)});
         fill.push(cmd, constants);
         const uint32_t g = MFX_FILL_VOLUME_GROUP_SIZE;
         vkCmdDispatch(cmd, gpu::groupCount(w, g), gpu::groupCount(h, g), gpu::groupCount(d, g));
@@ -198,17 +191,12 @@ TEST_F(ComputeTest, Sampled3DImageFiltersTrilinearly) {
     gpu::ComputeProgramDesc programDesc;
     programDesc.name = "selftest_sample_volume";
     programDesc.spirv = shaders::selftest_sample_volume_comp;
-    programDesc.bindings = {
-        {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_COMPUTE_BIT},
-        {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
-        {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}};
     programDesc.pushConstantSize = sizeof(shared::SampleVolumeConstants);
     gpu::Program program = gpu::createComputeProgram(ctx(), programDesc);
-    VkDescriptorSet set = program.createSet(
-        ctx(), {gpu::bindImage(0, volume, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler.get()),
-                gpu::bindBuffer(1, coordinateBuffer), gpu::bindBuffer(2, results)});
     gpu::submitOneShot(ctx(), [&](VkCommandBuffer cmd) {
-        program.bind(cmd, set);
+        program.bind(cmd, {gpu::bindImage(0, volume, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                                          sampler.get()),
+                           gpu::bindBuffer(1, coordinateBuffer), gpu::bindBuffer(2, results)});
         program.push(cmd, shared::SampleVolumeConstants{count, 0, 0, 0});
         vkCmdDispatch(cmd, gpu::groupCount(count, 64), 1, 1);
     });
@@ -254,16 +242,30 @@ TEST_F(ComputeTest, ReusableCommandBufferRunsTwice) {
     }
 }
 
-TEST_F(ComputeTest, DescriptorSetMustMatchTheBindingTable) {
+// The checks run before any command is recorded, so a null command buffer is never touched.
+TEST_F(ComputeTest, PushedResourcesMustMatchTheShadersBindings) {
     gpu::Program saxpy = makeSaxpy(ctx());
     gpu::Buffer buffer = gpu::createBuffer(ctx(), 64, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                            gpu::MemoryUsage::DeviceLocal);
-    EXPECT_THROW(saxpy.createSet(ctx(), {gpu::bindBuffer(0, buffer)}), std::logic_error)
+    gpu::ImageDesc desc;
+    desc.extent = {2, 2, 1};
+    desc.format = VK_FORMAT_R32_SFLOAT;
+    desc.usage = VK_IMAGE_USAGE_STORAGE_BIT;
+    gpu::Image image = gpu::createImage(ctx(), desc);
+    EXPECT_THROW(saxpy.bind(VK_NULL_HANDLE, {gpu::bindBuffer(0, buffer)}), std::logic_error)
         << "binding 1 not written";
-    EXPECT_THROW(saxpy.createSet(ctx(), {gpu::bindBuffer(0, buffer), gpu::bindBuffer(1, buffer),
-                                         gpu::bindBuffer(2, buffer)}),
+    EXPECT_THROW(saxpy.bind(VK_NULL_HANDLE, {gpu::bindBuffer(0, buffer), gpu::bindBuffer(1, buffer),
+                                             gpu::bindBuffer(2, buffer)}),
                  std::logic_error)
         << "binding 2 not declared";
+    EXPECT_THROW(
+        saxpy.bind(VK_NULL_HANDLE, {gpu::bindBuffer(0, buffer), gpu::bindBuffer(0, buffer)}),
+        std::logic_error)
+        << "binding 0 written twice";
+    EXPECT_THROW(saxpy.bind(VK_NULL_HANDLE, {gpu::bindBuffer(0, buffer),
+                                             gpu::bindImage(1, image, VK_IMAGE_LAYOUT_GENERAL)}),
+                 std::logic_error)
+        << "an image for a buffer binding";
     EXPECT_THROW(saxpy.push(VK_NULL_HANDLE, uint32_t{0}), std::logic_error)
         << "push constant size mismatch";
 }

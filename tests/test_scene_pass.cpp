@@ -87,8 +87,6 @@ TestScenePass::TestScenePass(const gpu::Context& ctx) {
     desc.name = "test_scene";
     desc.vertex = shaders::test_scene_vert;
     desc.fragment = shaders::test_scene_frag;
-    desc.bindings = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
-                      VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT}};
     desc.pushConstantSize = sizeof(shared::TestSceneObject);
     desc.vertexStride = sizeof(TestSceneVertex);
     desc.attributes = {{0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(TestSceneVertex, position)},
@@ -103,7 +101,6 @@ TestScenePass::TestScenePass(const gpu::Context& ctx) {
     frame_ =
         gpu::createBuffer(ctx, sizeof(shared::TestSceneFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                           gpu::MemoryUsage::Upload, "test scene frame");
-    set_ = program_.createSet(ctx, {gpu::bindBuffer(0, frame_)});
     sphere_ = upload(ctx, makeSphere(32, 64));
     box_ = upload(ctx, makeBox());
 }
@@ -136,7 +133,7 @@ void TestScenePass::record(VkCommandBuffer cmd, RenderTarget& target, const Test
     std::memcpy(frame_.mapped, &frame, sizeof(frame));
 
     beginRendering(cmd, target, view.clearColor);
-    program_.bind(cmd, set_);
+    program_.bind(cmd, {gpu::bindBuffer(0, frame_)});
     for (const TestSceneObjectDraw& object : view.objects) {
         const GpuMesh& m = mesh(object.mesh);
         shared::TestSceneObject constants{};

@@ -73,7 +73,6 @@ private:
 
     gpu::Program program_;
     gpu::Buffer frame_;
-    VkDescriptorSet set_ = VK_NULL_HANDLE;
     GpuMesh sphere_;
     GpuMesh box_;
 };

@@ -4,10 +4,6 @@
 
 namespace mfx::anim {
 
-namespace {
-constexpr uint32_t kMaxSets = 64;
-}
-
 std::vector<shared::SkinJoint> packPalette(const std::vector<DualQuatJoint>& palette) {
     std::vector<shared::SkinJoint> packed;
     packed.reserve(palette.size());
@@ -32,15 +28,11 @@ std::vector<shared::SkinVertexIn> packVertices(const Primitive& primitive) {
     return packed;
 }
 
-SkinVertices::SkinVertices(const gpu::Context& ctx) : ctx_(ctx) {
+SkinVertices::SkinVertices(const gpu::Context& ctx) {
     gpu::ComputeProgramDesc desc;
     desc.name = "skin_vertices";
     desc.spirv = shaders::skin_vertices_comp;
-    for (uint32_t b = 0; b < 3; ++b)
-        desc.bindings.push_back(
-            {b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT});
     desc.pushConstantSize = sizeof(shared::SkinConstants);
-    desc.maxSets = kMaxSets;
     program_ = gpu::createComputeProgram(ctx, desc);
 }
 
@@ -48,19 +40,8 @@ void SkinVertices::record(VkCommandBuffer cmd, const gpu::Buffer& palette, uint3
                           const gpu::Buffer& input, const gpu::Buffer& output,
                           uint32_t vertexCount) {
     if (vertexCount == 0) return;
-    const auto key = std::make_tuple(palette.get(), input.get(), output.get());
-    auto it = sets_.find(key);
-    if (it == sets_.end()) {
-        if (sets_.size() == kMaxSets) { // buffers were replaced: start the cache again
-            program_.resetSets(ctx_);
-            sets_.clear();
-        }
-        VkDescriptorSet set =
-            program_.createSet(ctx_, {gpu::bindBuffer(0, palette), gpu::bindBuffer(1, input),
-                                      gpu::bindBuffer(2, output)});
-        it = sets_.emplace(key, set).first;
-    }
-    program_.bind(cmd, it->second);
+    program_.bind(
+        cmd, {gpu::bindBuffer(0, palette), gpu::bindBuffer(1, input), gpu::bindBuffer(2, output)});
     program_.push(cmd, shared::SkinConstants{vertexCount, jointCount, 0, 0});
     vkCmdDispatch(cmd, gpu::groupCount(vertexCount, MFX_SKIN_GROUP_SIZE), 1, 1);
     gpu::memoryBarrier(

@@ -32,9 +32,7 @@ public:
                 const gpu::Buffer& input, const gpu::Buffer& output, uint32_t vertexCount);
 
 private:
-    const gpu::Context& ctx_;
     gpu::Program program_;
-    std::map<std::tuple<VkBuffer, VkBuffer, VkBuffer>, VkDescriptorSet> sets_;
 };
 
 } // namespace mfx::anim

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <dlfcn.h>
 #include <sstream>
 
 namespace mfx::gpu {
@@ -207,6 +208,8 @@ std::string unsuitableReason(VkPhysicalDevice device) {
     vkGetPhysicalDeviceFeatures2(device, &chain.core);
     if (!chain.v13.dynamicRendering) return "lacks dynamicRendering";
     if (!chain.v13.synchronization2) return "lacks synchronization2";
+    if (!contains(deviceExtensionNames(device), VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME))
+        return std::string("lacks ") + VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME;
     return {};
 }
 
@@ -425,6 +428,7 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
     for (const char* name : enabledExtensions)
         if (!contains(deviceExtensions, name))
             return Error{ctx->info_.name + " lacks the device extension " + name};
+    enabledExtensions.push_back(VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME);
     if (hasTransformFeedback) enabledExtensions.push_back(VK_EXT_TRANSFORM_FEEDBACK_EXTENSION_NAME);
     if (hasAtomicFloat) enabledExtensions.push_back(VK_EXT_SHADER_ATOMIC_FLOAT_EXTENSION_NAME);
     if (contains(deviceExtensions, "VK_KHR_portability_subset"))
@@ -450,6 +454,16 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
 
     ctx->graphicsQueue_.family = family;
     vkGetDeviceQueue(ctx->device_, family, 0, &ctx->graphicsQueue_.queue);
+    ctx->pushDescriptorSet_ = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(
+        ctx->deviceFunction("vkCmdPushDescriptorSetKHR"));
+    if (ctx->pushDescriptorSet_ == nullptr)
+        return Error{ctx->info_.name + " offers no vkCmdPushDescriptorSetKHR"};
+    VkPhysicalDevicePushDescriptorPropertiesKHR pushProperties{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PUSH_DESCRIPTOR_PROPERTIES_KHR};
+    VkPhysicalDeviceProperties2 properties2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+    properties2.pNext = &pushProperties;
+    vkGetPhysicalDeviceProperties2(best, &properties2);
+    ctx->maxPushDescriptors_ = pushProperties.maxPushDescriptors;
     ctx->computeQueue_.family = family;
     vkGetDeviceQueue(ctx->device_, family, queueCount - 1, &ctx->computeQueue_.queue);
 
@@ -523,6 +537,19 @@ uint32_t Context::findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags requir
         if (fallback == UINT32_MAX) fallback = i;
     }
     return fallback;
+}
+
+// Asked of the Vulkan loader itself when the plain call gives nothing: a library loaded ahead of it
+// (LD_PRELOAD of a layer, as the sanitizer runs do) can shadow the loader's exported
+// vkGetDeviceProcAddr with one that does not know this device.
+PFN_vkVoidFunction Context::deviceFunction(const char* name) const {
+    if (PFN_vkVoidFunction f = vkGetDeviceProcAddr(device_, name)) return f;
+    void* loader = dlopen("libvulkan.so.1", RTLD_NOW | RTLD_NOLOAD);
+    if (!loader) return nullptr;
+    auto get = reinterpret_cast<PFN_vkGetDeviceProcAddr>(dlsym(loader, "vkGetDeviceProcAddr"));
+    PFN_vkVoidFunction f = get ? get(device_, name) : nullptr;
+    dlclose(loader);
+    return f;
 }
 
 void Context::setDebugName(VkObjectType type, uint64_t handle, const char* name) const {

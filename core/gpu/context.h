@@ -77,8 +77,8 @@ class Context {
 public:
     // Creates instance and device. Fails with a readable reason when there is no Vulkan driver, no
     // device matches the requested name, no device meets the requirements (Vulkan 1.3 with dynamic
-    // rendering and synchronization2, a queue with graphics and compute), or validation was asked
-    // for but the layer is not installed.
+    // rendering and synchronization2, push descriptors, a queue with graphics and compute), or
+    // validation was asked for but the layer is not installed.
     static Result<std::unique_ptr<Context>> create(const ContextOptions& options);
 
     ~Context();
@@ -124,6 +124,12 @@ public:
 
     void waitIdle() const;
 
+    // A device-level command of an extension (nullptr when the device lacks it).
+    PFN_vkVoidFunction deviceFunction(const char* name) const;
+    // Resources are pushed when a program is bound (VK_KHR_push_descriptor, core/gpu/program.h).
+    PFN_vkCmdPushDescriptorSetKHR cmdPushDescriptorSet() const { return pushDescriptorSet_; }
+    uint32_t maxPushDescriptors() const { return maxPushDescriptors_; }
+
 private:
     Context() = default;
     static VKAPI_ATTR VkBool32 VKAPI_CALL debugCallback(
@@ -144,6 +150,8 @@ private:
     bool printValidation_ = true;
     UniqueCommandPool oneShotPool_;
     PFN_vkSetDebugUtilsObjectNameEXT setObjectName_ = nullptr;
+    PFN_vkCmdPushDescriptorSetKHR pushDescriptorSet_ = nullptr;
+    uint32_t maxPushDescriptors_ = 0;
 
     mutable std::mutex messagesMutex_;
     std::vector<ValidationMessage> messages_;

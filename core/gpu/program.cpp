@@ -4,7 +4,7 @@
 #include "core/gpu/context.h"
 #include "core/gpu/resources.h"
 
-#include <map>
+#include <algorithm>
 #include <stdexcept>
 
 namespace mfx::gpu {
@@ -12,6 +12,10 @@ namespace mfx::gpu {
 namespace {
 
 constexpr uint32_t kSpirvMagic = 0x07230203;
+// Bindings per program: the push descriptors every desktop driver offers (maxPushDescriptors is at
+// least 32), with binding numbers below 64 so one bit each marks them written.
+constexpr size_t kMaxBindings = 32;
+constexpr uint32_t kMaxBindingNumber = 64;
 
 UniqueShaderModule createShaderModule(const Context& ctx, std::span<const uint32_t> spirv,
                                       const std::string& programName) {
@@ -38,40 +42,31 @@ bool isImageType(VkDescriptorType type) {
     }
 }
 
-// Set layout, pipeline layout and descriptor pool from the program's binding table.
+// The push-descriptor set layout and the pipeline layout of the program's binding table.
 void buildLayout(const Context& ctx, const std::string& name,
                  const std::vector<BindingDesc>& bindings, uint32_t pushConstantSize,
-                 VkShaderStageFlags pushStages, uint32_t maxSets,
-                 UniqueDescriptorSetLayout& setLayout, UniquePipelineLayout& layout,
-                 UniqueDescriptorPool& pool) {
-    std::map<uint32_t, const BindingDesc*> seen;
+                 VkShaderStageFlags pushStages, UniqueDescriptorSetLayout& setLayout,
+                 UniquePipelineLayout& layout) {
     std::vector<VkDescriptorSetLayoutBinding> layoutBindings;
-    std::map<VkDescriptorType, uint32_t> typeCounts;
     for (const BindingDesc& b : bindings) {
-        if (!seen.emplace(b.binding, &b).second)
+        if (b.binding >= kMaxBindingNumber)
             throw std::logic_error("program " + name + ": binding " + std::to_string(b.binding) +
-                                   " is declared twice");
+                                   " is numbered " + std::to_string(kMaxBindingNumber) +
+                                   " or more");
         layoutBindings.push_back({b.binding, b.type, 1, b.stages, nullptr});
-        typeCounts[b.type] += 1;
     }
+    if (layoutBindings.size() > std::min<size_t>(kMaxBindings, ctx.maxPushDescriptors()))
+        throw std::logic_error("program " + name + ": " + std::to_string(layoutBindings.size()) +
+                               " bindings exceed the device's " +
+                               std::to_string(ctx.maxPushDescriptors()) + " push descriptors");
     VkDescriptorSetLayout setLayoutHandle = VK_NULL_HANDLE;
     if (!layoutBindings.empty()) {
         VkDescriptorSetLayoutCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+        info.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
         info.bindingCount = static_cast<uint32_t>(layoutBindings.size());
         info.pBindings = layoutBindings.data();
         MFX_VK_CHECK(vkCreateDescriptorSetLayout(ctx.device(), &info, nullptr, &setLayoutHandle));
         setLayout = UniqueDescriptorSetLayout(ctx.device(), setLayoutHandle);
-
-        std::vector<VkDescriptorPoolSize> sizes;
-        for (auto [type, count] : typeCounts)
-            sizes.push_back({type, count * maxSets});
-        VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-        poolInfo.maxSets = maxSets;
-        poolInfo.poolSizeCount = static_cast<uint32_t>(sizes.size());
-        poolInfo.pPoolSizes = sizes.data();
-        VkDescriptorPool poolHandle = VK_NULL_HANDLE;
-        MFX_VK_CHECK(vkCreateDescriptorPool(ctx.device(), &poolInfo, nullptr, &poolHandle));
-        pool = UniqueDescriptorPool(ctx.device(), poolHandle);
     }
 
     VkPushConstantRange range{pushStages, 0, pushConstantSize};
@@ -161,12 +156,13 @@ DescriptorWrite bindImage(uint32_t binding, const Image& image, VkImageLayout la
 Program createComputeProgram(const Context& ctx, const ComputeProgramDesc& desc) {
     Program program;
     program.name_ = desc.name;
-    program.bindings_ = desc.bindings;
+    program.bindings_ = spirvBindings(desc.spirv, VK_SHADER_STAGE_COMPUTE_BIT, program.name_);
     program.pushConstantSize_ = desc.pushConstantSize;
     program.pushStages_ = VK_SHADER_STAGE_COMPUTE_BIT;
     program.bindPoint_ = VK_PIPELINE_BIND_POINT_COMPUTE;
-    buildLayout(ctx, program.name_, desc.bindings, desc.pushConstantSize, program.pushStages_,
-                desc.maxSets, program.setLayout_, program.layout_, program.pool_);
+    program.pushDescriptors_ = ctx.cmdPushDescriptorSet();
+    buildLayout(ctx, program.name_, program.bindings_, desc.pushConstantSize, program.pushStages_,
+                program.setLayout_, program.layout_);
 
     UniqueShaderModule module = createShaderModule(ctx, desc.spirv, program.name_);
     const Specialization specialization(desc.specialization);
@@ -191,14 +187,23 @@ Program createGraphicsProgram(const Context& ctx, const GraphicsProgramDesc& des
                                " needs geometry shaders, which " + ctx.info().name + " lacks");
     Program program;
     program.name_ = desc.name;
-    program.bindings_ = desc.bindings;
+    std::vector<std::vector<BindingDesc>> stageBindings;
+    stageBindings.push_back(spirvBindings(desc.vertex, VK_SHADER_STAGE_VERTEX_BIT, program.name_));
+    if (!desc.geometry.empty())
+        stageBindings.push_back(
+            spirvBindings(desc.geometry, VK_SHADER_STAGE_GEOMETRY_BIT, program.name_));
+    if (!desc.fragment.empty())
+        stageBindings.push_back(
+            spirvBindings(desc.fragment, VK_SHADER_STAGE_FRAGMENT_BIT, program.name_));
+    program.bindings_ = mergeBindings(stageBindings, program.name_);
     program.pushConstantSize_ = desc.pushConstantSize;
     program.pushStages_ = VK_SHADER_STAGE_VERTEX_BIT;
     if (!desc.geometry.empty()) program.pushStages_ |= VK_SHADER_STAGE_GEOMETRY_BIT;
     if (!desc.fragment.empty()) program.pushStages_ |= VK_SHADER_STAGE_FRAGMENT_BIT;
     program.bindPoint_ = VK_PIPELINE_BIND_POINT_GRAPHICS;
-    buildLayout(ctx, program.name_, desc.bindings, desc.pushConstantSize, program.pushStages_,
-                desc.maxSets, program.setLayout_, program.layout_, program.pool_);
+    program.pushDescriptors_ = ctx.cmdPushDescriptorSet();
+    buildLayout(ctx, program.name_, program.bindings_, desc.pushConstantSize, program.pushStages_,
+                program.setLayout_, program.layout_);
 
     const Specialization specialization(desc.specialization);
     std::vector<UniqueShaderModule> modules;
@@ -294,73 +299,48 @@ Program createGraphicsProgram(const Context& ctx, const GraphicsProgramDesc& des
     return program;
 }
 
-VkDescriptorSet Program::createSet(const Context& ctx,
-                                   std::initializer_list<DescriptorWrite> writes) {
-    return createSet(ctx, std::span<const DescriptorWrite>(writes.begin(), writes.size()));
-}
-
-VkDescriptorSet Program::createSet(const Context& ctx, std::span<const DescriptorWrite> writes) {
-    if (!setLayout_)
-        throw std::logic_error("program " + name_ + " declares no bindings, so it has no sets");
-    std::map<uint32_t, const BindingDesc*> declared;
-    for (const BindingDesc& b : bindings_)
-        declared[b.binding] = &b;
-    std::map<uint32_t, bool> written;
-    std::vector<VkWriteDescriptorSet> vkWrites;
-    for (const DescriptorWrite& w : writes) {
-        auto it = declared.find(w.binding);
-        if (it == declared.end())
-            throw std::logic_error("program " + name_ + ": binding " + std::to_string(w.binding) +
-                                   " is not in its binding table");
-        if (written[w.binding])
-            throw std::logic_error("program " + name_ + ": binding " + std::to_string(w.binding) +
-                                   " is written twice");
-        written[w.binding] = true;
-        if (w.isImage != isImageType(it->second->type))
-            throw std::logic_error("program " + name_ + ": binding " + std::to_string(w.binding) +
-                                   (w.isImage ? " declares a buffer but got an image"
-                                              : " declares an image but got a buffer"));
-        if (it->second->type == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER &&
+void Program::bind(VkCommandBuffer cmd, std::span<const DescriptorWrite> writes) const {
+    // At most a few dozen bindings: a linear search beats a map here.
+    auto declared = [&](uint32_t binding) -> const BindingDesc* {
+        for (const BindingDesc& b : bindings_)
+            if (b.binding == binding) return &b;
+        return nullptr;
+    };
+    auto fail = [&](uint32_t binding, const char* what) {
+        throw std::logic_error("program " + name_ + ": binding " + std::to_string(binding) + what);
+    };
+    VkWriteDescriptorSet vkWrites[kMaxBindings];
+    if (writes.size() > kMaxBindings) fail(writes.back().binding, " is beyond the binding limit");
+    uint64_t written = 0;
+    for (size_t i = 0; i < writes.size(); ++i) {
+        const DescriptorWrite& w = writes[i];
+        const BindingDesc* b = declared(w.binding);
+        if (b == nullptr) fail(w.binding, " is not declared by the program's shaders");
+        const uint64_t bit = uint64_t(1) << (w.binding % 64);
+        if ((written & bit) != 0) fail(w.binding, " is written twice");
+        written |= bit;
+        if (w.isImage != isImageType(b->type))
+            fail(w.binding, w.isImage ? " declares a buffer but got an image"
+                                      : " declares an image but got a buffer");
+        if (b->type == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER &&
             w.image.sampler == VK_NULL_HANDLE)
-            throw std::logic_error("program " + name_ + ": binding " + std::to_string(w.binding) +
-                                   " needs a sampler");
-    }
-    for (const BindingDesc& b : bindings_)
-        if (!written[b.binding])
-            throw std::logic_error("program " + name_ + ": binding " + std::to_string(b.binding) +
-                                   " is declared but not written");
-
-    VkDescriptorSetLayout setLayout = setLayout_.get();
-    VkDescriptorSetAllocateInfo allocate{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-    allocate.descriptorPool = pool_.get();
-    allocate.descriptorSetCount = 1;
-    allocate.pSetLayouts = &setLayout;
-    VkDescriptorSet set = VK_NULL_HANDLE;
-    MFX_VK_CHECK(vkAllocateDescriptorSets(ctx.device(), &allocate, &set));
-
-    for (const DescriptorWrite& w : writes) {
-        VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-        write.dstSet = set;
+            fail(w.binding, " needs a sampler");
+        VkWriteDescriptorSet& write = vkWrites[i];
+        write = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
         write.dstBinding = w.binding;
         write.descriptorCount = 1;
-        write.descriptorType = declared[w.binding]->type;
+        write.descriptorType = b->type;
         write.pBufferInfo = w.isImage ? nullptr : &w.buffer;
         write.pImageInfo = w.isImage ? &w.image : nullptr;
-        vkWrites.push_back(write);
     }
-    vkUpdateDescriptorSets(ctx.device(), static_cast<uint32_t>(vkWrites.size()), vkWrites.data(), 0,
-                           nullptr);
-    return set;
-}
-
-void Program::resetSets(const Context& ctx) {
-    if (pool_) MFX_VK_CHECK(vkResetDescriptorPool(ctx.device(), pool_.get(), 0));
-}
-
-void Program::bind(VkCommandBuffer cmd, VkDescriptorSet set) const {
+    if (writes.size() != bindings_.size())
+        for (const BindingDesc& b : bindings_)
+            if ((written & (uint64_t(1) << (b.binding % 64))) == 0)
+                fail(b.binding, " is declared but not written");
     vkCmdBindPipeline(cmd, bindPoint_, pipeline_.get());
-    if (set != VK_NULL_HANDLE)
-        vkCmdBindDescriptorSets(cmd, bindPoint_, layout_.get(), 0, 1, &set, 0, nullptr);
+    if (!writes.empty())
+        pushDescriptors_(cmd, bindPoint_, layout_.get(), 0, static_cast<uint32_t>(writes.size()),
+                         vkWrites);
 }
 
 void Program::push(VkCommandBuffer cmd, const void* data, uint32_t size) const {

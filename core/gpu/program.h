@@ -1,13 +1,15 @@
-// Programs: a pipeline together with its layout, built from embedded SPIR-V and ONE declared
-// binding table. The table is the single description of the program's resources: it makes the
-// descriptor set layout and the descriptor pool, and every descriptor set written for the program
-// is checked against it (each declared binding written once, with a resource of the right kind).
+// Programs: a pipeline together with its layout, built from embedded SPIR-V. The binding table is
+// read from the SPIR-V itself (core/gpu/spirv_bindings.h), so the shader is the one description of
+// a program's resources. Resources are pushed when the program is bound (VK_KHR_push_descriptor):
+// there are no descriptor sets to allocate, cache or free, and every push is checked against the
+// table (each binding written once, with a resource of the right kind).
 //
 // Compute, graphics, and graphics with a geometry stage. Graphics programs use dynamic rendering
 // (no render pass objects) with dynamic viewport and scissor.
 #pragma once
 
 #include "core/gpu/handle.h"
+#include "core/gpu/spirv_bindings.h"
 
 #include <cstdint>
 #include <initializer_list>
@@ -21,12 +23,6 @@ namespace mfx::gpu {
 class Context;
 struct Buffer;
 struct Image;
-
-struct BindingDesc {
-    uint32_t binding = 0;
-    VkDescriptorType type = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    VkShaderStageFlags stages = VK_SHADER_STAGE_ALL;
-};
 
 // One resource bound to one binding of a set.
 struct DescriptorWrite {
@@ -46,12 +42,10 @@ DescriptorWrite bindImage(uint32_t binding, const Image& image, VkImageLayout la
 struct ComputeProgramDesc {
     const char* name = "compute";
     std::span<const uint32_t> spirv;
-    std::vector<BindingDesc> bindings;
     uint32_t pushConstantSize = 0;
     // Specialization constants: constant_id i gets specialization[i] (32-bit each; floats by
     // std::bit_cast).
     std::vector<uint32_t> specialization;
-    uint32_t maxSets = 8;
 };
 
 enum class BlendMode { Opaque, Alpha, PremultipliedAlpha, Additive };
@@ -65,9 +59,8 @@ struct VertexAttribute {
 struct GraphicsProgramDesc {
     const char* name = "graphics";
     std::span<const uint32_t> vertex;
-    std::span<const uint32_t> geometry; // empty: no geometry stage
-    std::span<const uint32_t> fragment; // empty: no fragment stage (depth-only, or discard)
-    std::vector<BindingDesc> bindings;
+    std::span<const uint32_t> geometry;   // empty: no geometry stage
+    std::span<const uint32_t> fragment;   // empty: no fragment stage (depth-only, or discard)
     uint32_t pushConstantSize = 0;        // visible to every stage the program has
     std::vector<uint32_t> specialization; // shared by all stages
 
@@ -86,7 +79,6 @@ struct GraphicsProgramDesc {
     VkCompareOp depthCompare = VK_COMPARE_OP_LESS_OR_EQUAL;
     BlendMode blend = BlendMode::Opaque;
     VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
-    uint32_t maxSets = 8;
 };
 
 class Program {
@@ -100,17 +92,13 @@ public:
     uint32_t pushConstantSize() const { return pushConstantSize_; }
     const std::string& name() const { return name_; }
 
-    // Allocates a set from the program's pool and writes `writes` into it. Every declared binding
-    // must be written exactly once with a resource of its declared kind; anything else throws
-    // std::logic_error naming the program and the binding.
-    VkDescriptorSet createSet(const Context& ctx, std::initializer_list<DescriptorWrite> writes);
-    VkDescriptorSet createSet(const Context& ctx, std::span<const DescriptorWrite> writes);
-
-    // Frees every set allocated from the program's pool (none may be in use by the GPU).
-    void resetSets(const Context& ctx);
-
-    // Binds the pipeline (and a set, if given).
-    void bind(VkCommandBuffer cmd, VkDescriptorSet set = VK_NULL_HANDLE) const;
+    // Binds the pipeline and pushes `writes` as its resources, for the dispatches and draws that
+    // follow. Every binding of the shaders must be written exactly once with a resource of its
+    // kind; anything else throws std::logic_error naming the program and the binding.
+    void bind(VkCommandBuffer cmd, std::span<const DescriptorWrite> writes = {}) const;
+    void bind(VkCommandBuffer cmd, std::initializer_list<DescriptorWrite> writes) const {
+        bind(cmd, std::span<const DescriptorWrite>(writes.begin(), writes.size()));
+    }
     // Pushes `size` bytes; must equal the declared push constant size.
     void push(VkCommandBuffer cmd, const void* data, uint32_t size) const;
     template <typename T>
@@ -129,8 +117,8 @@ private:
     VkPipelineBindPoint bindPoint_ = VK_PIPELINE_BIND_POINT_COMPUTE;
     UniqueDescriptorSetLayout setLayout_;
     UniquePipelineLayout layout_;
-    UniqueDescriptorPool pool_;
     UniquePipeline pipeline_;
+    PFN_vkCmdPushDescriptorSetKHR pushDescriptors_ = nullptr;
 };
 
 Program createComputeProgram(const Context& ctx, const ComputeProgramDesc& desc);

@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cstring>
-#include <dlfcn.h>
 #include <stdexcept>
 #include <string>
 
@@ -44,19 +43,6 @@ std::vector<uint32_t> segmentIndices(Kind kind, const Source& source, uint32_t s
             }
     }
     return out;
-}
-
-// A device-level command of an extension. Asked of the Vulkan loader itself when the plain call
-// gives nothing: a library loaded ahead of it (LD_PRELOAD of a layer, as the sanitizer runs do)
-// can shadow the loader's exported vkGetDeviceProcAddr with one that does not know this device.
-PFN_vkVoidFunction deviceCommand(const gpu::Context& ctx, const char* name) {
-    if (PFN_vkVoidFunction f = vkGetDeviceProcAddr(ctx.device(), name)) return f;
-    void* loader = dlopen("libvulkan.so.1", RTLD_NOW | RTLD_NOLOAD);
-    if (!loader) return nullptr;
-    auto get = reinterpret_cast<PFN_vkGetDeviceProcAddr>(dlsym(loader, "vkGetDeviceProcAddr"));
-    PFN_vkVoidFunction f = get ? get(ctx.device(), name) : nullptr;
-    dlclose(loader);
-    return f;
 }
 
 } // namespace
@@ -158,23 +144,18 @@ Result<std::unique_ptr<Queue>> Queue::create(const gpu::Context& ctx, Source sou
         desc.name = "build_segment_xfb";
         desc.vertex = shaders::build_segment_xfb_vert;
         desc.geometry = shaders::build_segment_xfb_geom;
-        for (uint32_t b = 0; b < 3; ++b)
-            desc.bindings.push_back(
-                {b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_GEOMETRY_BIT});
         desc.pushConstantSize = sizeof(shared::TrajectoryConstants);
         desc.topology = VK_PRIMITIVE_TOPOLOGY_POINT_LIST;
         desc.rasterizerDiscard = true;
-        desc.maxSets = 1;
         q->program_ = gpu::createGraphicsProgram(ctx, desc);
-        q->set_ = q->program_.createSet(ctx, {gpu::bindBuffer(0, q->palette_),
-                                              gpu::bindBuffer(1, q->sources_),
-                                              gpu::bindBuffer(2, q->colours_)});
+        q->resources_ = {gpu::bindBuffer(0, q->palette_), gpu::bindBuffer(1, q->sources_),
+                         gpu::bindBuffer(2, q->colours_)};
         q->bindXfb_ = reinterpret_cast<PFN_vkCmdBindTransformFeedbackBuffersEXT>(
-            deviceCommand(ctx, "vkCmdBindTransformFeedbackBuffersEXT"));
+            ctx.deviceFunction("vkCmdBindTransformFeedbackBuffersEXT"));
         q->beginXfb_ = reinterpret_cast<PFN_vkCmdBeginTransformFeedbackEXT>(
-            deviceCommand(ctx, "vkCmdBeginTransformFeedbackEXT"));
+            ctx.deviceFunction("vkCmdBeginTransformFeedbackEXT"));
         q->endXfb_ = reinterpret_cast<PFN_vkCmdEndTransformFeedbackEXT>(
-            deviceCommand(ctx, "vkCmdEndTransformFeedbackEXT"));
+            ctx.deviceFunction("vkCmdEndTransformFeedbackEXT"));
         if (!q->bindXfb_ || !q->beginXfb_ || !q->endXfb_)
             return Error{ctx.info().name + " does not expose the transform feedback commands"};
     } else {
@@ -182,17 +163,12 @@ Result<std::unique_ptr<Queue>> Queue::create(const gpu::Context& ctx, Source sou
         const bool split = options.method == Method::Split;
         desc.name = split ? "build_segment" : "build_trail";
         desc.spirv = split ? shaders::build_segment_comp : shaders::build_trail_comp;
-        for (uint32_t b = 0; b < 5; ++b)
-            desc.bindings.push_back(
-                {b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT});
         desc.pushConstantSize = sizeof(shared::TrajectoryConstants);
-        desc.maxSets = 1;
         q->program_ = gpu::createComputeProgram(ctx, desc);
-        q->set_ = q->program_.createSet(
-            ctx,
-            {gpu::bindBuffer(0, q->palette_), gpu::bindBuffer(1, q->sources_),
-             gpu::bindBuffer(2, q->colours_),
-             gpu::bindBuffer(3, split ? q->transforms_ : q->times_), gpu::bindBuffer(4, q->ring_)});
+        q->resources_ = {gpu::bindBuffer(0, q->palette_), gpu::bindBuffer(1, q->sources_),
+                         gpu::bindBuffer(2, q->colours_),
+                         gpu::bindBuffer(3, split ? q->transforms_ : q->times_),
+                         gpu::bindBuffer(4, q->ring_)};
     }
     q->timer_ = gpu::GpuTimer(ctx, 1);
     return q;
@@ -276,7 +252,7 @@ void Queue::recordSplit(VkCommandBuffer cmd, const std::vector<shared::SkinJoint
     c.hasPrevious = previousWritten() ? 1u : 0u;
     c.time = time;
     c.dt = previousWritten() ? time - lastTime_ : 0.0f;
-    program_.bind(cmd, set_);
+    program_.bind(cmd, resources_);
     program_.push(cmd, c);
     vkCmdDispatch(cmd, gpu::groupCount(sourceVertices_, MFX_TRAJECTORY_GROUP_SIZE), 1, 1);
 
@@ -324,7 +300,7 @@ void Queue::recordStreamOutput(VkCommandBuffer cmd, const std::vector<shared::Sk
     const VkRect2D scissor{{0, 0}, {1, 1}};
     vkCmdSetViewport(cmd, 0, 1, &viewport);
     vkCmdSetScissor(cmd, 0, 1, &scissor);
-    program_.bind(cmd, set_);
+    program_.bind(cmd, resources_);
     program_.push(cmd, c);
     const VkBuffer ring = ring_.get();
     const VkDeviceSize offset = VkDeviceSize(frames_ % options_.maxLifetime) *
@@ -366,7 +342,7 @@ void Queue::recordUnsplit(VkCommandBuffer cmd) {
                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
     shared::TrajectoryConstants c = constants();
     c.segmentCount = segments;
-    program_.bind(cmd, set_);
+    program_.bind(cmd, resources_);
     program_.push(cmd, c);
     vkCmdDispatch(cmd, gpu::groupCount(sourceVertices_, MFX_TRAJECTORY_GROUP_SIZE), segments, 1);
 

@@ -122,7 +122,7 @@ private:
     uint32_t indexCount_ = 0;
     gpu::Buffer sources_, colours_, transforms_, palette_, times_, ring_, indices_;
     gpu::Program program_;
-    VkDescriptorSet set_ = VK_NULL_HANDLE;
+    std::vector<gpu::DescriptorWrite> resources_; // what program_ binds, for the queue's life
     gpu::GpuTimer timer_;
     PFN_vkCmdBindTransformFeedbackBuffersEXT bindXfb_ = nullptr;
     PFN_vkCmdBeginTransformFeedbackEXT beginXfb_ = nullptr;

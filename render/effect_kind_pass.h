@@ -1,0 +1,63 @@
+// What every effect pass of a frame is (docs/architecture.md, "Adding an effect kind"): the frame
+// holds a list of them, built from the scene by the registry below, and records each the same way:
+// advance() once per new simulation frame (its history and compute work, before any drawing),
+// then draw() inside the frame's rendering (the scene's colour and depth, depth test on,
+// premultiplied alpha), returning the number of draws. Passes whose history only the simulation
+// keeps (the trajectory effects) leave advance() empty.
+#pragma once
+
+#include "render/scene_camera.h"
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+#include <vulkan/vulkan.h>
+
+namespace mfx::gpu {
+class Context;
+}
+namespace mfx::fluid {
+class SceneSimulation;
+}
+namespace mfx::scene {
+enum class EffectType;
+}
+
+namespace mfx::render {
+
+class EffectKindPass {
+public:
+    virtual ~EffectKindPass() = default;
+
+    // Records frame `frame` of `simulation` (its pose is the frame's: after recordFrame). The
+    // previous recording must have finished executing.
+    virtual void advance(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
+                         uint32_t frame) = 0;
+    // Records the draws of what the pass holds at scene time `time` (inside rendering). With
+    // `shown` non-empty, only effects whose entry (index in scene.effects) is non-zero.
+    virtual uint32_t draw(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
+                          const SceneCamera& camera, float time,
+                          std::span<const uint8_t> shown = {}) = 0;
+};
+
+// One registered kind of pass: the effect types it draws and how to make it for a simulation's
+// scene and character, drawing into targets of `samples` samples.
+struct EffectPassKind {
+    const char* name;
+    std::vector<scene::EffectType> types;
+    std::unique_ptr<EffectKindPass> (*make)(const gpu::Context& ctx,
+                                            const fluid::SceneSimulation& simulation,
+                                            VkSampleCountFlagBits samples);
+};
+
+// Every kind, in draw order (render/effect_kinds.cpp: one line each).
+std::span<const EffectPassKind> effectPassKinds();
+
+// The passes the simulation's scene calls for (a kind none of whose types the scene has is not
+// made), in draw order.
+std::vector<std::unique_ptr<EffectKindPass>>
+makeEffectPasses(const gpu::Context& ctx, const fluid::SceneSimulation& simulation,
+                 VkSampleCountFlagBits samples);
+
+} // namespace mfx::render
