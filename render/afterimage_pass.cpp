@@ -69,13 +69,10 @@ AfterimagePass::AfterimagePass(const gpu::Context& ctx, const scene::Scene& scen
         if (e.type != scene::EffectType::AfterimageSmear) continue;
         std::optional<trajectory::Source> selected = effectSource(character, e);
         if (!selected) continue;
-        Effect effect;
-        effect.index = i;
-        effect.spec = e;
-        effect.source = std::move(*selected);
+        Effect effect(MeshEffect(ctx, i, e, std::move(*selected), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
+                                 "afterimage"));
         const trajectory::Source& source = effect.source;
         const scene::AfterimageVariant variant = e.afterimage.variant;
-        effect.vertexCount = uint32_t(source.vertices.size());
         // Smith 2016, Sec. 4.1.1: one afterimage needs the last frame only; an arc through n
         // afterimages needs the n frames before this one.
         effect.historySlots =
@@ -94,22 +91,9 @@ AfterimagePass::AfterimagePass(const gpu::Context& ctx, const scene::Scene& scen
                                     ? effect.primitiveCount * 6 * e.afterimage.afterimages
                                     : 0;
 
-        effect.input =
-            effectStorage(ctx, n * sizeof(shared::SkinVertexIn), 0, "afterimage bind pose");
-        gpu::uploadBuffer(ctx, effect.input,
-                          std::span<const shared::SkinVertexIn>(source.vertices));
-        effect.palette = gpu::createBuffer(
-            ctx, std::max<size_t>(source.palette.size(), 1) * sizeof(shared::SkinJoint),
-            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload, "afterimage palette");
-        effect.skinned = effectStorage(ctx, n * sizeof(shared::SkinVertexOut),
-                                       VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "afterimage skinned");
         effect.history =
             effectStorage(ctx, VkDeviceSize(n) * effect.historySlots * sizeof(glm::vec4), 0,
                           "afterimage history");
-        std::vector<glm::vec4> colours = source.colours;
-        if (!e.useMeshColour) std::fill(colours.begin(), colours.end(), e.colour);
-        effect.colours = effectStorage(ctx, n * sizeof(glm::vec4), 0, "afterimage colours");
-        gpu::uploadBuffer(ctx, effect.colours, std::span<const glm::vec4>(colours));
         effect.pushed = effectStorage(ctx, n * sizeof(shared::TrajectoryVertex),
                                       VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "afterimage pushed");
         effect.decided =
@@ -185,8 +169,7 @@ void AfterimagePass::advance(VkCommandBuffer cmd, const fluid::SceneSimulation& 
     lastRoot_ = root;
 
     for (Effect& effect : effects_) {
-        skinSource(cmd, skinning_, character_, effect.source, pose, simulation.placement(),
-                   effect.palette, effect.input, effect.skinned, effect.vertexCount);
+        effect.skin(cmd, skinning_, character_, pose, simulation.placement());
 
         effect.newest = reset ? 0 : (effect.newest + 1) % effect.historySlots;
         effect.filled = reset ? 1 : std::min(effect.filled + 1, effect.historySlots);

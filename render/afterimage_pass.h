@@ -53,13 +53,10 @@ public:
 
     bool empty() const { return effects_.empty(); }
 
-    // Records frame `frame` of `simulation` (its pose is the frame's: after recordFrame): the
-    // skinning, the ring's advance and the geometry. The previous recording must have finished.
+    // EffectKindPass: advance() skins the bound vertices, moves the history on and builds the
+    // geometry; draw() draws what was last built (a paused frame draws the same).
     void advance(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
                  uint32_t frame) override;
-    // Records the draws of the geometry last built (inside rendering; the effect pass's target
-    // formats). With `shown` non-empty, only effects whose entry (index in scene.effects) is
-    // non-zero. Returns the number of draws.
     uint32_t draw(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
                   const SceneCamera& camera, float time,
                   std::span<const uint8_t> shown = {}) override;
@@ -86,15 +83,10 @@ public:
     Decisions decisions(size_t effect) const;
 
 private:
-    struct Effect {
-        size_t index = 0; // in scene.effects
-        scene::EffectSpec spec;
-        trajectory::Source source;
-        uint32_t vertexCount = 0, primitiveCount = 0, historySlots = 2, outputCapacity = 0;
-        gpu::Buffer input, palette, skinned, history, colours, decided, copies, pushed, primitives,
-            output, indices, counters;
-        // What each of the effect's compute programs binds (shaders/<kind>_common.glsl).
-        std::vector<gpu::DescriptorWrite> resources;
+    struct Effect : MeshEffect {
+        explicit Effect(MeshEffect common) : MeshEffect(std::move(common)) {}
+        uint32_t primitiveCount = 0, historySlots = 2, outputCapacity = 0;
+        gpu::Buffer history, decided, copies, pushed, primitives, indices;
         std::vector<uint32_t> copyTable; // as uploaded to `copies`
         uint32_t newest = 0, filled = 0;
     };

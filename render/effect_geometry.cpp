@@ -9,6 +9,7 @@
 #include <array>
 #include <cstring>
 #include <map>
+#include <string>
 
 namespace mfx::render {
 
@@ -58,10 +59,29 @@ gpu::Buffer effectCounters(const gpu::Context& ctx, VkDeviceSize bytes, const ch
     return counters;
 }
 
-void skinSource(VkCommandBuffer cmd, anim::SkinVertices& skinning, const anim::Character& character,
-                const trajectory::Source& source, const anim::Pose& pose,
-                const glm::mat4& placement, const gpu::Buffer& palette, const gpu::Buffer& input,
-                const gpu::Buffer& skinned, uint32_t vertexCount) {
+MeshEffect::MeshEffect(const gpu::Context& ctx, size_t effectIndex,
+                       const scene::EffectSpec& effectSpec, trajectory::Source bound,
+                       VkBufferUsageFlags skinnedUsage, const char* label)
+    : index(effectIndex), spec(effectSpec), source(std::move(bound)),
+      vertexCount(uint32_t(source.vertices.size())) {
+    const std::string name(label);
+    const VkDeviceSize n = vertexCount;
+    input = effectStorage(ctx, n * sizeof(shared::SkinVertexIn), 0, (name + " bind pose").c_str());
+    gpu::uploadBuffer(ctx, input, std::span<const shared::SkinVertexIn>(source.vertices));
+    palette = gpu::createBuffer(
+        ctx, std::max<size_t>(source.palette.size(), 1) * sizeof(shared::SkinJoint),
+        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload, (name + " palette").c_str());
+    skinned = effectStorage(ctx, n * sizeof(shared::SkinVertexOut), skinnedUsage,
+                            (name + " skinned").c_str());
+    std::vector<glm::vec4> rgba = source.colours;
+    if (!spec.useMeshColour) std::fill(rgba.begin(), rgba.end(), spec.colour);
+    colours = effectStorage(ctx, n * sizeof(glm::vec4), 0, (name + " colours").c_str());
+    gpu::uploadBuffer(ctx, colours, std::span<const glm::vec4>(rgba));
+}
+
+void MeshEffect::skin(VkCommandBuffer cmd, anim::SkinVertices& skinning,
+                      const anim::Character& character, const anim::Pose& pose,
+                      const glm::mat4& placement) const {
     const std::vector<shared::SkinJoint> joints =
         anim::packPalette(trajectory::sourcePalette(character, source, pose, placement));
     std::memcpy(palette.mapped, joints.data(), joints.size() * sizeof(shared::SkinJoint));

@@ -59,13 +59,30 @@ gpu::Buffer effectStorage(const gpu::Context& ctx, VkDeviceSize bytes, VkBufferU
 // usable as indirect arguments and written by transfers.
 gpu::Buffer effectCounters(const gpu::Context& ctx, VkDeviceSize bytes, const char* name);
 
-// Records the skinning of `source`'s vertices (`input`, `vertexCount` of them) in `pose`, the
-// character placed by `placement`, into `skinned`. The palette is written into `palette` now: the
-// previous recording that used it must have finished executing.
-void skinSource(VkCommandBuffer cmd, anim::SkinVertices& skinning, const anim::Character& character,
-                const trajectory::Source& source, const anim::Pose& pose,
-                const glm::mat4& placement, const gpu::Buffer& palette, const gpu::Buffer& input,
-                const gpu::Buffer& skinned, uint32_t vertexCount);
+// What every mesh-effect pass keeps of one of its effects: the bound vertices (`source`), their
+// bind pose (`input`), skinning palette and skinned vertices, their colours (the mesh's, or the
+// spec's colour without use_mesh_colour), the built geometry and its counters, and what each of
+// the effect's compute programs binds. A pass's own effect struct derives from it.
+struct MeshEffect {
+    MeshEffect() = default;
+    // Makes input, palette, skinned (with `skinnedUsage` as well) and colours, named "<label> bind
+    // pose", "<label> palette", ...; output, counters and resources are the pass's to make.
+    MeshEffect(const gpu::Context& ctx, size_t index, const scene::EffectSpec& spec,
+               trajectory::Source source, VkBufferUsageFlags skinnedUsage, const char* label);
+
+    // Records the skinning of the bound vertices in `pose`, the character placed by `placement`,
+    // into `skinned`. The palette is written now: the previous recording that used it must have
+    // finished executing.
+    void skin(VkCommandBuffer cmd, anim::SkinVertices& skinning, const anim::Character& character,
+              const anim::Pose& pose, const glm::mat4& placement) const;
+
+    size_t index = 0; // in scene.effects
+    scene::EffectSpec spec;
+    trajectory::Source source;
+    uint32_t vertexCount = 0;
+    gpu::Buffer input, palette, skinned, colours, output, counters;
+    std::vector<gpu::DescriptorWrite> resources;
+};
 
 // Records the unsorted, non-indexed draw of the triangles a build wrote into `vertices`, its
 // VkDrawIndirectCommand at the start of `counters`. Every vertex is drawn at time 0 with sample

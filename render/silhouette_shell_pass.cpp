@@ -80,26 +80,22 @@ SilhouetteShellPass::SilhouetteShellPass(const gpu::Context& ctx, const scene::S
         if (e.type != scene::EffectType::SilhouetteShell) continue;
         std::optional<trajectory::Source> selected = effectSource(character, e);
         if (!selected || selected->triangles.empty()) continue;
-        Effect effect;
-        effect.index = i;
-        effect.spec = e;
-        effect.source = std::move(*selected);
-        trajectory::Source& source = effect.source;
         // A triangle with two corners at one point has no edge to sweep: its strip would be a
         // line. Leaving such triangles out keeps every strip a surface.
         std::vector<uint32_t> kept;
-        for (size_t t = 0; t + 2 < source.triangles.size(); t += 3) {
-            const glm::vec3 p0(source.vertices[source.triangles[t]].position);
-            const glm::vec3 p1(source.vertices[source.triangles[t + 1]].position);
-            const glm::vec3 p2(source.vertices[source.triangles[t + 2]].position);
+        const std::vector<uint32_t>& all = selected->triangles;
+        for (size_t t = 0; t + 2 < all.size(); t += 3) {
+            const glm::vec3 p0(selected->vertices[all[t]].position);
+            const glm::vec3 p1(selected->vertices[all[t + 1]].position);
+            const glm::vec3 p2(selected->vertices[all[t + 2]].position);
             if (p0 == p1 || p1 == p2 || p2 == p0) continue;
-            kept.insert(kept.end(), source.triangles.begin() + ptrdiff_t(t),
-                        source.triangles.begin() + ptrdiff_t(t + 3));
+            kept.insert(kept.end(), all.begin() + ptrdiff_t(t), all.begin() + ptrdiff_t(t + 3));
         }
         if (kept.empty()) continue;
-        source.triangles = std::move(kept);
-        const uint32_t n = uint32_t(source.vertices.size());
-        effect.vertexCount = n;
+        selected->triangles = std::move(kept);
+        Effect effect(MeshEffect(ctx, i, e, std::move(*selected), 0, "shell"));
+        const trajectory::Source& source = effect.source;
+        const uint32_t n = effect.vertexCount;
         effect.triangleCount = uint32_t(source.triangles.size() / 3);
         // Sec. 3.2.3: one ring slot a subdivision, and one for the latest update (the live mesh).
         effect.historySlots = e.shell.subdivisions + 1;
@@ -110,13 +106,6 @@ SilhouetteShellPass::SilhouetteShellPass(const gpu::Context& ctx, const scene::S
         const VkDeviceSize outputCapacity =
             VkDeviceSize(effect.triangleCount) * 6 * e.shell.subdivisions;
 
-        effect.input = effectStorage(ctx, n * sizeof(shared::SkinVertexIn), 0, "shell bind pose");
-        gpu::uploadBuffer(ctx, effect.input,
-                          std::span<const shared::SkinVertexIn>(source.vertices));
-        effect.palette = gpu::createBuffer(
-            ctx, std::max<size_t>(source.palette.size(), 1) * sizeof(shared::SkinJoint),
-            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload, "shell palette");
-        effect.skinned = effectStorage(ctx, n * sizeof(shared::SkinVertexOut), 0, "shell skinned");
         effect.adjacency =
             effectStorage(ctx, adjacency.size() * sizeof(uint32_t), 0, "shell adjacency");
         gpu::uploadBuffer(ctx, effect.adjacency, std::span<const uint32_t>(adjacency));
@@ -132,10 +121,6 @@ SilhouetteShellPass::SilhouetteShellPass(const gpu::Context& ctx, const scene::S
                                        VkDeviceSize(effect.triangleCount) * effect.historySlots *
                                            sizeof(shared::ShellHistoryEdge),
                                        0, "shell history");
-        std::vector<glm::vec4> colours = source.colours;
-        if (!e.useMeshColour) std::fill(colours.begin(), colours.end(), e.colour);
-        effect.colours = effectStorage(ctx, n * sizeof(glm::vec4), 0, "shell colours");
-        gpu::uploadBuffer(ctx, effect.colours, std::span<const glm::vec4>(colours));
         effect.output = effectStorage(ctx, outputCapacity * sizeof(shared::TrajectoryVertex),
                                       VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "shell geometry");
         effect.counters =
@@ -177,8 +162,7 @@ void SilhouetteShellPass::advance(VkCommandBuffer cmd, const fluid::SceneSimulat
     const float time = simulation.frameTime(frame);
     const anim::Pose& pose = simulation.framePose();
     for (Effect& effect : effects_) {
-        skinSource(cmd, skinning_, character_, effect.source, pose, simulation.placement(),
-                   effect.palette, effect.input, effect.skinned, effect.vertexCount);
+        effect.skin(cmd, skinning_, character_, pose, simulation.placement());
 
         shared::SilhouetteShellCounters zero{};
         zero.instanceCount = 1;

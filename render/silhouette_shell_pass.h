@@ -58,14 +58,10 @@ public:
 
     bool empty() const { return effects_.empty(); }
 
-    // Records frame `frame` of `simulation` (its pose is the frame's: after recordFrame): the
-    // skinning, the silhouette updates since the last frame and the shell. The previous recording
-    // must have finished.
+    // EffectKindPass: advance() skins the bound vertices, moves the history on and builds the
+    // geometry; draw() draws what was last built (a paused frame draws the same).
     void advance(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
                  uint32_t frame) override;
-    // Records the draws of the shell last built (inside rendering; the effect pass's target
-    // formats). With `shown` non-empty, only effects whose entry (index in scene.effects) is
-    // non-zero. Returns the number of draws.
     uint32_t draw(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
                   const SceneCamera& camera, float time,
                   std::span<const uint8_t> shown = {}) override;
@@ -93,18 +89,13 @@ public:
     std::vector<glm::vec3> livePositions(size_t effect) const;
 
 private:
-    struct Effect {
-        size_t index = 0; // in scene.effects
-        scene::EffectSpec spec;
-        trajectory::Source source;
-        uint32_t vertexCount = 0, triangleCount = 0, historySlots = 2;
+    struct Effect : MeshEffect {
+        explicit Effect(MeshEffect common) : MeshEffect(std::move(common)) {}
+        uint32_t triangleCount = 0, historySlots = 2;
         ShellCadence cadence;
         uint32_t framesSinceUpdate = 0; // recorded frames since the last update (or start)
         bool updated = false;           // whether the last recorded frame updated
-        gpu::Buffer input, palette, skinned, adjacency, triangles, current, last, states, history,
-            colours, output, counters;
-        // What each of the effect's compute programs binds (shaders/<kind>_common.glsl).
-        std::vector<gpu::DescriptorWrite> resources;
+        gpu::Buffer adjacency, triangles, current, last, states, history;
         uint32_t newest = 0;
     };
     const Effect* find(size_t effect) const;

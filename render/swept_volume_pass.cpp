@@ -73,13 +73,9 @@ SweptVolumePass::SweptVolumePass(const gpu::Context& ctx, const scene::Scene& sc
         if (e.type != scene::EffectType::SweptVolume) continue;
         std::optional<trajectory::Source> selected = effectSource(character, e);
         if (!selected) continue;
-        Effect effect;
-        effect.index = i;
-        effect.spec = e;
-        effect.source = std::move(*selected);
+        Effect effect(MeshEffect(ctx, i, e, std::move(*selected), 0, "swept"));
         const trajectory::Source& source = effect.source;
-        const uint32_t n = uint32_t(source.vertices.size());
-        effect.vertexCount = n;
+        const uint32_t n = effect.vertexCount;
         effect.triangleCount = uint32_t(source.triangles.size() / 3);
         const std::vector<uint32_t> edges = sweptVolumeEdges(source.vertices, source.triangles);
         effect.edgeCount = uint32_t(edges.size() / 6);
@@ -90,19 +86,8 @@ SweptVolumePass::SweptVolumePass(const gpu::Context& ctx, const scene::Scene& sc
             VkDeviceSize(effect.edgeCount) * 6 * e.swept.segments * e.subSamples +
             VkDeviceSize(effect.triangleCount) * 3;
 
-        effect.input = effectStorage(ctx, n * sizeof(shared::SkinVertexIn), 0, "swept bind pose");
-        gpu::uploadBuffer(ctx, effect.input,
-                          std::span<const shared::SkinVertexIn>(source.vertices));
-        effect.palette = gpu::createBuffer(
-            ctx, std::max<size_t>(source.palette.size(), 1) * sizeof(shared::SkinJoint),
-            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload, "swept palette");
-        effect.skinned = effectStorage(ctx, n * sizeof(shared::SkinVertexOut), 0, "swept skinned");
         effect.history = effectStorage(
             ctx, VkDeviceSize(n) * effect.historySlots * sizeof(glm::vec4), 0, "swept history");
-        std::vector<glm::vec4> colours = source.colours;
-        if (!e.useMeshColour) std::fill(colours.begin(), colours.end(), e.colour);
-        effect.colours = effectStorage(ctx, n * sizeof(glm::vec4), 0, "swept colours");
-        gpu::uploadBuffer(ctx, effect.colours, std::span<const glm::vec4>(colours));
         effect.triangles =
             effectStorage(ctx, source.triangles.size() * sizeof(uint32_t), 0, "swept triangles");
         if (!source.triangles.empty())
@@ -150,8 +135,7 @@ void SweptVolumePass::advance(VkCommandBuffer cmd, const fluid::SceneSimulation&
     const float time = simulation.frameTime(frame);
     const anim::Pose& pose = simulation.framePose();
     for (Effect& effect : effects_) {
-        skinSource(cmd, skinning_, character_, effect.source, pose, simulation.placement(),
-                   effect.palette, effect.input, effect.skinned, effect.vertexCount);
+        effect.skin(cmd, skinning_, character_, pose, simulation.placement());
 
         effect.newest = reset ? 0 : (effect.newest + 1) % effect.historySlots;
         effect.filled = reset ? 1 : std::min(effect.filled + 1, effect.historySlots);

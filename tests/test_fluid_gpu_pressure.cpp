@@ -30,7 +30,7 @@ using fluid::SolverOptions;
 
 // A smooth velocity field (low Fourier modes, no symmetry) far from divergence-free, with its
 // divergence (boundaries applied first, as a step does): the right-hand side multigrid's
-// convergence rate is quoted for (the same field as test_fluid_accuracy.cpp's).
+// convergence rate is quoted for (the same field as test_fluid_accuracy_pressure.cpp's).
 FieldState smoothDivergence(const SolverOptions& options) {
     FieldState s = smoothState(options.grid);
     fluid::ReferenceSolver cpu(options);

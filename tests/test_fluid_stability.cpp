@@ -14,10 +14,11 @@
 // sweeps, vorticity confinement at 10x and viscosity at 100x their usual values; each under a
 // closed box and under mixed boundaries (see Boundaries). "Emit" cases start at rest and are
 // driven by emitters; "Free" cases start from a random state with no emitter. Test names read
-// <case>_<Emit|Free>_<boundaries>. Non-finite emitter fields are refused at the API.
-#include "core/gpu/commands.h"
+// <case>_<Emit|Free>_<boundaries>. Non-finite emitter fields are refused at the API
+// (test_fluid_stability_emitters.cpp).
 #include "fluid/reference/reference_solver.h"
 #include "fluid/smoke_solver.h"
+#include "tests/fluid_stability_util.h"
 #include "tests/fluid_test_util.h"
 #include "tests/gpu_test.h"
 
@@ -32,24 +33,22 @@
 namespace mfx::test {
 namespace {
 
+using stability::Boundaries;
+using stability::domainSize;
+using stability::GpuSimulation;
+using stability::kGrid;
+using stability::kUsualSpeed;
+using stability::kUsualViscosity;
+using stability::kUsualVorticity;
+using stability::Simulation;
+using stability::usualEmitters;
+using stability::usualOptions;
+
 // Whole steps per run, every case, on both sides. A GPU step of these cases costs ~1.5 ms on
 // lavapipe (2 threads; ~12 ms on the 1x64x64 grid), the CPU reference ~0.5-25 ms.
 constexpr uint32_t kSteps = 2000;
-constexpr uint32_t kStepsPerSubmit = 100;
 // Checkpoints per run besides step 1: every 100 steps.
 constexpr uint32_t kCheckpoints = 20;
-
-// The usual settings the hard cases are multiples of.
-constexpr float kUsualDt = 1.0f / 60.0f;
-constexpr float kUsualVorticity = 0.3f;
-constexpr float kUsualViscosity = 0.001f; // nominal: the usual options run inviscid
-// Half SolverOptions' default of 20: each sweep is a dispatch (~0.1 ms on lavapipe whatever the
-// grid), and the bounds hold for any number of cold-started sweeps (0 is a case of its own).
-constexpr uint32_t kUsualJacobi = 10;
-constexpr float kUsualSpeed = 2.0f; // the fastest emitter velocity component (usualEmitters)
-
-// Non-cubic, so that a mix-up of axes cannot hide; 120 cells keep 2,000 CPU steps quick.
-const fluid::GridShape kGrid{6, 5, 4, 0.2f};
 
 // --- Tolerances ---------------------------------------------------------------------------------
 
@@ -76,11 +75,7 @@ constexpr double kConfinementEnergyFactor = 100.0;
 
 // --- Cases --------------------------------------------------------------------------------------
 
-// Closed: free-slip walls all round, Euler back-tracing. Mixed: every boundary kind (periodic x,
-// still no-slip walls in y, open -z, free-slip +z) with RK2. PeriodicNoSlip: Mixed with the open
-// face walled, a closed system for the strict energy check (only the source-free CFL cases).
-enum class Boundaries { Closed, Mixed, PeriodicNoSlip };
-
+// The boundary sets (Boundaries, tests/fluid_stability_util.h) as the test names spell them.
 const char* boundariesName(Boundaries b) {
     switch (b) {
     case Boundaries::Closed:
@@ -108,49 +103,6 @@ struct StabilityCase {
     bool randomStart = false;
     Expect expect = Expect::Bounded;
 };
-
-fluid::SolverOptions usualOptions(fluid::GridShape grid, Boundaries boundaries) {
-    fluid::SolverOptions o;
-    o.grid = grid;
-    o.dt = kUsualDt;
-    // Buoyancy and vorticity stay 0 except where a case says: both add energy, which the energy
-    // bounds exclude (the vorticity case has its own bound). Fade stays 0: the pigment ceiling
-    // must hold without help.
-    o.buoyancy = 0.0f;
-    o.vorticity = 0.0f;
-    // Viscosity off, as in SolverOptions: inviscid smoke has nothing but the numerics to damp it.
-    o.viscosity = 0.0f;
-    o.jacobiIterations = kUsualJacobi;
-    o.warmStart = false; // the energy argument for the projection needs the cold start
-    if (boundaries != Boundaries::Closed) {
-        o.integrator = fluid::Integrator::RK2;
-        o.boundaries[fluid::FaceLowX].kind = fluid::Boundary::Periodic;
-        o.boundaries[fluid::FaceHighX].kind = fluid::Boundary::Periodic;
-        // Still walls: a moving wall would be a source of energy.
-        o.boundaries[fluid::FaceLowY].kind = fluid::Boundary::WallNoSlip;
-        o.boundaries[fluid::FaceHighY].kind = fluid::Boundary::WallNoSlip;
-        o.boundaries[fluid::FaceLowZ].kind =
-            boundaries == Boundaries::Mixed ? fluid::Boundary::Open : fluid::Boundary::WallFreeSlip;
-        o.boundaries[fluid::FaceHighZ].kind = fluid::Boundary::WallFreeSlip;
-    }
-    return o;
-}
-
-glm::vec3 domainSize(const fluid::GridShape& g) {
-    return glm::vec3(g.cellsX, g.cellsY, g.cellsZ) * g.cellSize;
-}
-
-// Two overlapping emitters, placed relative to the domain; velocities scaled by `speedScale`. The
-// fastest velocity component is kUsualSpeed * speedScale.
-std::vector<shared::FluidEmitter> usualEmitters(const fluid::GridShape& g, float speedScale) {
-    const glm::vec3 size = domainSize(g);
-    const float radius = 0.35f * std::max({size.x, size.y, size.z});
-    return {emitter(size * glm::vec3(0.3f, 0.45f, 0.5f), radius,
-                    speedScale * glm::vec3(kUsualSpeed, 1.0f, -0.5f), 8.0f,
-                    {1.0f, 0.5f, 0.2f, 1.0f}),
-            emitter(size * glm::vec3(0.7f, 0.55f, 0.4f), 0.8f * radius,
-                    speedScale * glm::vec3(-1.0f, 0.0f, 1.5f), 20.0f, {0.1f, 0.2f, 0.9f, 0.8f})};
-}
 
 std::vector<StabilityCase> stabilityCases() {
     std::vector<StabilityCase> cases;
@@ -366,39 +318,6 @@ double dt0Slack(uint32_t steps) {
 
 // --- Running ------------------------------------------------------------------------------------
 
-class Simulation {
-public:
-    virtual ~Simulation() = default;
-    virtual void advance(uint32_t steps) = 0;
-    virtual fluid::FieldState state() = 0;
-};
-
-class GpuSimulation : public Simulation {
-public:
-    GpuSimulation(const gpu::Context& ctx, std::unique_ptr<fluid::SmokeSolver> solver)
-        : ctx_(ctx), solver_(std::move(solver)) {}
-    // Many whole steps in one command buffer. recordStep() writes the parameters uniform at record
-    // time and tracks the ping-pong images as it records; the options and emitters do not change
-    // here, so every write is the same block and recording n steps equals n step() calls.
-    // At most kStepsPerSubmit steps per command buffer: the driver's memory for a recording grows
-    // with its length.
-    void advance(uint32_t steps) override {
-        for (uint32_t done = 0; done < steps;) {
-            const uint32_t batch = std::min(kStepsPerSubmit, steps - done);
-            gpu::submitOneShot(ctx_, [&](VkCommandBuffer cmd) {
-                for (uint32_t i = 0; i < batch; ++i)
-                    solver_->recordStep(cmd);
-            });
-            done += batch;
-        }
-    }
-    fluid::FieldState state() override { return solver_->state(); }
-
-private:
-    const gpu::Context& ctx_;
-    std::unique_ptr<fluid::SmokeSolver> solver_;
-};
-
 class CpuSimulation : public Simulation {
 public:
     CpuSimulation(const fluid::SolverOptions& options, std::vector<shared::FluidEmitter> emitters)
@@ -533,99 +452,6 @@ INSTANTIATE_TEST_SUITE_P(FluidStability, FluidStabilityGpuTest,
                          ::testing::ValuesIn(stabilityCases()), caseName);
 INSTANTIATE_TEST_SUITE_P(FluidStability, FluidStabilityCpuTest,
                          ::testing::ValuesIn(stabilityCases()), caseName);
-
-// --- Non-finite emitters ------------------------------------------------------------------------
-
-struct EmitterField {
-    const char* name; // for messages
-    const char* word; // what the error must name
-    int vector;       // 0 positionRadius, 1 velocityStrength, 2 pigment
-    int component;
-};
-
-constexpr EmitterField kEmitterFields[] = {
-    {"position.x", "position", 0, 0}, {"position.y", "position", 0, 1},
-    {"position.z", "position", 0, 2}, {"radius", "radius", 0, 3},
-    {"velocity.x", "velocity", 1, 0}, {"velocity.y", "velocity", 1, 1},
-    {"velocity.z", "velocity", 1, 2}, {"strength", "strength", 1, 3},
-    {"pigment.r", "pigment", 2, 0},   {"pigment.g", "pigment", 2, 1},
-    {"pigment.b", "pigment", 2, 2},   {"pigment.a", "pigment", 2, 3},
-};
-
-const float kNonFinite[] = {std::numeric_limits<float>::quiet_NaN(),
-                            std::numeric_limits<float>::infinity(),
-                            -std::numeric_limits<float>::infinity()};
-
-shared::FluidEmitter spoiled(shared::FluidEmitter e, const EmitterField& field, float value) {
-    glm::vec4* vectors[3] = {&e.positionRadius, &e.velocityStrength, &e.pigment};
-    (*vectors[field.vector])[field.component] = value;
-    return e;
-}
-
-// The error names the emitter (by index) and the field.
-void expectRefusal(const Status& status, size_t index, const EmitterField& field, float value,
-                   const char* api) {
-    const std::string what = std::string(api) + ", " + field.name + " = " + std::to_string(value);
-    ASSERT_FALSE(status.ok()) << what << ": accepted";
-    const std::string& message = status.error().message;
-    EXPECT_NE(message.find("emitter " + std::to_string(index)), std::string::npos)
-        << what << ": the error does not name emitter " << index << ": " << message;
-    EXPECT_NE(message.find(field.word), std::string::npos)
-        << what << ": the error does not name the " << field.word << ": " << message;
-}
-
-TEST(FluidStabilityEmitterValidation, ValidateEmittersRefusesNanAndInfNamingEmitterAndField) {
-    const auto good = usualEmitters(kGrid, 1.0f);
-    ASSERT_TRUE(fluid::validateEmitters(good).ok());
-    for (const EmitterField& field : kEmitterFields)
-        for (float value : kNonFinite) {
-            // Alone (index 0) and behind a valid emitter (index 1).
-            const std::vector<shared::FluidEmitter> alone{spoiled(good[0], field, value)};
-            expectRefusal(fluid::validateEmitters(alone), 0, field, value, "validateEmitters");
-            const std::vector<shared::FluidEmitter> second{good[0], spoiled(good[1], field, value)};
-            expectRefusal(fluid::validateEmitters(second), 1, field, value, "validateEmitters");
-        }
-}
-
-using FluidStabilityEmitterRefusal = GpuTest;
-
-// setEmitters refuses every spoiled list, and the refusal leaves the solver as it was: a solver
-// that was offered all of them steps exactly like one that only ever saw the valid emitters, and
-// stays finite (a NaN that reached the emitter buffer would spread through the grid).
-TEST_F(FluidStabilityEmitterRefusal, SetEmittersRefusesNanAndInfBeforeTheGpu) {
-    const fluid::SolverOptions options = usualOptions(kGrid, Boundaries::Mixed);
-    const auto good = usualEmitters(kGrid, 1.0f);
-    auto offered = fluid::SmokeSolver::create(ctx(), options);
-    auto clean = fluid::SmokeSolver::create(ctx(), options);
-    ASSERT_TRUE(offered.ok() && clean.ok());
-    fluid::SmokeSolver& a = *offered.value();
-    fluid::SmokeSolver& b = *clean.value();
-    ASSERT_TRUE(a.setEmitters(good).ok());
-    ASSERT_TRUE(b.setEmitters(good).ok());
-    GpuSimulation runA(ctx(), std::move(offered).value());
-    GpuSimulation runB(ctx(), std::move(clean).value());
-    runA.advance(5);
-    runB.advance(5);
-    for (const EmitterField& field : kEmitterFields)
-        for (float value : kNonFinite) {
-            const std::vector<shared::FluidEmitter> second{good[0], spoiled(good[1], field, value)};
-            expectRefusal(a.setEmitters(second), 1, field, value, "SmokeSolver::setEmitters");
-            const std::vector<shared::FluidEmitter> alone{spoiled(good[0], field, value)};
-            expectRefusal(a.setEmitters(alone), 0, field, value, "SmokeSolver::setEmitters");
-        }
-    runA.advance(15);
-    runB.advance(15);
-    const fluid::FieldState sa = runA.state();
-    const fluid::FieldState sb = runB.state();
-    EXPECT_EQ(fluid::computeDiagnostics(options, sa).nonFinite, 0u);
-    EXPECT_GT(fluid::computeDiagnostics(options, sb).maxPigment, 0.0) << "emitters had no effect";
-    // Same device, same commands, no atomics: the two runs agree bit for bit.
-    EXPECT_EQ(sa.velocityX, sb.velocityX);
-    EXPECT_EQ(sa.velocityY, sb.velocityY);
-    EXPECT_EQ(sa.velocityZ, sb.velocityZ);
-    EXPECT_EQ(sa.pressure, sb.pressure);
-    EXPECT_EQ(sa.pigment, sb.pigment);
-}
 
 } // namespace
 } // namespace mfx::test
