@@ -6,7 +6,7 @@
 // smooth divergence at 64^3 down to a relative residual of 1e-3 from a cold start. Writes a table,
 // CSV, JSON and an SVG plot (error against milliseconds, log-log, the Pareto front marked).
 // The scenarios are fluid/scenarios.h's, and `kick`: the impulses the built-in default scene's
-// roundhouse kick splats into its smoke grid, recorded on the GPU (fluid/scene_scenario.h) and
+// roundhouse kick splats into its smoke grid, recorded on the GPU (sim/scene_scenario.h) and
 // replayed through scenario.emitters() like every other scenario's.
 #include "apps/commands.h"
 #include "apps/progress.h"
@@ -17,7 +17,7 @@
 #include "fluid/field_compare.h"
 #include "fluid/reference/reference_solver.h"
 #include "fluid/scenarios.h"
-#include "fluid/scene_scenario.h"
+#include "sim/scene_scenario.h"
 #include "fluid/smoke_solver.h"
 
 #include <algorithm>
@@ -43,7 +43,7 @@ using fluid::PressureSolver;
 using fluid::SolverOptions;
 using fluid::Storage;
 
-// The scenario recorded from the built-in default scene (fluid/scene_scenario.h).
+// The scenario recorded from the built-in default scene (sim/scene_scenario.h).
 constexpr const char* kKick = "kick";
 
 struct Config {
@@ -233,7 +233,7 @@ int runBenchAccuracy(std::span<const std::string> args) {
 
     // The kick's impulses, recorded once from the built-in default scene; each grid gets them
     // mapped onto its own domain.
-    std::optional<fluid::SceneImpulses> kick;
+    std::optional<sim::SceneImpulses> kick;
     if (std::find(scenarios.begin(), scenarios.end(), kKick) != scenarios.end()) {
         scene::Scene scene = scene::defaultScene();
         // The scenario as it has been measured: the default camera and stage (floor at y = 0),
@@ -246,8 +246,8 @@ int runBenchAccuracy(std::span<const std::string> args) {
         }
         std::printf("kick: recording the impulses of %s ...\n", scene.file.c_str());
         std::fflush(stdout);
-        Result<fluid::SceneImpulses> recorded =
-            fluid::recordSceneImpulses(ctx, scene, character.value());
+        Result<sim::SceneImpulses> recorded =
+            sim::recordSceneImpulses(ctx, scene, character.value());
         if (!recorded) {
             printError("kick: " + recorded.error().message);
             return kExitFailure;
@@ -263,7 +263,7 @@ int runBenchAccuracy(std::span<const std::string> args) {
                     std::min(K, kept), after.c_str());
     }
     auto makeScenario = [&](const std::string& name, uint32_t cells) {
-        return name == kKick ? fluid::makeSceneScenario(*kick, glm::uvec3(cells), kKick)
+        return name == kKick ? sim::makeSceneScenario(*kick, glm::uvec3(cells), kKick)
                              : fluid::makeScenario(name, glm::uvec3(cells));
     };
 

@@ -10,7 +10,7 @@
 
 #include "core/gpu/commands.h"
 #include "core/gpu/context.h"
-#include "fluid/scene_simulation.h"
+#include "sim/scene_simulation.h"
 #include "render/scene_player.h"
 
 #include <algorithm>
@@ -38,7 +38,7 @@ struct Measure {
 // Runs `argument`'s scene through, timing every frame after the first `skip`.
 bool measure(const gpu::Context& ctx, const SceneArgument& argument, VkSampleCountFlagBits samples,
              uint32_t skip, const gpu::PrimitiveCounter& primitives, Measure& out, int& exitCode) {
-    const std::unique_ptr<fluid::SceneSimulation> sim =
+    const std::unique_ptr<sim::SceneSimulation> sim =
         createSceneSimulation(ctx, argument, exitCode);
     if (!sim) return false;
     const scene::Scene& s = argument.scene;
@@ -46,10 +46,10 @@ bool measure(const gpu::Context& ctx, const SceneArgument& argument, VkSampleCou
     std::vector<double> gpuMs;
     double triangles = 0.0;
     for (uint32_t f = 0; f < sim->frameCount(); ++f) {
-        const fluid::SimulationFrameStats stats = player.play(f, &primitives);
+        const sim::SimulationFrameStats stats = player.play(f, &primitives);
         if (f < skip) continue; // pipeline compiles run inside the first frames on a CPU driver
         double ms = 0.0;
-        for (const fluid::PassRecord& p : stats.passes) // the drawing's passes among them
+        for (const sim::PassRecord& p : stats.passes) // the drawing's passes among them
             ms += p.gpuMs;
         gpuMs.push_back(ms);
         triangles += double(primitives.result());

@@ -7,7 +7,7 @@
 #include "apps/progress.h"
 
 #include "core/gpu/commands.h"
-#include "fluid/scene_simulation.h"
+#include "sim/scene_simulation.h"
 #include "render/scene_player.h"
 
 #include <algorithm>
@@ -82,10 +82,10 @@ int runBenchFrame(std::span<const std::string> args) {
         printError(ctx.info().name + " has no timestamp queries; the passes cannot be timed");
         return kExitFailure;
     }
-    const std::unique_ptr<fluid::SceneSimulation> created =
+    const std::unique_ptr<sim::SceneSimulation> created =
         createSceneSimulation(ctx, argument, exitCode);
     if (!created) return exitCode;
-    fluid::SceneSimulation& sim = *created;
+    sim::SceneSimulation& sim = *created;
     render::ScenePlayer player(ctx, sim, s.output.width, s.output.height,
                                VkSampleCountFlagBits(samples.value()));
 
@@ -95,7 +95,7 @@ int runBenchFrame(std::span<const std::string> args) {
     Progress progress("benchmarking", sim.frameCount());
     for (uint32_t f = 0; f < sim.frameCount(); ++f) {
         const auto start = std::chrono::steady_clock::now();
-        const fluid::SimulationFrameStats stats = player.play(f);
+        const sim::SimulationFrameStats stats = player.play(f);
         const double wall =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
                 .count();
@@ -108,7 +108,7 @@ int runBenchFrame(std::span<const std::string> args) {
             frame[name] += ms;
             gpu += ms;
         };
-        for (const fluid::PassRecord& p : stats.passes) // the drawing's as "render/<pass>"
+        for (const sim::PassRecord& p : stats.passes) // the drawing's as "render/<pass>"
             add(p.name.rfind("render/", 0) == 0 ? p.name : simulationRow(p.name), p.gpuMs);
         // A pass missing from some frames (a grid asleep) counts 0 there.
         const size_t timedSoFar = frameWall.size();

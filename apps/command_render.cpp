@@ -4,7 +4,7 @@
 #include "apps/progress.h"
 
 #include "core/gpu/commands.h"
-#include "fluid/scene_simulation.h"
+#include "sim/scene_simulation.h"
 #include "render/image_output.h"
 #include "render/scene_player.h"
 
@@ -62,10 +62,10 @@ int runRender(std::span<const std::string> args) {
     const std::unique_ptr<gpu::Context> context = createContext(parsed);
     if (!context) return kExitFailure;
     const gpu::Context& ctx = *context;
-    const std::unique_ptr<fluid::SceneSimulation> created =
+    const std::unique_ptr<sim::SceneSimulation> created =
         createSceneSimulation(ctx, argument, exitCode);
     if (!created) return exitCode;
-    fluid::SceneSimulation& sim = *created;
+    sim::SceneSimulation& sim = *created;
     // 4x multisampling for anti-aliased edges (fewer where the device allows fewer).
     render::ScenePlayer player(ctx, sim, s.output.width, s.output.height);
     render::FrameRenderer& renderer = player.renderer();
@@ -73,7 +73,7 @@ int runRender(std::span<const std::string> args) {
     Progress progress("rendering", sim.frameCount());
     nlohmann::json frames = nlohmann::json::array();
     for (uint32_t f = 0; f < sim.frameCount(); ++f) {
-        const fluid::SimulationFrameStats stats = player.play(f);
+        const sim::SimulationFrameStats stats = player.play(f);
         const std::vector<uint8_t> rgba = render::readColor(ctx, renderer.target());
         if (Status written = render::writePng(outDir + "/" + frameName(f), s.output.width,
                                               s.output.height, rgba);
@@ -85,7 +85,7 @@ int runRender(std::span<const std::string> args) {
         record["effect_draws"] = renderer.effectDraws();
         frames.push_back(record);
         double gpu = 0.0;
-        for (const fluid::PassRecord& p : stats.passes)
+        for (const sim::PassRecord& p : stats.passes)
             gpu += p.gpuMs;
         char note[64];
         std::snprintf(note, sizeof note, "(%.1f ms GPU)", gpu);

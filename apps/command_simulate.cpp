@@ -4,19 +4,19 @@
 #include "apps/commands.h"
 #include "apps/progress.h"
 
-#include "fluid/scene_simulation.h"
+#include "sim/scene_simulation.h"
 
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
 namespace mfx::app {
 
-nlohmann::json statsJson(const fluid::SimulationFrameStats& s) {
+nlohmann::json statsJson(const sim::SimulationFrameStats& s) {
     nlohmann::json passes = nlohmann::json::array();
-    for (const fluid::PassRecord& p : s.passes)
+    for (const sim::PassRecord& p : s.passes)
         passes.push_back({{"name", p.name}, {"dispatches", p.dispatches}, {"gpu_ms", p.gpuMs}});
     nlohmann::json grids = nlohmann::json::array();
-    for (const fluid::GridFrameState& g : s.grids) {
+    for (const sim::GridFrameState& g : s.grids) {
         nlohmann::json grid = {{"name", g.name}, {"awake", g.awake}, {"emitters", g.emitters}};
         if (g.measured) {
             grid["largest_alpha"] = g.largestAlpha;
@@ -55,20 +55,20 @@ int runSimulate(std::span<const std::string> args) {
     if (!openOutputFile(parsed.value("stats"), statsFile)) return kExitFailure;
     const std::unique_ptr<gpu::Context> context = createContext(parsed);
     if (!context) return kExitFailure;
-    auto created = fluid::SceneSimulation::create(*context, s, argument.character);
+    auto created = sim::SceneSimulation::create(*context, s, argument.character);
     if (!created) {
         printError(created.error().message);
         return kExitFailure;
     }
-    fluid::SceneSimulation& sim = *created.value();
+    sim::SceneSimulation& sim = *created.value();
     Progress progress("simulating", sim.frameCount());
     nlohmann::json frames = nlohmann::json::array();
     double gpuTotal = 0.0;
     uint32_t dispatchTotal = 0, sleepingFrames = 0;
     for (uint32_t f = 0; f < sim.frameCount(); ++f) {
-        const fluid::SimulationFrameStats stats = sim.runFrame(f);
+        const sim::SimulationFrameStats stats = sim.runFrame(f);
         double gpu = 0.0;
-        for (const fluid::PassRecord& p : stats.passes)
+        for (const sim::PassRecord& p : stats.passes)
             gpu += p.gpuMs;
         gpuTotal += gpu;
         dispatchTotal += stats.dispatches();

@@ -10,7 +10,7 @@
 #include "core/gpu/commands.h"
 #include "core/gpu/resources.h"
 #include "core/gpu/swapchain.h"
-#include "fluid/scene_simulation.h"
+#include "sim/scene_simulation.h"
 #include "render/frame_renderer.h"
 #include "render/image_output.h"
 #include "render/scene_player.h"
@@ -90,7 +90,7 @@ public:
         : ctx_(ctx), scene_(scene), samples_(samples) {}
 
     Status start() {
-        auto created = fluid::SceneSimulation::create(ctx_, scene_.scene, scene_.character);
+        auto created = sim::SceneSimulation::create(ctx_, scene_.scene, scene_.character);
         if (!created) return created.error();
         sim_ = std::move(created).value();
         if (!player_)
@@ -136,7 +136,7 @@ private:
     const gpu::Context& ctx_;
     const SceneArgument& scene_;
     VkSampleCountFlagBits samples_;
-    std::unique_ptr<fluid::SceneSimulation> sim_;
+    std::unique_ptr<sim::SceneSimulation> sim_;
     std::unique_ptr<render::ScenePlayer> player_;
     int shown_ = -1;
 };

@@ -189,13 +189,13 @@ bool checkOutputSize(const gpu::Context& ctx, const scene::Scene& scene) {
     return false;
 }
 
-std::unique_ptr<fluid::SceneSimulation>
+std::unique_ptr<sim::SceneSimulation>
 createSceneSimulation(const gpu::Context& ctx, const SceneArgument& argument, int& exitCode) {
     if (!checkOutputSize(ctx, argument.scene)) {
         exitCode = kExitUsage;
         return nullptr;
     }
-    auto created = fluid::SceneSimulation::create(ctx, argument.scene, argument.character);
+    auto created = sim::SceneSimulation::create(ctx, argument.scene, argument.character);
     if (!created) {
         printError(created.error().message);
         exitCode = kExitFailure;

@@ -4,7 +4,7 @@
 
 #include "apps/cli.h"
 #include "core/gpu/context.h"
-#include "fluid/scene_simulation.h"
+#include "sim/scene_simulation.h"
 
 #include <nlohmann/json.hpp>
 
@@ -76,11 +76,11 @@ bool checkOutputSize(const gpu::Context& ctx, const scene::Scene& scene);
 
 // The scene's simulation after checkOutputSize, or nullptr after printing why there is none
 // (`exitCode` set). `argument` must outlive it.
-std::unique_ptr<fluid::SceneSimulation>
+std::unique_ptr<sim::SceneSimulation>
 createSceneSimulation(const gpu::Context& ctx, const SceneArgument& argument, int& exitCode);
 
 // One frame's simulation statistics as JSON ({"frame", "time", "passes", "fluid_bytes", ...}).
-nlohmann::json statsJson(const fluid::SimulationFrameStats& stats);
+nlohmann::json statsJson(const sim::SimulationFrameStats& stats);
 
 // The median of `values` (0 when empty); benchmarks quote medians.
 double median(std::vector<double> values);

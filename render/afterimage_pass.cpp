@@ -2,7 +2,7 @@
 
 #include "core/gpu/check.h"
 #include "core/gpu/context.h"
-#include "fluid/scene_simulation.h"
+#include "sim/scene_simulation.h"
 #include "render/effect_geometry.h"
 #include "render/render_target.h"
 #include "shaders/embedded.h"
@@ -153,7 +153,7 @@ AfterimagePass::AfterimagePass(const gpu::Context& ctx, const scene::Scene& scen
                                gpu::MemoryUsage::Upload, "afterimage frame");
 }
 
-void AfterimagePass::advance(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
+void AfterimagePass::advance(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
                              uint32_t frame) {
     if (effects_.empty()) return;
     const FrameHistory::Step step = history_.step(simulation.serial(), frame);
@@ -237,7 +237,7 @@ void AfterimagePass::advance(VkCommandBuffer cmd, const fluid::SceneSimulation& 
     computeToDrawBarrier(cmd);
 }
 
-uint32_t AfterimagePass::draw(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
+uint32_t AfterimagePass::draw(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
                               const SceneCamera& camera, float, std::span<const uint8_t> shown) {
     const scene::Scene& scene = simulation.scene();
     if (effects_.empty() || !history_.recorded()) return 0;

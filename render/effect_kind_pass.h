@@ -17,7 +17,7 @@
 namespace mfx::gpu {
 class Context;
 }
-namespace mfx::fluid {
+namespace mfx::sim {
 class SceneSimulation;
 }
 namespace mfx::scene {
@@ -32,11 +32,11 @@ public:
 
     // Records frame `frame` of `simulation` (its pose is the frame's: after recordFrame). The
     // previous recording must have finished executing.
-    virtual void advance(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
+    virtual void advance(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
                          uint32_t frame) = 0;
     // Records the draws of what the pass holds at scene time `time` (inside rendering). With
     // `shown` non-empty, only effects whose entry (index in scene.effects) is non-zero.
-    virtual uint32_t draw(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
+    virtual uint32_t draw(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
                           const SceneCamera& camera, float time,
                           std::span<const uint8_t> shown = {}) = 0;
 };
@@ -47,7 +47,7 @@ struct EffectPassKind {
     const char* name;
     std::vector<scene::EffectType> types;
     std::unique_ptr<EffectKindPass> (*make)(const gpu::Context& ctx,
-                                            const fluid::SceneSimulation& simulation,
+                                            const sim::SceneSimulation& simulation,
                                             VkSampleCountFlagBits samples);
 };
 
@@ -57,7 +57,7 @@ std::span<const EffectPassKind> effectPassKinds();
 // The passes the simulation's scene calls for (a kind none of whose types the scene has is not
 // made), in draw order.
 std::vector<std::unique_ptr<EffectKindPass>>
-makeEffectPasses(const gpu::Context& ctx, const fluid::SceneSimulation& simulation,
+makeEffectPasses(const gpu::Context& ctx, const sim::SceneSimulation& simulation,
                  VkSampleCountFlagBits samples);
 
 } // namespace mfx::render

@@ -1,7 +1,7 @@
 // The registry of effect passes (render/effect_kind_pass.h). Adding a kind of effect pass means
 // one line here; the order of the lines is the order they draw in.
 #include "core/scene/scene.h"
-#include "fluid/scene_simulation.h"
+#include "sim/scene_simulation.h"
 #include "render/afterimage_pass.h"
 #include "render/effect_kind_pass.h"
 #include "render/effect_pass.h"
@@ -19,14 +19,14 @@ using scene::EffectType;
 // A pass made from the simulation's scene and character.
 template <class Pass>
 std::unique_ptr<EffectKindPass> make(const gpu::Context& ctx,
-                                     const fluid::SceneSimulation& simulation,
+                                     const sim::SceneSimulation& simulation,
                                      VkSampleCountFlagBits samples) {
     return std::make_unique<Pass>(ctx, simulation.scene(), simulation.character(), samples);
 }
 // The trajectory effects' pass draws the simulation's queues: it needs nothing of the scene.
 template <>
 std::unique_ptr<EffectKindPass> make<EffectPass>(const gpu::Context& ctx,
-                                                 const fluid::SceneSimulation&,
+                                                 const sim::SceneSimulation&,
                                                  VkSampleCountFlagBits samples) {
     return std::make_unique<EffectPass>(ctx, samples);
 }
@@ -48,7 +48,7 @@ std::span<const EffectPassKind> effectPassKinds() {
 }
 
 std::vector<std::unique_ptr<EffectKindPass>>
-makeEffectPasses(const gpu::Context& ctx, const fluid::SceneSimulation& simulation,
+makeEffectPasses(const gpu::Context& ctx, const sim::SceneSimulation& simulation,
                  VkSampleCountFlagBits samples) {
     std::vector<std::unique_ptr<EffectKindPass>> passes;
     for (const EffectPassKind& kind : effectPassKinds()) {

@@ -32,7 +32,7 @@ EffectPass::EffectPass(const gpu::Context& ctx, VkSampleCountFlagBits samples) :
                                gpu::MemoryUsage::Upload, "effect frame");
 }
 
-uint32_t EffectPass::draw(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
+uint32_t EffectPass::draw(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
                           const SceneCamera& camera, float now, std::span<const uint8_t> shown) {
     const shared::SceneFrame frame = sceneFrame(simulation.scene(), camera);
     std::memcpy(frame_.mapped, &frame, sizeof frame);
@@ -43,7 +43,7 @@ uint32_t EffectPass::draw(VkCommandBuffer cmd, const fluid::SceneSimulation& sim
         gpu::Program& program = type == scene::EffectType::MotionBlur   ? volumes_
                                 : type == scene::EffectType::SpeedLines ? lines_
                                                                         : particles_;
-        for (const fluid::SceneSimulation::TrajectoryEffect& effect : simulation.trajectories()) {
+        for (const sim::SceneSimulation::TrajectoryEffect& effect : simulation.trajectories()) {
             if (effect.spec->type != type) continue;
             const size_t index = simulation.effectIndex(effect);
             if (!effectShown(shown, index)) continue;

@@ -9,7 +9,7 @@
 
 #include "core/gpu/program.h"
 #include "core/gpu/resources.h"
-#include "fluid/scene_simulation.h"
+#include "sim/scene_simulation.h"
 #include "render/effect_kind_pass.h"
 #include "render/scene_camera.h"
 
@@ -25,11 +25,11 @@ public:
     // Draws every drawn effect (speed-lines, blur, particles) of `simulation` at scene time
     // `now`; with `shown` non-empty, only the effects whose entry (by index in scene.effects) is
     // non-zero. Returns the number of draws recorded.
-    uint32_t draw(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
+    uint32_t draw(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
                   const SceneCamera& camera, float now,
                   std::span<const uint8_t> shown = {}) override;
     // The queues advance with the simulation (SceneSimulation::recordFrame): nothing to do.
-    void advance(VkCommandBuffer, const fluid::SceneSimulation&, uint32_t) override {}
+    void advance(VkCommandBuffer, const sim::SceneSimulation&, uint32_t) override {}
 
 private:
     const gpu::Context& ctx_;

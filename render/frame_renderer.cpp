@@ -2,7 +2,7 @@
 
 namespace mfx::render {
 
-FrameRenderer::FrameRenderer(const gpu::Context& ctx, const fluid::SceneSimulation& simulation,
+FrameRenderer::FrameRenderer(const gpu::Context& ctx, const sim::SceneSimulation& simulation,
                              uint32_t width, uint32_t height, VkSampleCountFlagBits wantedSamples)
     : ctx_(ctx),
       target_(createRenderTarget(ctx, width, height, supportedSamples(ctx, wantedSamples))),
@@ -16,18 +16,18 @@ void FrameRenderer::setShown(size_t effect, bool shown) {
     if (effect < shown_.size()) shown_[effect] = shown ? 1 : 0;
 }
 
-void FrameRenderer::record(VkCommandBuffer cmd, fluid::SceneSimulation& simulation,
+void FrameRenderer::record(VkCommandBuffer cmd, sim::SceneSimulation& simulation,
                            uint32_t frame) {
     simulation.recordFrame(cmd, frame);
     recordFrame(cmd, simulation, simulation.frameTime(frame), &frame);
 }
 
-void FrameRenderer::recordDraw(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
+void FrameRenderer::recordDraw(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
                                float time) {
     recordFrame(cmd, simulation, time, nullptr);
 }
 
-void FrameRenderer::recordFrame(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
+void FrameRenderer::recordFrame(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
                                 float time, const uint32_t* frame) {
     timer_.reset(cmd);
     {

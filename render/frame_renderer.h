@@ -5,7 +5,7 @@
 #pragma once
 
 #include "core/gpu/timer.h"
-#include "fluid/scene_simulation.h"
+#include "sim/scene_simulation.h"
 #include "render/character_pass.h"
 #include "render/effect_kind_pass.h"
 #include "render/render_target.h"
@@ -28,17 +28,17 @@ public:
     // device allows fewer), for the scene and character of `simulation`. The character must
     // outlive the renderer; the simulation need not: the renderer draws any later simulation of
     // the same scene and character (a restarted view).
-    FrameRenderer(const gpu::Context& ctx, const fluid::SceneSimulation& simulation, uint32_t width,
+    FrameRenderer(const gpu::Context& ctx, const sim::SceneSimulation& simulation, uint32_t width,
                   uint32_t height, VkSampleCountFlagBits wantedSamples = VK_SAMPLE_COUNT_4_BIT);
 
     // Records the simulation's frame `frame` (its trajectories and smoke steps) and then the
     // drawing of it. The previous recording must have finished executing.
-    void record(VkCommandBuffer cmd, fluid::SceneSimulation& simulation, uint32_t frame);
+    void record(VkCommandBuffer cmd, sim::SceneSimulation& simulation, uint32_t frame);
     // Records only the drawing of what the simulation holds now, at scene time `time` (a paused
     // view redraws the same frame this way). Afterimage smears, swept volumes and silhouette shells
     // are drawn as last built: their history advances with record() only, so a paused frame does
     // not change.
-    void recordDraw(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation, float time);
+    void recordDraw(VkCommandBuffer cmd, const sim::SceneSimulation& simulation, float time);
 
     // Which of the scene's effects are drawn, by their index in scene.effects (all by default).
     // A smoke grid is drawn while any of its effects is shown.
@@ -63,7 +63,7 @@ public:
 
 private:
     // recordDraw; with `frame`, the effect passes also advance to that simulation frame.
-    void recordFrame(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation, float time,
+    void recordFrame(VkCommandBuffer cmd, const sim::SceneSimulation& simulation, float time,
                      const uint32_t* frame);
 
     const gpu::Context& ctx_;

@@ -4,11 +4,11 @@
 
 namespace mfx::render {
 
-ScenePlayer::ScenePlayer(const gpu::Context& ctx, fluid::SceneSimulation& simulation,
+ScenePlayer::ScenePlayer(const gpu::Context& ctx, sim::SceneSimulation& simulation,
                          uint32_t width, uint32_t height, VkSampleCountFlagBits samples)
     : ctx_(ctx), simulation_(&simulation), renderer_(ctx, simulation, width, height, samples) {}
 
-fluid::SimulationFrameStats ScenePlayer::play(uint32_t frame,
+sim::SimulationFrameStats ScenePlayer::play(uint32_t frame,
                                               const gpu::PrimitiveCounter* primitives) {
     gpu::submitOneShot(ctx_, [&](VkCommandBuffer cmd) {
         if (primitives) primitives->begin(cmd);
@@ -23,10 +23,10 @@ void ScenePlayer::record(VkCommandBuffer cmd, uint32_t frame) {
     pending_ = true;
 }
 
-fluid::SimulationFrameStats ScenePlayer::finish() {
+sim::SimulationFrameStats ScenePlayer::finish() {
     if (!pending_) return {};
     pending_ = false;
-    fluid::SimulationFrameStats stats = simulation_->finishFrame();
+    sim::SimulationFrameStats stats = simulation_->finishFrame();
     for (const gpu::PassTime& p : renderer_.passTimes())
         stats.passes.push_back({"render/" + p.name, 0, p.milliseconds});
     return stats;

@@ -2,7 +2,7 @@
 
 #include "core/gpu/check.h"
 #include "core/gpu/context.h"
-#include "fluid/scene_simulation.h"
+#include "sim/scene_simulation.h"
 #include "shaders/embedded.h"
 #include "shaders/shared/effect_draw.h"
 
@@ -152,7 +152,7 @@ SilhouetteShellPass::SilhouetteShellPass(const gpu::Context& ctx, const scene::S
                                gpu::MemoryUsage::Upload, "shell frame");
 }
 
-void SilhouetteShellPass::advance(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
+void SilhouetteShellPass::advance(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
                                   uint32_t frame) {
     if (effects_.empty()) return;
     const FrameHistory::Step step = history_.step(simulation.serial(), frame);
@@ -232,7 +232,7 @@ void SilhouetteShellPass::advance(VkCommandBuffer cmd, const fluid::SceneSimulat
     computeToDrawBarrier(cmd);
 }
 
-uint32_t SilhouetteShellPass::draw(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
+uint32_t SilhouetteShellPass::draw(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
                                    const SceneCamera& camera, float,
                                    std::span<const uint8_t> shown) {
     const scene::Scene& scene = simulation.scene();

@@ -111,10 +111,10 @@ void SmokePass::findPigmentBounds(VkCommandBuffer cmd, std::span<const Volume> v
 }
 
 uint32_t SmokePass::draw(VkCommandBuffer cmd, RenderTarget& target,
-                         const fluid::SceneSimulation& simulation, const SceneCamera& camera,
+                         const sim::SceneSimulation& simulation, const SceneCamera& camera,
                          std::span<const uint8_t> shown, const SmokeLook& look) {
     std::vector<Volume> volumes;
-    for (const fluid::SceneSimulation::SmokeGrid& grid : simulation.smokeGrids()) {
+    for (const sim::SceneSimulation::SmokeGrid& grid : simulation.smokeGrids()) {
         bool visible = shown.empty();
         for (size_t e : grid.effects) {
             const size_t index = simulation.effectIndex(simulation.trajectories()[e]);

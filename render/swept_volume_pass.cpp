@@ -2,7 +2,7 @@
 
 #include "core/gpu/check.h"
 #include "core/gpu/context.h"
-#include "fluid/scene_simulation.h"
+#include "sim/scene_simulation.h"
 #include "shaders/embedded.h"
 #include "shaders/shared/effect_draw.h"
 
@@ -124,7 +124,7 @@ SweptVolumePass::SweptVolumePass(const gpu::Context& ctx, const scene::Scene& sc
                                gpu::MemoryUsage::Upload, "swept frame");
 }
 
-void SweptVolumePass::advance(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
+void SweptVolumePass::advance(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
                               uint32_t frame) {
     if (effects_.empty()) return;
     const FrameHistory::Step step = history_.step(simulation.serial(), frame);
@@ -181,7 +181,7 @@ void SweptVolumePass::advance(VkCommandBuffer cmd, const fluid::SceneSimulation&
     computeToDrawBarrier(cmd);
 }
 
-uint32_t SweptVolumePass::draw(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
+uint32_t SweptVolumePass::draw(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
                                const SceneCamera& camera, float, std::span<const uint8_t> shown) {
     const scene::Scene& scene = simulation.scene();
     if (effects_.empty() || !history_.recorded()) return 0;

@@ -33,7 +33,7 @@
 #include <span>
 #include <vector>
 
-namespace mfx::fluid {
+namespace mfx::sim {
 class SceneSimulation;
 }
 
@@ -52,9 +52,9 @@ public:
 
     // EffectKindPass: advance() skins the bound vertices, moves the history on and builds the
     // geometry; draw() draws what was last built (a paused frame draws the same).
-    void advance(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
+    void advance(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
                  uint32_t frame) override;
-    uint32_t draw(VkCommandBuffer cmd, const fluid::SceneSimulation& simulation,
+    uint32_t draw(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
                   const SceneCamera& camera, float time,
                   std::span<const uint8_t> shown = {}) override;
 

@@ -5,7 +5,7 @@
 
 #include "core/gpu/commands.h"
 #include "core/scene/scene.h"
-#include "fluid/scene_simulation.h"
+#include "sim/scene_simulation.h"
 #include "shaders/shared/skinning.h"
 #include "tests/gpu_test.h"
 
@@ -55,7 +55,7 @@ protected:
         Result<anim::Character> c = scene::loadCharacter(scene_);
         ASSERT_TRUE(c) << c.error().message;
         character_ = std::make_unique<anim::Character>(std::move(c).value());
-        auto sim = fluid::SceneSimulation::create(ctx(), scene_, *character_);
+        auto sim = sim::SceneSimulation::create(ctx(), scene_, *character_);
         ASSERT_TRUE(sim) << sim.error().message;
         sim_ = std::move(sim).value();
         pass_ = std::make_unique<Pass>(ctx(), scene_, *character_);
@@ -75,7 +75,7 @@ protected:
 
     scene::Scene scene_;
     std::unique_ptr<anim::Character> character_;
-    std::unique_ptr<fluid::SceneSimulation> sim_;
+    std::unique_ptr<sim::SceneSimulation> sim_;
     std::unique_ptr<Pass> pass_;
 };
 

@@ -4,7 +4,7 @@
 // refusals. The scenes are small (the fighter's sword) and run a few frames.
 #include "core/gpu/commands.h"
 #include "core/scene/scene.h"
-#include "fluid/scene_simulation.h"
+#include "sim/scene_simulation.h"
 #include "render/afterimage_pass.h"
 #include "render/frame_renderer.h"
 #include "render/render_target.h"
@@ -211,7 +211,7 @@ TEST_F(AfterimageTest, APausedFrameDoesNotChange) {
         "strength_animation": 3, "random_min": 0.3, "taper": 0.5})");
     Result<anim::Character> c = scene::loadCharacter(s);
     ASSERT_TRUE(c);
-    auto sim = fluid::SceneSimulation::create(ctx(), s, c.value());
+    auto sim = sim::SceneSimulation::create(ctx(), s, c.value());
     ASSERT_TRUE(sim);
     render::FrameRenderer renderer(ctx(), *sim.value(), 64, 36, VK_SAMPLE_COUNT_1_BIT);
     for (uint32_t f = 0; f <= kSwingFrame; ++f) {

@@ -1,7 +1,7 @@
 // The effect passes over the scene pass: each drawn effect changes the picture where its trail
 // is, and writes the picture for a look.
 #include "core/gpu/commands.h"
-#include "fluid/scene_simulation.h"
+#include "sim/scene_simulation.h"
 #include "render/character_pass.h"
 #include "render/effect_pass.h"
 #include "render/image_output.h"
@@ -20,7 +20,7 @@ std::vector<uint8_t> renderFrame(gpu::Context& ctx, const scene::Scene& s, uint3
                                  bool effects, const std::string& png, uint32_t* draws = nullptr) {
     const Result<anim::Character> character = scene::loadCharacter(s);
     EXPECT_TRUE(character.ok());
-    auto sim = fluid::SceneSimulation::create(ctx, s, character.value());
+    auto sim = sim::SceneSimulation::create(ctx, s, character.value());
     EXPECT_TRUE(sim.ok()) << sim.error().message;
     for (uint32_t f = 0; f <= frame; ++f)
         sim.value()->runFrame(f);

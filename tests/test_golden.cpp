@@ -7,7 +7,7 @@
 
 #include "core/gpu/commands.h"
 #include "core/scene/scene.h"
-#include "fluid/scene_simulation.h"
+#include "sim/scene_simulation.h"
 #include "render/frame_renderer.h"
 #include "render/image_output.h"
 
@@ -103,10 +103,10 @@ protected:
         Result<anim::Character> character = scene::loadCharacter(s);
         EXPECT_TRUE(character) << (character ? "" : character.error().message);
         if (!character) return {};
-        auto sim = fluid::SceneSimulation::create(ctx(), s, character.value());
+        auto sim = sim::SceneSimulation::create(ctx(), s, character.value());
         EXPECT_TRUE(sim) << (sim ? "" : sim.error().message);
         if (!sim) return {};
-        std::unique_ptr<fluid::SceneSimulation> simulation = std::move(sim).value();
+        std::unique_ptr<sim::SceneSimulation> simulation = std::move(sim).value();
         render::FrameRenderer renderer(ctx(), *simulation, kWidth, kHeight);
         auto play = [&](uint32_t frames) {
             for (uint32_t f = 0; f < frames; ++f) {
@@ -118,7 +118,7 @@ protected:
         if (restartAfter > 0) {
             play(std::min(restartAfter, simulation->frameCount()));
             simulation.reset();
-            auto again = fluid::SceneSimulation::create(ctx(), s, character.value());
+            auto again = sim::SceneSimulation::create(ctx(), s, character.value());
             EXPECT_TRUE(again) << (again ? "" : again.error().message);
             if (!again) return {};
             simulation = std::move(again).value();

@@ -1,8 +1,8 @@
-// The default scene's kick recorded as a solver scenario (fluid/scene_scenario.h): the recording
+// The default scene's kick recorded as a solver scenario (sim/scene_scenario.h): the recording
 // has impulses, every field is finite and inside the domain, the mapping onto a scenario grid
 // does not depend on its size, and the CPU reference runs it to finite fields with pigment.
 #include "fluid/reference/reference_solver.h"
-#include "fluid/scene_scenario.h"
+#include "sim/scene_scenario.h"
 #include "tests/gpu_test.h"
 #include "tests/moving_point.h"
 
@@ -27,15 +27,15 @@ protected:
             return;
         }
         ctx().clearValidationMessages();
-        Result<fluid::SceneImpulses> recorded =
-            fluid::recordSceneImpulses(ctx(), scene, character.value(), kSteps);
+        Result<sim::SceneImpulses> recorded =
+            sim::recordSceneImpulses(ctx(), scene, character.value(), kSteps);
         ctx().waitIdle();
         if (ctx().validationErrorCount() > 0)
             recordingError_ = "validation errors while recording:\n" + describeMessages();
         else if (!recorded)
             recordingError_ = recorded.error().message;
         else
-            impulses_ = std::make_unique<fluid::SceneImpulses>(std::move(recorded).value());
+            impulses_ = std::make_unique<sim::SceneImpulses>(std::move(recorded).value());
     }
     static void TearDownTestSuite() {
         impulses_.reset();
@@ -47,16 +47,16 @@ protected:
     }
 
     static fluid::Scenario scenario(glm::uvec3 cells) {
-        Result<fluid::Scenario> made = fluid::makeSceneScenario(*impulses_, cells);
+        Result<fluid::Scenario> made = sim::makeSceneScenario(*impulses_, cells);
         EXPECT_TRUE(made.ok()) << made.error().message;
         return made ? std::move(made).value() : fluid::Scenario{};
     }
 
-    static std::unique_ptr<fluid::SceneImpulses> impulses_;
+    static std::unique_ptr<sim::SceneImpulses> impulses_;
     static std::string recordingError_;
 };
 
-std::unique_ptr<fluid::SceneImpulses> SceneScenarioTest::impulses_;
+std::unique_ptr<sim::SceneImpulses> SceneScenarioTest::impulses_;
 std::string SceneScenarioTest::recordingError_;
 
 bool finite(const glm::vec4& v) {
@@ -201,8 +201,8 @@ TEST_F(SceneScenarioTest, FollowingGridIsRecordedWhereItWasPlaced) {
     ASSERT_TRUE(parsed.ok()) << parsed.error().message;
     scene::Scene still = parsed.value();
     still.effects[0].follow = false;
-    auto following = fluid::recordSceneImpulses(ctx(), parsed.value(), point);
-    auto staying = fluid::recordSceneImpulses(ctx(), still, point);
+    auto following = sim::recordSceneImpulses(ctx(), parsed.value(), point);
+    auto staying = sim::recordSceneImpulses(ctx(), still, point);
     ASSERT_TRUE(following.ok()) << following.error().message;
     ASSERT_TRUE(staying.ok()) << staying.error().message;
     ASSERT_EQ(following.value().steps.size(), staying.value().steps.size());
@@ -223,18 +223,18 @@ TEST_F(SceneScenarioTest, FollowingGridIsRecordedWhereItWasPlaced) {
 }
 
 TEST_F(SceneScenarioTest, BadInputsAreErrors) {
-    EXPECT_FALSE(fluid::makeSceneScenario(*impulses_, glm::uvec3(16, 0, 16)).ok());
+    EXPECT_FALSE(sim::makeSceneScenario(*impulses_, glm::uvec3(16, 0, 16)).ok());
     const scene::Scene kick = scene::defaultScene();
     Result<anim::Character> fighter = scene::loadCharacter(kick);
     ASSERT_TRUE(fighter.ok());
-    EXPECT_FALSE(fluid::recordSceneImpulses(ctx(), kick, fighter.value(), 0).ok());
+    EXPECT_FALSE(sim::recordSceneImpulses(ctx(), kick, fighter.value(), 0).ok());
     scene::Scene noSmoke = scene::defaultScene();
     std::erase_if(noSmoke.effects,
                   [](const scene::EffectSpec& e) { return e.type == scene::EffectType::Smoke; });
     Result<anim::Character> character = scene::loadCharacter(noSmoke);
     ASSERT_TRUE(character.ok());
-    Result<fluid::SceneImpulses> none =
-        fluid::recordSceneImpulses(ctx(), noSmoke, character.value(), 4);
+    Result<sim::SceneImpulses> none =
+        sim::recordSceneImpulses(ctx(), noSmoke, character.value(), 4);
     ASSERT_FALSE(none.ok());
     EXPECT_NE(none.error().message.find("no smoke effect"), std::string::npos)
         << none.error().message;

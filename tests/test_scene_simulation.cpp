@@ -5,7 +5,7 @@
 #include "core/anim/fighter.h"
 #include "core/gpu/commands.h"
 #include "fluid/reference/reference_solver.h"
-#include "fluid/scene_simulation.h"
+#include "sim/scene_simulation.h"
 #include "tests/gpu_test.h"
 #include "tests/moving_point.h"
 
@@ -23,15 +23,15 @@ scene::Scene parseScene(const std::string& text) {
     return s ? std::move(s).value() : scene::Scene{};
 }
 
-std::unique_ptr<fluid::SceneSimulation> simulate(const gpu::Context& ctx, const scene::Scene& s,
+std::unique_ptr<sim::SceneSimulation> simulate(const gpu::Context& ctx, const scene::Scene& s,
                                                  const anim::Character& character) {
-    auto created = fluid::SceneSimulation::create(ctx, s, character);
+    auto created = sim::SceneSimulation::create(ctx, s, character);
     EXPECT_TRUE(created.ok()) << created.error().message;
     return created ? std::move(created).value() : nullptr;
 }
 
-bool ran(const fluid::SimulationFrameStats& stats, const std::string& name) {
-    for (const fluid::PassRecord& p : stats.passes)
+bool ran(const sim::SimulationFrameStats& stats, const std::string& name) {
+    for (const sim::PassRecord& p : stats.passes)
         if (p.name == name) return p.dispatches > 0;
     return false;
 }
@@ -45,7 +45,7 @@ TEST_F(SceneSimulationTest, SpeedLinesAloneAllocateNoFluidAndDispatchNone) {
     EXPECT_TRUE(sim->smokeGrids().empty());
     EXPECT_EQ(sim->fluidBytes(), 0u);
     for (uint32_t f = 0; f < 6; ++f) {
-        const fluid::SimulationFrameStats stats = sim->runFrame(f);
+        const sim::SimulationFrameStats stats = sim->runFrame(f);
         EXPECT_EQ(stats.fluidBytes, 0u);
         EXPECT_EQ(stats.fluidDispatches(), 0u);
         EXPECT_TRUE(ran(stats, "speed_lines#0/split"));
@@ -74,7 +74,7 @@ TEST_F(SceneSimulationTest, SmokeSleepsAfterItsWindowAndWakesForTheNext) {
     EXPECT_GT(sim->fluidBytes(), 16u * 16u * 16u * 4u * 4u);
     int asleepFrom = -1, wokeAt = -1;
     for (uint32_t f = 0; f < 60; ++f) {
-        const fluid::SimulationFrameStats stats = sim->runFrame(f);
+        const sim::SimulationFrameStats stats = sim->runFrame(f);
         const float t = stats.time;
         if (stats.grids[0].measured)
             std::printf("frame %u: largest alpha %.3g, speed %.3g m/s\n", f,
@@ -109,7 +109,7 @@ TEST_F(SceneSimulationTest, OneMovingVertexPushesTheRightCellsLikeTheReference) 
                      "colour": [0.2, 0.6, 0.9], "jacobi": 20, "steps_per_second": 30}]})");
     auto sim = simulate(ctx(), s, point);
     ASSERT_TRUE(sim);
-    const fluid::SceneSimulation::SmokeGrid& grid = sim->smokeGrids()[0];
+    const sim::SceneSimulation::SmokeGrid& grid = sim->smokeGrids()[0];
     sim->runFrame(0); // no extent yet: zero velocity, pigment only
     const fluid::FieldState before = grid.solver->state();
     sim->runFrame(1);
@@ -117,7 +117,7 @@ TEST_F(SceneSimulationTest, OneMovingVertexPushesTheRightCellsLikeTheReference) 
 
     // The CPU reference, stepping from the same fields with the emitters the CPU twins make from
     // the CPU twin of the segment.
-    const fluid::SceneSimulation::TrajectoryEffect& effect = sim->trajectories()[0];
+    const sim::SceneSimulation::TrajectoryEffect& effect = sim->trajectories()[0];
     const auto live = effect.queue->liveSegments();
     ASSERT_EQ(live.size(), 2u);
     const auto segment = effect.queue->readSegment(live[0]);

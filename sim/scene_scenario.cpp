@@ -1,6 +1,6 @@
-#include "fluid/scene_scenario.h"
+#include "sim/scene_scenario.h"
 
-#include "fluid/scene_simulation.h"
+#include "sim/scene_simulation.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,14 +8,14 @@
 #include <memory>
 #include <span>
 
-namespace mfx::fluid {
+namespace mfx::sim {
 
 namespace {
 
-// Whether the solver takes one record (validateEmitters' checks; the splat shader itself skips
-// records with a non-finite field).
+// Whether the solver takes one record (fluid::validateEmitters' checks; the splat shader itself
+// skips records with a non-finite field).
 bool acceptable(const shared::FluidEmitter& e) {
-    return validateEmitters(std::span<const shared::FluidEmitter>(&e, 1)).ok();
+    return fluid::validateEmitters(std::span<const shared::FluidEmitter>(&e, 1)).ok();
 }
 
 } // namespace
@@ -76,22 +76,22 @@ Result<SceneImpulses> recordSceneImpulses(const gpu::Context& ctx, const scene::
     return out;
 }
 
-Result<Scenario> makeSceneScenario(const SceneImpulses& impulses, glm::uvec3 cells,
-                                   const std::string& name) {
+Result<fluid::Scenario> makeSceneScenario(const SceneImpulses& impulses, glm::uvec3 cells,
+                                          const std::string& name) {
     if (cells.x == 0 || cells.y == 0 || cells.z == 0)
         return Error{"scenario \"" + name + "\": every grid dimension must be at least 1"};
-    Scenario s;
+    fluid::Scenario s;
     s.name = name;
     s.options = impulses.options;
     s.options.grid = {cells.x, cells.y, cells.z,
                       1.0f / float(std::max({cells.x, cells.y, cells.z}))};
-    const GridShape& from = impulses.options.grid;
+    const fluid::GridShape& from = impulses.options.grid;
     const glm::vec3 fromExtent = glm::vec3(from.cellsX, from.cellsY, from.cellsZ) * from.cellSize;
     const glm::vec3 toExtent = glm::vec3(cells) * s.options.grid.cellSize;
     const glm::vec3 scale = toExtent / fromExtent;
     const float radiusScale = std::cbrt(scale.x * scale.y * scale.z);
     s.options.buoyancy *= scale.y;
-    s.initial = FieldState::zero(s.options.grid);
+    s.initial = fluid::FieldState::zero(s.options.grid);
 
     auto steps = std::make_shared<std::vector<std::vector<shared::FluidEmitter>>>();
     steps->reserve(impulses.steps.size());
@@ -121,12 +121,12 @@ Result<Scenario> makeSceneScenario(const SceneImpulses& impulses, glm::uvec3 cel
     return s;
 }
 
-Result<Scenario> recordSceneScenario(const gpu::Context& ctx, const scene::Scene& scene,
-                                     const anim::Character& character, glm::uvec3 cells,
-                                     uint32_t maxSteps) {
+Result<fluid::Scenario> recordSceneScenario(const gpu::Context& ctx, const scene::Scene& scene,
+                                            const anim::Character& character, glm::uvec3 cells,
+                                            uint32_t maxSteps) {
     Result<SceneImpulses> impulses = recordSceneImpulses(ctx, scene, character, maxSteps);
     if (!impulses) return impulses.error();
     return makeSceneScenario(impulses.value(), cells);
 }
 
-} // namespace mfx::fluid
+} // namespace mfx::sim

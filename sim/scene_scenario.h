@@ -22,17 +22,18 @@ namespace mfx::gpu {
 class Context;
 }
 
-namespace mfx::fluid {
+namespace mfx::sim {
 
 // What one recording holds.
 struct SceneImpulses {
     std::string scene;            // where the scene came from (its file, or the built-in default)
     std::string grid;             // the recorded grid's name in the scene ("smoke0")
-    SolverOptions options;        // the scene grid's solver options: shape, dt per step, fade, ...
+    fluid::SolverOptions options; // the scene grid's solver options: shape, dt per step, fade, ...
     uint64_t firstStep = 0;       // the scene step of steps[0] (steps are 1 / rate seconds)
     float stepsPerSecond = 60.0f; // the grid's step rate
     std::vector<std::vector<shared::FluidEmitter>> steps; // per step, in the scene grid's frame
-    uint32_t dropped = 0; // records left out because the solver refuses them (validateEmitters)
+    uint32_t dropped =
+        0; // records left out because the solver refuses them (fluid::validateEmitters)
 };
 
 // Steps one recording keeps at most: 2 s of a 60-steps-per-second grid, more than the default
@@ -65,12 +66,12 @@ Result<SceneImpulses> recordSceneImpulses(const gpu::Context& ctx, const scene::
 // the vertical factor. Taken from the scenario grid: the cells and the cell size. The initial
 // state is empty (at rest, no pigment); emitters(step) past the recording are empty.
 // An error when a dimension of `cells` is 0.
-Result<Scenario> makeSceneScenario(const SceneImpulses& impulses, glm::uvec3 cells,
-                                   const std::string& name = "kick");
+Result<fluid::Scenario> makeSceneScenario(const SceneImpulses& impulses, glm::uvec3 cells,
+                                          const std::string& name = "kick");
 
 // recordSceneImpulses then makeSceneScenario.
-Result<Scenario> recordSceneScenario(const gpu::Context& ctx, const scene::Scene& scene,
-                                     const anim::Character& character, glm::uvec3 cells,
-                                     uint32_t maxSteps = kSceneImpulsesMaxSteps);
+Result<fluid::Scenario> recordSceneScenario(const gpu::Context& ctx, const scene::Scene& scene,
+                                            const anim::Character& character, glm::uvec3 cells,
+                                            uint32_t maxSteps = kSceneImpulsesMaxSteps);
 
-} // namespace mfx::fluid
+} // namespace mfx::sim

@@ -1,4 +1,4 @@
-#include "fluid/scene_simulation.h"
+#include "sim/scene_simulation.h"
 
 #include "core/scene/scene_fit.h"
 
@@ -14,7 +14,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <limits>
 
-namespace mfx::fluid {
+namespace mfx::sim {
 
 namespace {
 
@@ -146,8 +146,8 @@ Result<std::unique_ptr<SceneSimulation>> SceneSimulation::create(const gpu::Cont
     }
     for (SmokeGrid& grid : sim->grids_) {
         const scene::EffectSpec& e = *sim->trajectories_[grid.effects.front()].spec;
-        SolverOptions options;
-        options.grid = GridShape{e.grid[0], e.grid[1], e.grid[2], e.cellSize};
+        fluid::SolverOptions options;
+        options.grid = fluid::GridShape{e.grid[0], e.grid[1], e.grid[2], e.cellSize};
         grid.stepsPerFrame =
             std::max(1u, uint32_t(std::ceil(e.stepsPerSecond / sim->scene_.output.fps - 1e-4f)));
         options.dt = 1.0f / (sim->scene_.output.fps * float(grid.stepsPerFrame));
@@ -156,10 +156,10 @@ Result<std::unique_ptr<SceneSimulation>> SceneSimulation::create(const gpu::Cont
         options.buoyancy = e.buoyancy;
         options.vorticity = e.vorticity;
         options.jacobiIterations = e.jacobi;
-        for (FaceBoundary& face : options.boundaries)
-            face.kind = Boundary::Open;
-        options.boundaries[FaceLowY].kind = Boundary::WallFreeSlip; // the stage floor
-        auto solver = SmokeSolver::create(ctx, options);
+        for (fluid::FaceBoundary& face : options.boundaries)
+            face.kind = fluid::Boundary::Open;
+        options.boundaries[fluid::FaceLowY].kind = fluid::Boundary::WallFreeSlip; // the stage floor
+        auto solver = fluid::SmokeSolver::create(ctx, options);
         if (!solver)
             return Error{sim->scene_.file + ": " + grid.name + ": " + solver.error().message};
         grid.solver = std::move(solver).value();
@@ -180,7 +180,7 @@ Result<std::unique_ptr<SceneSimulation>> SceneSimulation::create(const gpu::Cont
         grid.placedOrigin = grid.origin;
         grid.rootAtPlacement = sim->rootPosition(sim->poseAt(sim->frameTime(0)));
     }
-    if (!sim->grids_.empty()) sim->coupling_ = std::make_unique<SegmentEmitters>(ctx);
+    if (!sim->grids_.empty()) sim->coupling_ = std::make_unique<fluid::SegmentEmitters>(ctx);
     sim->timer_ = gpu::GpuTimer(ctx, kMaxPasses);
     return sim;
 }
@@ -220,7 +220,7 @@ Status SceneSimulation::placeGrid(SmokeGrid& grid) {
             }
         }
     }
-    const GridShape& shape = grid.solver->options().grid;
+    const fluid::GridShape& shape = grid.solver->options().grid;
     const glm::vec3 extent =
         glm::vec3(float(shape.cellsX), float(shape.cellsY), float(shape.cellsZ)) * shape.cellSize;
     if (low.x > high.x) { // no live frame at all: centre on the character's origin
@@ -338,7 +338,7 @@ void SceneSimulation::recordSmoke(VkCommandBuffer cmd, SmokeGrid& grid, uint32_t
         for (size_t i : grid.effects) {
             const TrajectoryEffect& effect = trajectories_[i];
             if (!effect.live) continue;
-            CouplingParameters parameters;
+            fluid::CouplingParameters parameters;
             parameters.gridOrigin = grid.origin;
             parameters.radius = effect.spec->radius;
             parameters.strength = effect.spec->strength;
@@ -440,7 +440,7 @@ SimulationFrameStats SceneSimulation::finishFrame() {
             std::memcpy(bits, grid.activity.mapped, sizeof bits);
             std::memcpy(&state.largestAlpha, &bits[0], 4);
             std::memcpy(&state.largestSpeed, &bits[1], 4);
-            const GridShape& shape = grid.solver->options().grid;
+            const fluid::GridShape& shape = grid.solver->options().grid;
             const float speedThreshold =
                 grid.sleepThreshold * shape.cellSize / grid.solver->options().dt;
             if (state.largestAlpha < grid.sleepThreshold && state.largestSpeed < speedThreshold)
@@ -464,4 +464,4 @@ uint64_t SceneSimulation::fluidBytes() const {
     return bytes;
 }
 
-} // namespace mfx::fluid
+} // namespace mfx::sim

@@ -34,7 +34,7 @@
 #include <string>
 #include <vector>
 
-namespace mfx::fluid {
+namespace mfx::sim {
 
 struct PassRecord {
     std::string name;
@@ -79,7 +79,7 @@ public:
     };
     struct SmokeGrid {
         std::string name; // "smoke<i>" (the pass names start with it)
-        std::unique_ptr<SmokeSolver> solver;
+        std::unique_ptr<fluid::SmokeSolver> solver;
         glm::vec3 origin{0.0f};      // world position of the grid's low corner
         std::vector<size_t> effects; // indices into trajectories()
         gpu::Buffer emitters;
@@ -167,11 +167,11 @@ private:
     uint32_t frames_ = 0;
     std::vector<TrajectoryEffect> trajectories_;
     std::vector<SmokeGrid> grids_;
-    std::unique_ptr<SegmentEmitters> coupling_;
+    std::unique_ptr<fluid::SegmentEmitters> coupling_;
     gpu::GpuTimer timer_;
     std::vector<PassRecord> recorded_; // names and dispatches of this frame's passes
     uint32_t currentFrame_ = 0;
     anim::Pose framePose_;
 };
 
-} // namespace mfx::fluid
+} // namespace mfx::sim
