@@ -17,8 +17,8 @@
 #include "fluid/field_compare.h"
 #include "fluid/reference/reference_solver.h"
 #include "fluid/scenarios.h"
-#include "sim/scene_scenario.h"
 #include "fluid/smoke_solver.h"
+#include "sim/scene_scenario.h"
 
 #include <algorithm>
 #include <cmath>
@@ -29,7 +29,6 @@
 #include <functional>
 #include <limits>
 #include <nlohmann/json.hpp>
-#include <numbers>
 #include <optional>
 #include <sstream>
 
@@ -93,33 +92,6 @@ struct Row {
     double velocityError = 0.0, pigmentError = 0.0; // vs the same grid, exact pressure, fp32
     double velocityFine = 0.0, pigmentFine = 0.0;   // vs the 2x finer grid
 };
-
-// A smooth, divergent velocity field on `grid` with its divergence computed: the input of the
-// time-to-1e-3 measurement.
-FieldState smoothDivergence(const SolverOptions& options) {
-    FieldState s = FieldState::zero(options.grid);
-    const fluid::GridShape& g = options.grid;
-    const double pi = std::numbers::pi;
-    for (int c = 0; c < 3; ++c) {
-        const glm::uvec3 n = fluid::faceExtent(g, c);
-        std::vector<float>& v = c == 0 ? s.velocityX : c == 1 ? s.velocityY : s.velocityZ;
-        for (uint32_t z = 0; z < n.z; ++z)
-            for (uint32_t y = 0; y < n.y; ++y)
-                for (uint32_t x = 0; x < n.x; ++x) {
-                    glm::dvec3 p =
-                        (glm::dvec3(x, y, z) + 0.5) / glm::dvec3(g.cellsX, g.cellsY, g.cellsZ);
-                    p[c] = double(glm::uvec3(x, y, z)[c]) / double(n[c] - 1);
-                    v[x + size_t(n.x) * (y + size_t(n.y) * z)] =
-                        float(std::sin(pi * p[c]) * std::cos(pi * p[(c + 1) % 3]) *
-                              (1.0 + 0.5 * std::sin(2.0 * pi * p[(c + 2) % 3])));
-                }
-    }
-    fluid::ReferenceSolver ref(options);
-    ref.setState(s);
-    ref.applyBoundaries();
-    ref.computeDivergence();
-    return ref.state();
-}
 
 struct TimeToTarget {
     std::string option;
@@ -403,7 +375,7 @@ int runBenchAccuracy(std::span<const std::string> args) {
                     tn);
         SolverOptions base;
         base.grid = {tn, tn, tn, 1.0f / float(tn)};
-        const FieldState input = smoothDivergence(base);
+        const FieldState input = fluid::smoothDivergentState(base);
         struct Candidate {
             std::string name;
             PressureSolver solver;

@@ -3,6 +3,9 @@
 #include "fluid/field_compare.h"
 #include "fluid/reference/reference_solver.h"
 
+#include <cmath>
+#include <numbers>
+
 namespace mfx::fluid {
 
 // A state on a grid twice as fine, restricted to `coarse`: pigment as the mean of the 8 fine
@@ -75,6 +78,31 @@ double divergenceLeft(const SolverOptions& options, const FieldState& state) {
     const std::vector<float> zero(state.divergence.size(), 0.0f);
     const double before = difference(state.divergence, zero).relL2; // ||div|| (zero's norm is 0)
     return before > 0.0 ? difference(after.divergence, zero).relL2 / before : 0.0;
+}
+
+FieldState smoothDivergentState(const SolverOptions& options) {
+    FieldState s = FieldState::zero(options.grid);
+    const GridShape& g = options.grid;
+    const double pi = std::numbers::pi;
+    for (int c = 0; c < 3; ++c) {
+        const glm::uvec3 n = faceExtent(g, c);
+        std::vector<float>& v = c == 0 ? s.velocityX : c == 1 ? s.velocityY : s.velocityZ;
+        for (uint32_t z = 0; z < n.z; ++z)
+            for (uint32_t y = 0; y < n.y; ++y)
+                for (uint32_t x = 0; x < n.x; ++x) {
+                    glm::dvec3 p =
+                        (glm::dvec3(x, y, z) + 0.5) / glm::dvec3(g.cellsX, g.cellsY, g.cellsZ);
+                    p[c] = double(glm::uvec3(x, y, z)[c]) / double(n[c] - 1);
+                    v[x + size_t(n.x) * (y + size_t(n.y) * z)] =
+                        float(std::sin(pi * p[c]) * std::cos(pi * p[(c + 1) % 3]) *
+                              (1.0 + 0.5 * std::sin(2.0 * pi * p[(c + 2) % 3])));
+                }
+    }
+    ReferenceSolver ref(options);
+    ref.setState(s);
+    ref.applyBoundaries();
+    ref.computeDivergence();
+    return ref.state();
 }
 
 } // namespace mfx::fluid

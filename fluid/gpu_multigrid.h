@@ -67,6 +67,11 @@ public:
     uint64_t memoryBytes() const;
 
 private:
+    // Rows (y) and layers (z) of a brick, the elements one invocation handles
+    // (shaders/pressure_solve_common.glsl, levelBrick).
+    static constexpr uint32_t kBrickRows = 4;
+    static constexpr uint32_t kBrickLayers = 4;
+
     enum Kernel {
         LoadPressureSystem,
         StorePressure,
