@@ -2,11 +2,11 @@
 
 #include "core/gpu/check.h"
 #include "core/gpu/context.h"
-#include "sim/scene_simulation.h"
 #include "render/effect_geometry.h"
 #include "render/render_target.h"
 #include "shaders/embedded.h"
 #include "shaders/shared/effect_draw.h"
+#include "sim/scene_simulation.h"
 
 #include <algorithm>
 #include <cstring>
@@ -67,10 +67,10 @@ AfterimagePass::AfterimagePass(const gpu::Context& ctx, const scene::Scene& scen
     for (size_t i = 0; i < scene.effects.size(); ++i) {
         const scene::EffectSpec& e = scene.effects[i];
         if (e.type != scene::EffectType::AfterimageSmear) continue;
-        std::optional<trajectory::Source> selected = effectSource(character, e);
-        if (!selected) continue;
-        Effect effect(MeshEffect(ctx, i, e, std::move(*selected), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
-                                 "afterimage"));
+        Result<trajectory::Source> selected = scene::effectSource(character, e);
+        if (!selected || selected.value().vertices.empty()) continue;
+        Effect effect(MeshEffect(ctx, i, e, std::move(selected).value(),
+                                 VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "afterimage"));
         const trajectory::Source& source = effect.source;
         const scene::AfterimageVariant variant = e.afterimage.variant;
         // Smith 2016, Sec. 4.1.1: one afterimage needs the last frame only; an arc through n

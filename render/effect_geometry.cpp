@@ -101,17 +101,6 @@ void drawBuiltTriangles(VkCommandBuffer cmd, gpu::Program& program, const gpu::B
     vkCmdDrawIndirect(cmd, counters.get(), 0, 1, sizeof(VkDrawIndirectCommand));
 }
 
-std::optional<trajectory::Source> effectSource(const anim::Character& character,
-                                               const scene::EffectSpec& e) {
-    trajectory::Selection selection;
-    selection.meshes = e.meshes;
-    selection.bones = e.bones;
-    selection.minBoneWeight = e.minBoneWeight;
-    Result<trajectory::Source> selected = trajectory::selectSource(character, selection);
-    if (!selected || selected.value().vertices.empty()) return std::nullopt;
-    return std::move(selected).value();
-}
-
 Welding weldByPosition(std::span<const shared::SkinVertexIn> vertices) {
     std::map<std::array<float, 3>, uint32_t> groups;
     Welding out;

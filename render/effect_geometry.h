@@ -8,6 +8,7 @@
 #include "core/anim/skin_vertices.h"
 #include "core/gpu/program.h"
 #include "core/gpu/resources.h"
+#include "core/scene/effect_source.h"
 #include "core/scene/scene.h"
 #include "core/trajectory/trajectory_source.h"
 #include "render/scene_camera.h"
@@ -20,11 +21,6 @@
 #include <vector>
 
 namespace mfx::render {
-
-// The bound vertices of effect `e` on `character` (its meshes, bones and minimum bone weight);
-// none when the selection fails or leaves no vertex (the simulation refuses such scenes first).
-std::optional<trajectory::Source> effectSource(const anim::Character& character,
-                                               const scene::EffectSpec& e);
 
 // Whether the effect at `index` in scene.effects is drawn: `shown` empty (all are) or non-zero at
 // that index.

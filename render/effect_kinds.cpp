@@ -1,12 +1,12 @@
 // The registry of effect passes (render/effect_kind_pass.h). Adding a kind of effect pass means
 // one line here; the order of the lines is the order they draw in.
 #include "core/scene/scene.h"
-#include "sim/scene_simulation.h"
 #include "render/afterimage_pass.h"
 #include "render/effect_kind_pass.h"
 #include "render/effect_pass.h"
 #include "render/silhouette_shell_pass.h"
 #include "render/swept_volume_pass.h"
+#include "sim/scene_simulation.h"
 
 #include <algorithm>
 

@@ -9,9 +9,9 @@
 
 #include "core/gpu/program.h"
 #include "core/gpu/resources.h"
-#include "sim/scene_simulation.h"
 #include "render/effect_kind_pass.h"
 #include "render/scene_camera.h"
+#include "sim/scene_simulation.h"
 
 #include <span>
 

@@ -16,8 +16,7 @@ void FrameRenderer::setShown(size_t effect, bool shown) {
     if (effect < shown_.size()) shown_[effect] = shown ? 1 : 0;
 }
 
-void FrameRenderer::record(VkCommandBuffer cmd, sim::SceneSimulation& simulation,
-                           uint32_t frame) {
+void FrameRenderer::record(VkCommandBuffer cmd, sim::SceneSimulation& simulation, uint32_t frame) {
     simulation.recordFrame(cmd, frame);
     recordFrame(cmd, simulation, simulation.frameTime(frame), &frame);
 }

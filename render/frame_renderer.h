@@ -5,11 +5,11 @@
 #pragma once
 
 #include "core/gpu/timer.h"
-#include "sim/scene_simulation.h"
 #include "render/character_pass.h"
 #include "render/effect_kind_pass.h"
 #include "render/render_target.h"
 #include "render/smoke_pass.h"
+#include "sim/scene_simulation.h"
 
 #include <memory>
 #include <string>

@@ -4,12 +4,12 @@
 
 namespace mfx::render {
 
-ScenePlayer::ScenePlayer(const gpu::Context& ctx, sim::SceneSimulation& simulation,
-                         uint32_t width, uint32_t height, VkSampleCountFlagBits samples)
+ScenePlayer::ScenePlayer(const gpu::Context& ctx, sim::SceneSimulation& simulation, uint32_t width,
+                         uint32_t height, VkSampleCountFlagBits samples)
     : ctx_(ctx), simulation_(&simulation), renderer_(ctx, simulation, width, height, samples) {}
 
 sim::SimulationFrameStats ScenePlayer::play(uint32_t frame,
-                                              const gpu::PrimitiveCounter* primitives) {
+                                            const gpu::PrimitiveCounter* primitives) {
     gpu::submitOneShot(ctx_, [&](VkCommandBuffer cmd) {
         if (primitives) primitives->begin(cmd);
         record(cmd, frame);

@@ -6,8 +6,8 @@
 #pragma once
 
 #include "core/gpu/timer.h"
-#include "sim/scene_simulation.h"
 #include "render/frame_renderer.h"
+#include "sim/scene_simulation.h"
 
 namespace mfx::render {
 
@@ -21,7 +21,7 @@ public:
     // Plays frame `frame` (frames in order, as the simulation requires): record, submit, wait,
     // finish. With `primitives`, the frame's primitives reaching the clipper are counted too.
     sim::SimulationFrameStats play(uint32_t frame,
-                                     const gpu::PrimitiveCounter* primitives = nullptr);
+                                   const gpu::PrimitiveCounter* primitives = nullptr);
 
     // The two halves of play() for a caller that submits itself (a window's frame): record the
     // simulation's frame `frame` and its drawing; after that submission finished, finish().

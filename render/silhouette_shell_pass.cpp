@@ -2,9 +2,9 @@
 
 #include "core/gpu/check.h"
 #include "core/gpu/context.h"
-#include "sim/scene_simulation.h"
 #include "shaders/embedded.h"
 #include "shaders/shared/effect_draw.h"
+#include "sim/scene_simulation.h"
 
 #include <algorithm>
 #include <cmath>
@@ -78,22 +78,22 @@ SilhouetteShellPass::SilhouetteShellPass(const gpu::Context& ctx, const scene::S
     for (size_t i = 0; i < scene.effects.size(); ++i) {
         const scene::EffectSpec& e = scene.effects[i];
         if (e.type != scene::EffectType::SilhouetteShell) continue;
-        std::optional<trajectory::Source> selected = effectSource(character, e);
-        if (!selected || selected->triangles.empty()) continue;
+        Result<trajectory::Source> selected = scene::effectSource(character, e);
+        if (!selected || selected.value().triangles.empty()) continue;
         // A triangle with two corners at one point has no edge to sweep: its strip would be a
         // line. Leaving such triangles out keeps every strip a surface.
         std::vector<uint32_t> kept;
-        const std::vector<uint32_t>& all = selected->triangles;
+        const std::vector<uint32_t>& all = selected.value().triangles;
         for (size_t t = 0; t + 2 < all.size(); t += 3) {
-            const glm::vec3 p0(selected->vertices[all[t]].position);
-            const glm::vec3 p1(selected->vertices[all[t + 1]].position);
-            const glm::vec3 p2(selected->vertices[all[t + 2]].position);
+            const glm::vec3 p0(selected.value().vertices[all[t]].position);
+            const glm::vec3 p1(selected.value().vertices[all[t + 1]].position);
+            const glm::vec3 p2(selected.value().vertices[all[t + 2]].position);
             if (p0 == p1 || p1 == p2 || p2 == p0) continue;
             kept.insert(kept.end(), all.begin() + ptrdiff_t(t), all.begin() + ptrdiff_t(t + 3));
         }
         if (kept.empty()) continue;
-        selected->triangles = std::move(kept);
-        Effect effect(MeshEffect(ctx, i, e, std::move(*selected), 0, "shell"));
+        selected.value().triangles = std::move(kept);
+        Effect effect(MeshEffect(ctx, i, e, std::move(selected).value(), 0, "shell"));
         const trajectory::Source& source = effect.source;
         const uint32_t n = effect.vertexCount;
         effect.triangleCount = uint32_t(source.triangles.size() / 3);

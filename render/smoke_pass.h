@@ -15,9 +15,9 @@
 
 #include "core/gpu/program.h"
 #include "core/gpu/resources.h"
-#include "sim/scene_simulation.h"
 #include "render/render_target.h"
 #include "render/scene_camera.h"
+#include "sim/scene_simulation.h"
 
 #include <array>
 #include <map>
@@ -57,9 +57,9 @@ public:
     //
     // The pass keeps one fluid buffer for the target's size and the look's resolution; a draw with
     // another size or resolution replaces it, so no earlier draw may still be executing then.
-    uint32_t draw(VkCommandBuffer cmd, RenderTarget& target,
-                  const sim::SceneSimulation& simulation, const SceneCamera& camera,
-                  std::span<const uint8_t> shown = {}, const SmokeLook& look = {});
+    uint32_t draw(VkCommandBuffer cmd, RenderTarget& target, const sim::SceneSimulation& simulation,
+                  const SceneCamera& camera, std::span<const uint8_t> shown = {},
+                  const SmokeLook& look = {});
 
     // One pigment volume (rgba32f, GENERAL layout) of `shape` whose low corner is at `origin`.
     struct Volume {

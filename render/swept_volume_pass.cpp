@@ -2,9 +2,9 @@
 
 #include "core/gpu/check.h"
 #include "core/gpu/context.h"
-#include "sim/scene_simulation.h"
 #include "shaders/embedded.h"
 #include "shaders/shared/effect_draw.h"
+#include "sim/scene_simulation.h"
 
 #include <algorithm>
 #include <array>
@@ -71,9 +71,9 @@ SweptVolumePass::SweptVolumePass(const gpu::Context& ctx, const scene::Scene& sc
     for (size_t i = 0; i < scene.effects.size(); ++i) {
         const scene::EffectSpec& e = scene.effects[i];
         if (e.type != scene::EffectType::SweptVolume) continue;
-        std::optional<trajectory::Source> selected = effectSource(character, e);
-        if (!selected) continue;
-        Effect effect(MeshEffect(ctx, i, e, std::move(*selected), 0, "swept"));
+        Result<trajectory::Source> selected = scene::effectSource(character, e);
+        if (!selected || selected.value().vertices.empty()) continue;
+        Effect effect(MeshEffect(ctx, i, e, std::move(selected).value(), 0, "swept"));
         const trajectory::Source& source = effect.source;
         const uint32_t n = effect.vertexCount;
         effect.triangleCount = uint32_t(source.triangles.size() / 3);

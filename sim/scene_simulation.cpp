@@ -1,5 +1,6 @@
 #include "sim/scene_simulation.h"
 
+#include "core/scene/effect_source.h"
 #include "core/scene/scene_fit.h"
 
 #include "core/anim/sampling.h"
@@ -85,18 +86,11 @@ Result<std::unique_ptr<SceneSimulation>> SceneSimulation::create(const gpu::Cont
         const scene::EffectSpec& e = sim->scene_.effects[i];
         const std::string where =
             sim->scene_.file + ": effects[" + std::to_string(i) + "] (\"" + e.name + "\"): ";
-        trajectory::Selection selection;
-        selection.meshes = e.meshes;
-        selection.bones = e.bones;
-        selection.minBoneWeight = e.minBoneWeight;
         TrajectoryEffect effect;
         effect.spec = &e;
         const bool surface =
             e.type == scene::EffectType::Smoke && e.emission == scene::Emission::Surface;
-        Result<trajectory::Source> selected =
-            surface ? trajectory::selectSurfaceSource(character, selection, e.surfaceStep,
-                                                      &effect.surface)
-                    : trajectory::selectSource(character, selection);
+        Result<trajectory::Source> selected = scene::effectSource(character, e, &effect.surface);
         if (!selected) return Error{where + selected.error().message};
         // The afterimage smear keeps its own per-vertex history in the renderer (it deforms the
         // mesh as drawn, render/afterimage_pass.h); it has no trajectory queue.
