@@ -3,7 +3,7 @@
 // mgpcg.cpp; Trottenberg, Oosterlee, Schueller, "Multigrid", 2001, ch. 2; McAdams, Sifakis,
 // Teran, "A Parallel Multigrid Poisson Solver for Fluids Simulation on Large Grids", SCA 2010;
 // Saad, "Iterative Methods for Sparse Linear Systems", 2003, alg. 9.1), recorded as dispatches of
-// the kernels in shaders/{load_pressure_system,relax_colour,compute_residual,restrict_residual,
+// the kernels in shaders/fluid/{load_pressure_system,relax_colour,compute_residual,restrict_residual,
 // prolong_correction,cycle_coarse_levels,remove_mean,apply_pressure_operator,update_cg_solution,
 // sum_cg_products,update_cg_direction,finish_reduction,store_pressure}.comp.
 #include "fluid/gpu_multigrid.h"
@@ -20,7 +20,7 @@ namespace mfx::fluid {
 
 namespace {
 
-// Partial-sum slots (shaders/pressure_partial_sums.glsl); finish_reduction reads a slot and the
+// Partial-sum slots (shaders/fluid/pressure_partial_sums.glsl); finish_reduction reads a slot and the
 // next one.
 constexpr uint32_t kSlotRhsSum = 0;           // sum b (its mean)
 constexpr uint32_t kSlotRhsSquares = 1;       // (b, b)
@@ -123,7 +123,7 @@ void GpuMultigrid::run(VkCommandBuffer cmd, Kernel kernel,
                        const shared::PressureDispatch& constants, Grid grid, bool indirect,
                        int gridLevel) {
     gpu::Program& prog = program(kernel);
-    // Every kernel binds the same resources (shaders/pressure_solve_common.glsl).
+    // Every kernel binds the same resources (shaders/fluid/pressure_solve_common.glsl).
     const gpu::DescriptorWrite writes[] = {
         gpu::bindBuffer(0, levelTable_),
         gpu::bindBuffer(1, axisCells_),

@@ -68,7 +68,7 @@ public:
 
 private:
     // Rows (y) and layers (z) of a brick, the elements one invocation handles
-    // (shaders/pressure_solve_common.glsl, levelBrick).
+    // (shaders/fluid/pressure_solve_common.glsl, levelBrick).
     static constexpr uint32_t kBrickRows = 4;
     static constexpr uint32_t kBrickLayers = 4;
 
@@ -120,7 +120,7 @@ private:
     void loadSystem(VkCommandBuffer cmd, int x, uint32_t sumsFlags);
 
     shared::PressureDispatch push(int level) const;
-    // Level l's bricks (shaders/pressure_solve_common.glsl), and the workgroups of a dispatch
+    // Level l's bricks (shaders/fluid/pressure_solve_common.glsl), and the workgroups of a dispatch
     // over them.
     glm::uvec3 levelBricks(size_t l) const;
     glm::uvec3 levelGroups(size_t l) const;
@@ -140,7 +140,7 @@ private:
     size_t fusedLevel_ = 0;
     // Coarse indices a prolongation brick reads along an axis, and fine indices a P^T
     // restriction brick reads along x and along y or z (specialization constants of
-    // shaders/pressure_multigrid.glsl, from the tables).
+    // shaders/fluid/pressure_multigrid.glsl, from the tables).
     int prolongSlots_ = 1;
     int restrictSlotsX_ = 1;
     int restrictSlotsYZ_ = 1;

@@ -14,7 +14,7 @@ namespace mfx::fluid {
 
 namespace {
 
-// Partial-sum slots per reduction (shaders/pressure_partial_sums.glsl; gpu_multigrid.cpp names
+// Partial-sum slots per reduction (shaders/fluid/pressure_partial_sums.glsl; gpu_multigrid.cpp names
 // them).
 constexpr uint32_t kSlots = 8;
 

@@ -1,4 +1,4 @@
-// Twin of shaders/segment_emitters.comp; keep the arithmetic the same.
+// Twin of shaders/fluid/segment_emitters.comp; keep the arithmetic the same.
 #include "fluid/segment_emitters.h"
 
 #include "shaders/embedded.h"

@@ -50,11 +50,11 @@ struct SmokeFields {
     gpu::Image vorticity;
     gpu::Image force; // vorticity confinement force per cell (xyz)
     // Where stages that write a whole field write it before it is copied into the field's image
-    // (shaders/fluid_common.glsl): one per velocity component, the first large enough for the
+    // (shaders/fluid/fluid_common.glsl): one per velocity component, the first large enough for the
     // pigment.
     std::array<gpu::Buffer, 3> scratch;
     // The Jacobi pressure solve's working copies, four cells per vec4
-    // (shaders/solve_pressure.comp): pressure (ping-pong) and divergence; packedSolve is false for
+    // (shaders/fluid/solve_pressure.comp): pressure (ping-pong) and divergence; packedSolve is false for
     // a grid too large for one storage buffer (placeholders then fill the unused bindings).
     std::array<gpu::Buffer, 2> packedPressure;
     gpu::Buffer packedDivergence;

@@ -1,12 +1,12 @@
 // The smoke solver on the GPU: a 3D MAC grid in storage images, one compute shader per stage
-// (shaders/<stage>.comp), the same stages and discretisation as the CPU reference
+// (shaders/fluid/<stage>.comp), the same stages and discretisation as the CPU reference
 // (fluid/reference/), written down in docs/fluid.md. One sub-step:
 //
 //   splatImpulses → advectVelocity → advectPigment → applyBuoyancy → vorticityConfinement →
 //   diffuseViscosity → applyBoundaries → computeDivergence → solvePressure → project →
 //   applyBoundaries
 //
-// solvePressure runs Jacobi sweeps here (shaders/solve_pressure.comp), or red-black Gauss-Seidel,
+// solvePressure runs Jacobi sweeps here (shaders/fluid/solve_pressure.comp), or red-black Gauss-Seidel,
 // multigrid or MGPCG (fluid/gpu_multigrid.h), as SolverOptions::pressureSolver asks.
 //
 // The fields are a SmokeFields (fluid/smoke_fields.h): r32f / rgba32f 3D storage images in GENERAL

@@ -73,7 +73,7 @@ gpu::Program& StagePrograms::get(std::string_view name, uint32_t target, uint32_
     desc.spirv = options_.storage == Storage::Float16 && !kernel->half.empty() ? kernel->half
                                                                                : kernel->spirv;
     desc.pushConstantSize = sizeof(shared::FluidDispatch);
-    // Constant ids as in shaders/fluid_common.glsl: the target, the six boundary kinds, the
+    // Constant ids as in shaders/fluid/fluid_common.glsl: the target, the six boundary kinds, the
     // integrator, then the workgroup shape (ids 8-10).
     desc.specialization = {target};
     for (const FaceBoundary& face : options_.boundaries)

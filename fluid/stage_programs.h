@@ -1,5 +1,5 @@
 // The compute programs of the smoke solver's stages, from one table: each kernel's name (its
-// shader file, shaders/<name>.comp), its SPIR-V for fp32 and fp16 storage, and which
+// shader file, shaders/fluid/<name>.comp), its SPIR-V for fp32 and fp16 storage, and which
 // specialization constants it takes beyond the common ones. The binding layout of every program
 // is read from its SPIR-V (core/gpu/spirv_bindings.h). Programs are compiled on first use: a
 // solver that never runs a stage never pays for its pipeline (on a CPU driver each compile costs

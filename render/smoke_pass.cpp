@@ -10,7 +10,7 @@ namespace mfx::render {
 
 namespace {
 
-constexpr uint32_t kBoxVertices = 36; // six faces, two triangles each (shaders/smoke.vert)
+constexpr uint32_t kBoxVertices = 36; // six faces, two triangles each (shaders/render/smoke.vert)
 constexpr VkFormat kFluidColorFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkFormat kFluidDistanceFormat = VK_FORMAT_R32_SFLOAT;
 

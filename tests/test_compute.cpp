@@ -6,6 +6,7 @@
 #include "core/gpu/timer.h"
 #include "shaders/embedded.h"
 #include "shaders/shared/selftest.h"
+#include "test_shaders/embedded.h"
 #include "tests/gpu_test.h"
 
 #include <bit>
@@ -20,7 +21,7 @@ using ComputeTest = GpuTest;
 gpu::Program makeSaxpy(const gpu::Context& ctx) {
     gpu::ComputeProgramDesc desc;
     desc.name = "selftest_saxpy";
-    desc.spirv = shaders::selftest_saxpy_comp;
+    desc.spirv = test_shaders::selftest_saxpy_comp;
     desc.pushConstantSize = sizeof(shared::SaxpyConstants);
     return gpu::createComputeProgram(ctx, desc);
 }
@@ -102,7 +103,7 @@ TEST_F(ComputeTest, FillsA3DStorageImageWithSpecializedPattern) {
 
     gpu::ComputeProgramDesc programDesc;
     programDesc.name = "selftest_fill_volume";
-    programDesc.spirv = shaders::selftest_fill_volume_comp;
+    programDesc.spirv = test_shaders::selftest_fill_volume_comp;
     programDesc.pushConstantSize = sizeof(shared::FillVolumeConstants);
     const float scale = 2.0f;
     programDesc.specialization = {std::bit_cast<uint32_t>(scale)};
@@ -190,7 +191,7 @@ TEST_F(ComputeTest, Sampled3DImageFiltersTrilinearly) {
 
     gpu::ComputeProgramDesc programDesc;
     programDesc.name = "selftest_sample_volume";
-    programDesc.spirv = shaders::selftest_sample_volume_comp;
+    programDesc.spirv = test_shaders::selftest_sample_volume_comp;
     programDesc.pushConstantSize = sizeof(shared::SampleVolumeConstants);
     gpu::Program program = gpu::createComputeProgram(ctx(), programDesc);
     gpu::submitOneShot(ctx(), [&](VkCommandBuffer cmd) {

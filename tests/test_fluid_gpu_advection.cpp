@@ -1,4 +1,4 @@
-// The limited MacCormack and BFECC advection on the GPU (shaders/advect_velocity.comp and
+// The limited MacCormack and BFECC advection on the GPU (shaders/fluid/advect_velocity.comp and
 // advect_pigment.comp, in passes) against the CPU reference (fluid/reference/maccormack.cpp,
 // bfecc.cpp): each advection stage alone from the same random input, relative L2 at most 1e-5 as
 // for every stage (fp32 against fp64); 100 whole steps of a scenario within the whole-step bound;

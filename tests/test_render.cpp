@@ -6,6 +6,7 @@
 #include "render/render_target.h"
 #include "shaders/embedded.h"
 #include "shaders/shared/selftest.h"
+#include "test_shaders/embedded.h"
 #include "tests/gpu_test.h"
 #include "tests/test_scene_pass.h"
 
@@ -159,9 +160,9 @@ TEST_F(RenderTest, GeometryStageExpandsPointsIntoQuads) {
     ASSERT_TRUE(ctx().features().geometryShader) << ctx().info().name << " lacks geometry shaders";
     gpu::GraphicsProgramDesc desc;
     desc.name = "selftest_points_to_quads";
-    desc.vertex = shaders::selftest_points_to_quads_vert;
-    desc.geometry = shaders::selftest_points_to_quads_geom;
-    desc.fragment = shaders::selftest_points_to_quads_frag;
+    desc.vertex = test_shaders::selftest_points_to_quads_vert;
+    desc.geometry = test_shaders::selftest_points_to_quads_geom;
+    desc.fragment = test_shaders::selftest_points_to_quads_frag;
     desc.pushConstantSize = sizeof(shared::PointsToQuadsConstants);
     desc.vertexStride = sizeof(glm::vec2);
     desc.attributes = {{0, VK_FORMAT_R32G32_SFLOAT, 0}};

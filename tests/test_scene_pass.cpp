@@ -2,6 +2,7 @@
 
 #include "core/gpu/context.h"
 #include "shaders/embedded.h"
+#include "test_shaders/embedded.h"
 
 #include <cmath>
 #include <cstring>
@@ -85,8 +86,8 @@ shared::TestSceneFrame frameConstants(const TestSceneView& view, float aspect) {
 TestScenePass::TestScenePass(const gpu::Context& ctx) {
     gpu::GraphicsProgramDesc desc;
     desc.name = "test_scene";
-    desc.vertex = shaders::test_scene_vert;
-    desc.fragment = shaders::test_scene_frag;
+    desc.vertex = test_shaders::test_scene_vert;
+    desc.fragment = test_shaders::test_scene_frag;
     desc.pushConstantSize = sizeof(shared::TestSceneObject);
     desc.vertexStride = sizeof(TestSceneVertex);
     desc.attributes = {{0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(TestSceneVertex, position)},

@@ -2,6 +2,7 @@
 // shaders declare, the union of stages, and refusals of what is not SPIR-V.
 #include "core/gpu/spirv_bindings.h"
 #include "shaders/embedded.h"
+#include "test_shaders/embedded.h"
 
 #include <gtest/gtest.h>
 
@@ -22,21 +23,21 @@ void expectBinding(const BindingDesc& b, uint32_t binding, VkDescriptorType type
 
 TEST(SpirvBindings, StorageBuffersOfAComputeShader) {
     const auto bindings =
-        gpu::spirvBindings(shaders::selftest_saxpy_comp, VK_SHADER_STAGE_COMPUTE_BIT, "saxpy");
+        gpu::spirvBindings(test_shaders::selftest_saxpy_comp, VK_SHADER_STAGE_COMPUTE_BIT, "saxpy");
     ASSERT_EQ(bindings.size(), 2u);
     expectBinding(bindings[0], 0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT);
     expectBinding(bindings[1], 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT);
 }
 
 TEST(SpirvBindings, StorageImage) {
-    const auto bindings =
-        gpu::spirvBindings(shaders::selftest_fill_volume_comp, VK_SHADER_STAGE_COMPUTE_BIT, "fill");
+    const auto bindings = gpu::spirvBindings(test_shaders::selftest_fill_volume_comp,
+                                             VK_SHADER_STAGE_COMPUTE_BIT, "fill");
     ASSERT_EQ(bindings.size(), 1u);
     expectBinding(bindings[0], 0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT);
 }
 
 TEST(SpirvBindings, CombinedImageSamplerAndBuffers) {
-    const auto bindings = gpu::spirvBindings(shaders::selftest_sample_volume_comp,
+    const auto bindings = gpu::spirvBindings(test_shaders::selftest_sample_volume_comp,
                                              VK_SHADER_STAGE_COMPUTE_BIT, "sample");
     ASSERT_EQ(bindings.size(), 3u);
     expectBinding(bindings[0], 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
@@ -46,7 +47,7 @@ TEST(SpirvBindings, CombinedImageSamplerAndBuffers) {
 }
 
 TEST(SpirvBindings, UniformBufferImagesAndBufferOfASolverStage) {
-    // shaders/project.comp: the parameters uniform, velocity and pressure, the face buffer out.
+    // shaders/fluid/project.comp: the parameters uniform, velocity and pressure, the face buffer out.
     const auto bindings =
         gpu::spirvBindings(shaders::project_comp, VK_SHADER_STAGE_COMPUTE_BIT, "project");
     ASSERT_EQ(bindings.size(), 6u);
@@ -58,7 +59,7 @@ TEST(SpirvBindings, UniformBufferImagesAndBufferOfASolverStage) {
 }
 
 TEST(SpirvBindings, OnlyWhatTheShaderDeclares) {
-    // shaders/store_half.comp reads no parameters: no binding 0.
+    // shaders/fluid/store_half.comp reads no parameters: no binding 0.
     const auto bindings =
         gpu::spirvBindings(shaders::store_half_comp, VK_SHADER_STAGE_COMPUTE_BIT, "store_half");
     ASSERT_EQ(bindings.size(), 2u);
@@ -91,6 +92,9 @@ TEST(SpirvBindings, EveryEmbeddedShaderReads) {
     for (const shaders::EmbeddedShader& shader : shaders::allShaders())
         EXPECT_NO_THROW(gpu::spirvBindings(shader.spirv, VK_SHADER_STAGE_ALL, shader.fileName))
             << shader.fileName;
+    for (const test_shaders::EmbeddedShader& shader : test_shaders::allShaders())
+        EXPECT_NO_THROW(gpu::spirvBindings(shader.spirv, VK_SHADER_STAGE_ALL, shader.fileName))
+            << shader.fileName;
 }
 
 TEST(SpirvBindings, WhatIsNotSpirvIsRefused) {
@@ -99,8 +103,8 @@ TEST(SpirvBindings, WhatIsNotSpirvIsRefused) {
     const std::vector<uint32_t> text{0x6c6c6568, 0x6f77206f, 0x00646c72, 0, 0, 0};
     EXPECT_THROW(gpu::spirvBindings(text, VK_SHADER_STAGE_COMPUTE_BIT, "text"), std::logic_error);
     // A valid header followed by an instruction that claims more words than there are.
-    std::vector<uint32_t> truncated(shaders::selftest_saxpy_comp.begin(),
-                                    shaders::selftest_saxpy_comp.begin() + 5);
+    std::vector<uint32_t> truncated(test_shaders::selftest_saxpy_comp.begin(),
+                                    test_shaders::selftest_saxpy_comp.begin() + 5);
     truncated.push_back((40u << 16) | 71u);
     EXPECT_THROW(gpu::spirvBindings(truncated, VK_SHADER_STAGE_COMPUTE_BIT, "truncated"),
                  std::logic_error);

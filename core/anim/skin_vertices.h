@@ -1,5 +1,5 @@
 // The skinning pass on the GPU: dual quaternion skinning with scale of a vertex buffer by a joint
-// palette, both in storage buffers (shaders/skin_vertices.comp; CPU twin: anim::skinDualQuat).
+// palette, both in storage buffers (shaders/core/skin_vertices.comp; CPU twin: anim::skinDualQuat).
 // Each frame the caller writes a palette for t (and one for t - dt) and records one dispatch per
 // palette.
 #pragma once

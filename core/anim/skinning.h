@@ -1,6 +1,6 @@
 // Skinning on the CPU: dual quaternion linear blending with scale (docs/architecture.md "Formulas";
 // Kavan et al. 2008, with scale split off and blended linearly) and linear blend skinning beside it
-// for comparison. The GPU pass (core/anim/skin_vertices.h, shaders/skin_vertices.comp) is the twin
+// for comparison. The GPU pass (core/anim/skin_vertices.h, shaders/core/skin_vertices.comp) is the twin
 // of skinDualQuat and uses the same palette.
 #pragma once
 
@@ -28,7 +28,7 @@ struct SkinnedVertex {
 // The transform of one vertex: the influences' dual quaternions blended by weight, each first
 // aligned with the first influence of positive weight (the sign rule), normalised; their scales
 // blended linearly. No positive weight gives the identity. (A per-vertex transform has a joint's
-// form.) GPU twin: blendJoints in shaders/dual_quat.glsl.
+// form.) GPU twin: blendJoints in shaders/core/dual_quat.glsl.
 DualQuatJoint blendJoints(const std::vector<DualQuatJoint>& palette, glm::uvec4 joints,
                           glm::vec4 weights);
 

@@ -1,4 +1,4 @@
-// Twin of shaders/trajectory_segment.glsl; keep the order of operations the same.
+// Twin of shaders/core/trajectory_segment.glsl; keep the order of operations the same.
 #include "core/trajectory/build_segment.h"
 
 #include <algorithm>
@@ -9,7 +9,7 @@ namespace mfx::trajectory {
 
 namespace {
 
-// The shader's arithmetic (shaders/dual_quat.glsl), spelled the same way: quaternions as
+// The shader's arithmetic (shaders/core/dual_quat.glsl), spelled the same way: quaternions as
 // (x, y, z, w) vectors, rotation by two cross products.
 glm::vec4 asVec4(const glm::quat& q) {
     return {q.x, q.y, q.z, q.w};

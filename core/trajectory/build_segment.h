@@ -1,4 +1,4 @@
-// The CPU twin of the trajectory shaders (shaders/trajectory_segment.glsl, build_segment.comp,
+// The CPU twin of the trajectory shaders (shaders/core/trajectory_segment.glsl, build_segment.comp,
 // build_trail.comp): the same segment, computed the same way, for tests and for anyone who wants
 // to see what the GPU writes. Xu et al., "Real-time Character Motion Effect Enhancement Based on
 // Fluid Simulation", section 3.2 (split trajectory, eq. 3 for the sub-samples, Algorithm 1 for the
@@ -31,7 +31,7 @@ float attenuation(float tau, const SegmentParameters& parameters);
 
 // (1 - tau) a + tau b with the sign rule (b negated when the rotation parts point apart),
 // normalised; scales blended linearly. Eq. 3 of Xu et al.; the GPU twin is interpolateTransform
-// in shaders/dual_quat.glsl.
+// in shaders/core/dual_quat.glsl.
 anim::DualQuatJoint interpolateTransform(const anim::DualQuatJoint& a, const anim::DualQuatJoint& b,
                                          float tau);
 

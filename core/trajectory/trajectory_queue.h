@@ -2,7 +2,7 @@
 // Every frame one new segment, between the previous frame's pose and this one, is written into
 // the next slot and the oldest live one is dropped, so the trail's cost per frame does not grow
 // with its length. No readback on the frame path: the palette goes in through the command buffer,
-// the segment is built by a compute pass (shaders/build_segment.comp) and stays on the GPU.
+// the segment is built by a compute pass (shaders/core/build_segment.comp) and stays on the GPU.
 //
 // Compute shaders writing storage buffers, not a geometry shader with transform feedback: every
 // invocation writes a fixed S + 1 vertices (no geometry-output limit to respect), the samples of
@@ -15,7 +15,7 @@
 //     wall (Algorithm 3), indexing the same samples.
 //
 // The unsplit baseline (method Unsplit, for measurement only) rebuilds every live segment every
-// frame from the palettes of the last L + 1 frames (shaders/build_trail.comp). Method StreamOutput
+// frame from the palettes of the last L + 1 frames (shaders/core/build_trail.comp). Method StreamOutput
 // builds the split segment with a geometry shader and transform feedback
 // (shaders/build_segment_xfb.*), also for measurement.
 #pragma once

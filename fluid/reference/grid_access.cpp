@@ -1,5 +1,5 @@
 // Index, fetch and trilinear sampling rules of the MAC grid (docs/fluid.md, "Grid access"),
-// mirrored line by line in shaders/fluid_common.glsl.
+// mirrored line by line in shaders/fluid/fluid_common.glsl.
 #include "fluid/reference/reference_solver.h"
 
 #include <algorithm>

@@ -1,7 +1,7 @@
 // The CPU reference of the smoke solver, on Eigen, in double precision: the yardstick the GPU
 // solver is compared against, stage by stage. Each stage is a member function in a file of its
 // own, named like the compute shader of the same stage (fluid/reference/advect_velocity.cpp ↔
-// shaders/advect_velocity.comp), and follows docs/fluid.md exactly. Clear before fast.
+// shaders/fluid/advect_velocity.comp), and follows docs/fluid.md exactly. Clear before fast.
 //
 // Stam, "Stable Fluids" (SIGGRAPH 1999) for the semi-Lagrangian advection and projection;
 // Bridson, "Fluid Simulation for Computer Graphics" (2nd ed., 2015), ch. 2-5, for the MAC grid,

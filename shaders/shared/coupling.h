@@ -1,5 +1,5 @@
 // Structures of the coupling from trajectory segments to the smoke solver
-// (fluid/segment_emitters.h, shaders/segment_emitters.comp), shared by GLSL and C++.
+// (fluid/segment_emitters.h, shaders/fluid/segment_emitters.comp), shared by GLSL and C++.
 #ifndef MFX_SHARED_COUPLING_H
 #define MFX_SHARED_COUPLING_H
 

@@ -1,6 +1,6 @@
 // Structures of the smoke pass (render/smoke_pass.h): the pigment bounds found on the GPU
-// (shaders/pigment_bounds.comp) and the push constants of the march and the composite
-// (shaders/smoke.vert, smoke.frag, smoke_composite.frag).
+// (shaders/render/pigment_bounds.comp) and the push constants of the march and the composite
+// (shaders/render/smoke.vert, smoke.frag, smoke_composite.frag).
 #ifndef MFX_SHARED_SMOKE_DRAW_H
 #define MFX_SHARED_SMOKE_DRAW_H
 

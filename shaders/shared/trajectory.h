@@ -1,5 +1,5 @@
-// Structures of the trajectory passes (core/trajectory/, shaders/build_segment.comp and
-// shaders/build_trail.comp), shared by GLSL and C++.
+// Structures of the trajectory passes (core/trajectory/, shaders/core/build_segment.comp and
+// shaders/core/build_trail.comp), shared by GLSL and C++.
 #ifndef MFX_SHARED_TRAJECTORY_H
 #define MFX_SHARED_TRAJECTORY_H
 

@@ -1,5 +1,5 @@
 // vorticityConfinement, third pass: each face not on a wall gains dt times the mean confinement
-// force (shaders/confinement_force.comp) of the two cells beside it (docs/fluid.md; Fedkiw, Stam,
+// force (shaders/fluid/confinement_force.comp) of the two cells beside it (docs/fluid.md; Fedkiw, Stam,
 // Jensen 2001, eq. 11). Twin: fluid/reference/vorticity_confinement.cpp. One dispatch over the
 // largest face extent (cells + 1 along each axis): invocation q writes face q of each component
 // that has one (unchanged on walls) to that component's buffer, which the solver copies into the

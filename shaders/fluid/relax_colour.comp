@@ -2,7 +2,7 @@
 // equation A p = b: every cell of colour `step` (0 red: i + j + k even, 1 black) takes
 //   p_q <- (sum_s c_s p_n(s) + b_q) / sum_s c_s   (0 where nothing is counted),
 // reading the values as they stood before the half-sweep; the other colour is copied (see
-// relaxBrick in shaders/pressure_multigrid.glsl). Twin: PressureGrid::relaxColour in
+// relaxBrick in shaders/fluid/pressure_multigrid.glsl). Twin: PressureGrid::relaxColour in
 // fluid/reference/red_black_gauss_seidel.cpp (Trottenberg, Oosterlee, Schueller, "Multigrid",
 // 2001, ch. 2).
 //

@@ -13,7 +13,7 @@ layout(push_constant) uniform Draw {
 // The fluid buffer has 1 / kDivisor of the picture's width and height (SmokeResolution).
 layout(constant_id = 0) const int kDivisor = 2;
 
-// The pigment's box in world units (shaders/smoke.vert).
+// The pigment's box in world units (shaders/render/smoke.vert).
 layout(location = 0) flat in vec3 boxLow;
 layout(location = 1) flat in vec3 boxHigh;
 

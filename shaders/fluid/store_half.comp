@@ -1,6 +1,6 @@
 // storeHalf: a whole field written x-fastest into a storage buffer of 32-bit floats (one per
 // texel; four with MFX_STORE_RGBA) stored into its binary16 image, each value rounded to nearest
-// even first (shaders/field_formats.glsl). With fp16 storage (docs/fluid.md, "fp16 storage") it replaces the
+// even first (shaders/fluid/field_formats.glsl). With fp16 storage (docs/fluid.md, "fp16 storage") it replaces the
 // buffer-to-image copy that follows every stage writing a whole field: a copy cannot convert.
 #version 450
 #extension GL_GOOGLE_include_directive : require

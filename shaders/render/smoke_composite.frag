@@ -6,7 +6,7 @@
 // upsampling of J. Jansen and L. Bavoil, "Fast Rendering of Opacity-Mapped Particles using
 // DirectX 11 Tessellation and Mixed Resolutions", NVIDIA whitepaper). Smoke thus keeps the
 // character's and the floor's silhouettes at full resolution, without halos, and stays smooth
-// elsewhere. Drawn over the same box as the march (shaders/smoke.vert).
+// elsewhere. Drawn over the same box as the march (shaders/render/smoke.vert).
 //
 // "Close" allows what a smooth surface changes over the distance from the pixel to the texel's
 // sample (up to kDivisor + 1/2 pixels along each axis, at the pixel's own slope, taken on the

@@ -3,7 +3,7 @@
 // of microseconds each), so these levels' smoothing, residuals, transfers and coarsest solve run
 // as phases of one dispatch, separated by workgroup barriers, each invocation taking every
 // (workgroup size)-th brick. Each phase is the function the single-level kernels run
-// (shaders/pressure_multigrid.glsl), so the result is theirs. Twin: Multigrid::cycle in
+// (shaders/fluid/pressure_multigrid.glsl), so the result is theirs. Twin: Multigrid::cycle in
 // fluid/reference/multigrid.cpp (Trottenberg, Oosterlee, Schueller, "Multigrid", 2001, ch. 2;
 // McAdams, Sifakis, Teran 2010).
 //

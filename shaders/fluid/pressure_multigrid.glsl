@@ -1,4 +1,4 @@
-// The operations of a multigrid V-cycle on one brick of a level (shaders/pressure_solve_common.glsl,
+// The operations of a multigrid V-cycle on one brick of a level (shaders/fluid/pressure_solve_common.glsl,
 // levelBrick), as functions of the level and the vectors they read and write: shared by the
 // kernel that runs each one over a whole level (relax_colour, compute_residual,
 // apply_pressure_operator, restrict_residual, prolong_correction) and by cycle_coarse_levels,

@@ -2,7 +2,7 @@
 // by R0 (each coarse cell sums the residuals of the fine cells it covers: the multigrid solver's
 // V-cycle) or by P^T (each fine residual goes to the coarse cells it is interpolated from, with
 // the interpolation weights: the MGPCG preconditioner's); the coarse correction starts at 0 (see
-// shaders/pressure_multigrid.glsl). Twin: Multigrid::restrictSum and Multigrid::restrictTranspose
+// shaders/fluid/pressure_multigrid.glsl). Twin: Multigrid::restrictSum and Multigrid::restrictTranspose
 // in fluid/reference/multigrid.cpp (Trottenberg et al. 2001, ch. 2; McAdams, Sifakis, Teran
 // 2010).
 //

@@ -23,7 +23,7 @@ layout(std430, binding = 2) writeonly buffer Regions {
     SplatRegion regions[4];
 };
 
-// The splat's workgroup shape (SolverOptions::workgroup), as in shaders/fluid_common.glsl.
+// The splat's workgroup shape (SolverOptions::workgroup), as in shaders/fluid/fluid_common.glsl.
 layout(constant_id = 8) const uint kGroupX = 8;
 layout(constant_id = 9) const uint kGroupY = 8;
 layout(constant_id = 10) const uint kGroupZ = 1;

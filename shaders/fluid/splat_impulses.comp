@@ -1,6 +1,6 @@
 // splatImpulses: emitters pull velocity and pigment towards their own values (docs/fluid.md).
 // Twin: fluid/reference/splat_impulses.cpp. One dispatch per target (velocity x, y, z, pigment).
-// It runs over the region emitterBounds wrote (an indirect dispatch; shaders/emitter_bounds.comp).
+// It runs over the region emitterBounds wrote (an indirect dispatch; shaders/fluid/emitter_bounds.comp).
 // Each workgroup first marks the emitters that reach its block of the grid, so a cell loops over
 // those only (a scene's hundreds of segment emitters touch a few blocks each).
 #version 450

@@ -2,7 +2,7 @@
 // marches (and rasterises) only that box rather than the whole grid. It changes where the march
 // runs, never what it computes beyond the threshold: the cells below it add about half an 8-bit
 // level of opacity at most to a ray (render/smoke_pass.h, SmokeLook::pigmentThreshold). Follows
-// shaders/emitter_bounds.comp, which bounds the splat the same way.
+// shaders/fluid/emitter_bounds.comp, which bounds the splat the same way.
 //
 // One invocation per cell: each workgroup merges its cells' box in shared memory, then one
 // invocation merges it into the global box with atomicMin/atomicMax on uints (the buffer is reset

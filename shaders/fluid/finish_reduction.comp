@@ -1,5 +1,5 @@
 // finishReduction: adds up the partial sums of slots `slot` and `slot` + 1 (written by the
-// workgroups of a level-0 dispatch, shaders/pressure_partial_sums.glsl) and takes the scalar step
+// workgroups of a level-0 dispatch, shaders/fluid/pressure_partial_sums.glsl) and takes the scalar step
 // `step` (MFX_REDUCE_*) of the solve: a mean, or the scalars of a preconditioned conjugate
 // gradient iteration and its stopping test. Twin: the scalar arithmetic of solvePressureMgpcg in
 // fluid/reference/mgpcg.cpp (Saad, "Iterative Methods for Sparse Linear Systems", 2003, alg. 9.1)

@@ -12,7 +12,7 @@
 // other, so that along a silhouette both the near and the far surface have texels marched for
 // them (the checkerboard min/max depth downsample common in mixed-resolution rendering).
 //
-// The ray is marched only inside the box of cells that hold pigment (shaders/smoke.vert), with
+// The ray is marched only inside the box of cells that hold pigment (shaders/render/smoke.vert), with
 // its samples at the same places as a march over the whole grid would put them, so the box moving
 // from frame to frame does not move the samples.
 #version 450

@@ -1,5 +1,5 @@
 // The smoke pass's proxy: the faces of the box of cells that hold pigment (found on the GPU by
-// shaders/pigment_bounds.comp), grown by one cell as trilinear samples reach that far, so only the
+// shaders/render/pigment_bounds.comp), grown by one cell as trilinear samples reach that far, so only the
 // pixels whose ray meets pigment run the fragment stage. Only the faces turned away from the eye
 // are drawn: every ray that meets the box leaves it through exactly one of them, also from inside
 // the box, so each such pixel is shaded once. An empty box draws nothing (every vertex at one
