@@ -133,24 +133,14 @@ AfterimagePass::AfterimagePass(const gpu::Context& ctx, const scene::Scene& scen
             gpu::bindBuffer(8, effect.decided),    gpu::bindBuffer(9, effect.copies)};
     }
 
-    gpu::GraphicsProgramDesc smear =
-        trajectoryDrawDesc("afterimage_smear", VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, samples, true);
-    smear.vertex = shaders::effect_volume_vert;
-    smear.fragment = shaders::effect_volume_frag;
-    smearDraw_ = gpu::createGraphicsProgram(ctx, smear);
-    gpu::GraphicsProgramDesc lines =
-        trajectoryDrawDesc("afterimage_lines", VK_PRIMITIVE_TOPOLOGY_LINE_LIST, samples, false);
-    lines.vertex = shaders::effect_lines_vert;
-    lines.geometry = shaders::effect_lines_geom;
-    lines.fragment = shaders::effect_lines_frag;
-    lineDraw_ = gpu::createGraphicsProgram(ctx, lines);
-    gpu::GraphicsProgramDesc arcs =
-        trajectoryDrawDesc("afterimage_arcs", VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, samples, false);
-    arcs.vertex = shaders::effect_volume_vert;
-    arcs.fragment = shaders::effect_volume_frag;
-    arcDraw_ = gpu::createGraphicsProgram(ctx, arcs);
-    frame_ = gpu::createBuffer(ctx, sizeof(shared::SceneFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
-                               gpu::MemoryUsage::Upload, "afterimage frame");
+    // The smear is by default an opaque copy of the mesh: it writes depth.
+    smearDraw_ =
+        trajectoryDrawProgram(ctx, "afterimage_smear", TrajectoryShape::Triangles, samples, true);
+    lineDraw_ =
+        trajectoryDrawProgram(ctx, "afterimage_lines", TrajectoryShape::Ribbons, samples, false);
+    arcDraw_ =
+        trajectoryDrawProgram(ctx, "afterimage_arcs", TrajectoryShape::Triangles, samples, false);
+    frame_ = sceneFrameBuffer(ctx, "afterimage frame");
 }
 
 void AfterimagePass::advance(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,

@@ -2,6 +2,7 @@
 
 #include "core/anim/sampling.h"
 #include "render/render_target.h"
+#include "shaders/embedded.h"
 #include "shaders/shared/effect_draw.h"
 #include "shaders/shared/trajectory.h"
 
@@ -22,8 +23,8 @@ gpu::Program storageComputeProgram(const gpu::Context& ctx, const char* name,
     return gpu::createComputeProgram(ctx, desc);
 }
 
-gpu::GraphicsProgramDesc trajectoryDrawDesc(const char* name, VkPrimitiveTopology topology,
-                                            VkSampleCountFlagBits samples, bool depthWrite) {
+gpu::Program trajectoryDrawProgram(const gpu::Context& ctx, const char* name, TrajectoryShape shape,
+                                   VkSampleCountFlagBits samples, bool depthWrite) {
     gpu::GraphicsProgramDesc desc;
     desc.name = name;
     desc.pushConstantSize = sizeof(shared::EffectDraw);
@@ -31,14 +32,37 @@ gpu::GraphicsProgramDesc trajectoryDrawDesc(const char* name, VkPrimitiveTopolog
     desc.attributes = {{0, VK_FORMAT_R32G32B32A32_SFLOAT, 0},
                        {1, VK_FORMAT_R32G32B32A32_SFLOAT, 16},
                        {2, VK_FORMAT_R32G32B32A32_SFLOAT, 32}};
-    desc.topology = topology;
+    switch (shape) {
+    case TrajectoryShape::Triangles:
+        desc.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+        desc.vertex = shaders::effect_volume_vert;
+        desc.fragment = shaders::effect_volume_frag;
+        break;
+    case TrajectoryShape::Ribbons:
+        desc.topology = VK_PRIMITIVE_TOPOLOGY_LINE_LIST;
+        desc.vertex = shaders::effect_lines_vert;
+        desc.geometry = shaders::effect_lines_geom;
+        desc.fragment = shaders::effect_lines_frag;
+        break;
+    case TrajectoryShape::Sprites:
+        desc.topology = VK_PRIMITIVE_TOPOLOGY_POINT_LIST;
+        desc.vertex = shaders::effect_particles_vert;
+        desc.geometry = shaders::effect_particles_geom;
+        desc.fragment = shaders::effect_particles_frag;
+        break;
+    }
     desc.colorFormats = {kColorFormat};
     desc.depthFormat = kDepthFormat;
     desc.depthTest = true;
     desc.depthWrite = depthWrite;
     desc.blend = gpu::BlendMode::PremultipliedAlpha;
     desc.samples = samples;
-    return desc;
+    return gpu::createGraphicsProgram(ctx, desc);
+}
+
+gpu::Buffer sceneFrameBuffer(const gpu::Context& ctx, const char* name) {
+    return gpu::createBuffer(ctx, sizeof(shared::SceneFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                             gpu::MemoryUsage::Upload, name);
 }
 
 gpu::Buffer effectStorage(const gpu::Context& ctx, VkDeviceSize bytes, VkBufferUsageFlags extra,

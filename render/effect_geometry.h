@@ -40,11 +40,18 @@ const Effect* findEffect(const std::vector<Effect>& effects, size_t index) {
 gpu::Program storageComputeProgram(const gpu::Context& ctx, const char* name,
                                    std::span<const uint32_t> spirv, uint32_t pushConstantSize);
 
+// What a trajectory draw makes of its vertices (shaders/render/effect_*): lit triangles, line
+// pieces widened into camera-facing ribbons, or points as round sprites.
+enum class TrajectoryShape { Triangles, Ribbons, Sprites };
+
 // A pipeline drawing shared::TrajectoryVertex as the effect pass does (render/effect_pass.cpp):
 // the scene frame at binding 0, shared::EffectDraw as push constants, premultiplied alpha, depth
-// tested; shaders left for the caller to set.
-gpu::GraphicsProgramDesc trajectoryDrawDesc(const char* name, VkPrimitiveTopology topology,
-                                            VkSampleCountFlagBits samples, bool depthWrite);
+// tested, the effect shaders of `shape`.
+gpu::Program trajectoryDrawProgram(const gpu::Context& ctx, const char* name, TrajectoryShape shape,
+                                   VkSampleCountFlagBits samples, bool depthWrite);
+
+// The host-visible uniform a pass writes shared::SceneFrame into each draw.
+gpu::Buffer sceneFrameBuffer(const gpu::Context& ctx, const char* name);
 
 // A device-local storage buffer (at least 64 bytes, so an empty one is still valid) that can also
 // be copied to and from, with `extra` usage.

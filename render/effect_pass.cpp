@@ -11,25 +11,12 @@
 namespace mfx::render {
 
 EffectPass::EffectPass(const gpu::Context& ctx, VkSampleCountFlagBits samples) : ctx_(ctx) {
-    gpu::GraphicsProgramDesc volume =
-        trajectoryDrawDesc("effect_volume", VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, samples, false);
-    volume.vertex = shaders::effect_volume_vert;
-    volume.fragment = shaders::effect_volume_frag;
-    volumes_ = gpu::createGraphicsProgram(ctx, volume);
-    gpu::GraphicsProgramDesc line =
-        trajectoryDrawDesc("effect_lines", VK_PRIMITIVE_TOPOLOGY_LINE_LIST, samples, false);
-    line.vertex = shaders::effect_lines_vert;
-    line.geometry = shaders::effect_lines_geom;
-    line.fragment = shaders::effect_lines_frag;
-    lines_ = gpu::createGraphicsProgram(ctx, line);
-    gpu::GraphicsProgramDesc particle =
-        trajectoryDrawDesc("effect_particles", VK_PRIMITIVE_TOPOLOGY_POINT_LIST, samples, false);
-    particle.vertex = shaders::effect_particles_vert;
-    particle.geometry = shaders::effect_particles_geom;
-    particle.fragment = shaders::effect_particles_frag;
-    particles_ = gpu::createGraphicsProgram(ctx, particle);
-    frame_ = gpu::createBuffer(ctx, sizeof(shared::SceneFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
-                               gpu::MemoryUsage::Upload, "effect frame");
+    volumes_ =
+        trajectoryDrawProgram(ctx, "effect_volume", TrajectoryShape::Triangles, samples, false);
+    lines_ = trajectoryDrawProgram(ctx, "effect_lines", TrajectoryShape::Ribbons, samples, false);
+    particles_ =
+        trajectoryDrawProgram(ctx, "effect_particles", TrajectoryShape::Sprites, samples, false);
+    frame_ = sceneFrameBuffer(ctx, "effect frame");
 }
 
 uint32_t EffectPass::draw(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,

@@ -143,13 +143,9 @@ SilhouetteShellPass::SilhouetteShellPass(const gpu::Context& ctx, const scene::S
     }
 
     // Translucent and unsorted, like the swept volume: the strips do not write depth.
-    gpu::GraphicsProgramDesc shell =
-        trajectoryDrawDesc("silhouette_shell", VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, samples, false);
-    shell.vertex = shaders::effect_volume_vert;
-    shell.fragment = shaders::effect_volume_frag;
-    shellDraw_ = gpu::createGraphicsProgram(ctx, shell);
-    frame_ = gpu::createBuffer(ctx, sizeof(shared::SceneFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
-                               gpu::MemoryUsage::Upload, "shell frame");
+    shellDraw_ =
+        trajectoryDrawProgram(ctx, "silhouette_shell", TrajectoryShape::Triangles, samples, false);
+    frame_ = sceneFrameBuffer(ctx, "shell frame");
 }
 
 void SilhouetteShellPass::advance(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,

@@ -4,12 +4,15 @@
 // "Formulas"), so it meets the floor and the character softly.
 //
 // Per grid, all on the GPU (the CPU never waits for it):
-// - pigmentBounds (shaders/render/pigment_bounds.comp) finds the box of cells that hold pigment; the
-//   march and the composite rasterise only that box's faces (shaders/render/smoke.vert), so pixels whose
-//   ray misses the pigment cost nothing and an empty grid draws nothing;
-// - the march (shaders/render/smoke.frag) writes the smoke's premultiplied colour and the scene distance
+// - pigmentBounds (shaders/render/pigment_bounds.comp) finds the box of cells that hold pigment;
+// the
+//   march and the composite rasterise only that box's faces (shaders/render/smoke.vert), so pixels
+//   whose ray misses the pigment cost nothing and an empty grid draws nothing;
+// - the march (shaders/render/smoke.frag) writes the smoke's premultiplied colour and the scene
+// distance
 //   it marched to into a fluid buffer, at half the picture's width and height by default;
-// - the composite (shaders/render/smoke_composite.frag) lays the fluid buffer over the picture with a
+// - the composite (shaders/render/smoke_composite.frag) lays the fluid buffer over the picture with
+// a
 //   depth-aware upsample, so the smoke keeps the silhouettes of what is in front of it.
 #pragma once
 

@@ -115,13 +115,9 @@ SweptVolumePass::SweptVolumePass(const gpu::Context& ctx, const scene::Scene& sc
 
     // Translucent and unsorted, as the paper draws it (Sec. 5.1: few of its polygons overlap), so
     // it does not write depth.
-    gpu::GraphicsProgramDesc volume =
-        trajectoryDrawDesc("swept_volume", VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, samples, false);
-    volume.vertex = shaders::effect_volume_vert;
-    volume.fragment = shaders::effect_volume_frag;
-    volumeDraw_ = gpu::createGraphicsProgram(ctx, volume);
-    frame_ = gpu::createBuffer(ctx, sizeof(shared::SceneFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
-                               gpu::MemoryUsage::Upload, "swept frame");
+    volumeDraw_ =
+        trajectoryDrawProgram(ctx, "swept_volume", TrajectoryShape::Triangles, samples, false);
+    frame_ = sceneFrameBuffer(ctx, "swept frame");
 }
 
 void SweptVolumePass::advance(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
