@@ -5,22 +5,16 @@
 namespace mfx::fluid {
 
 void ReferenceSolver::applyBoundaries() {
-    for (int c = 0; c < 3; ++c) {
-        const glm::ivec3 n = faceCount(c);
-        for (int k = 0; k < n.z; ++k)
-            for (int j = 0; j < n.y; ++j)
-                for (int i = 0; i < n.x; ++i) {
-                    const glm::ivec3 q(i, j, k);
-                    double& value = velocity_[c][Eigen::Index(faceIndex(c, q))];
-                    if (wallNormalFace(c, q)) {
-                        value = 0.0;
-                    } else if (options_.periodic(c) && q[c] == cells_[c]) {
-                        glm::ivec3 first = q;
-                        first[c] = 0;
-                        value = velocity_[c][Eigen::Index(faceIndex(c, first))];
-                    }
-                }
-    }
+    forEachFace([&](int c, glm::ivec3 q) {
+        double& value = velocity_[c][Eigen::Index(faceIndex(c, q))];
+        if (wallNormalFace(c, q)) {
+            value = 0.0;
+        } else if (options_.periodic(c) && q[c] == cells_[c]) {
+            glm::ivec3 first = q;
+            first[c] = 0;
+            value = velocity_[c][Eigen::Index(faceIndex(c, first))];
+        }
+    });
 }
 
 } // namespace mfx::fluid

@@ -15,19 +15,13 @@ void ReferenceSolver::project() {
         }
         return 0.0;
     };
-    for (int c = 0; c < 3; ++c) {
-        const glm::ivec3 n = faceCount(c);
-        for (int k = 0; k < n.z; ++k)
-            for (int j = 0; j < n.y; ++j)
-                for (int i = 0; i < n.x; ++i) {
-                    const glm::ivec3 q(i, j, k);
-                    if (wallNormalFace(c, q)) continue;
-                    glm::ivec3 below = q;
-                    below[c] -= 1;
-                    velocity_[c][Eigen::Index(faceIndex(c, q))] -=
-                        (pressureAt(q, c) - pressureAt(below, c)) / h_;
-                }
-    }
+    forEachFace([&](int c, glm::ivec3 q) {
+        if (wallNormalFace(c, q)) return;
+        glm::ivec3 below = q;
+        below[c] -= 1;
+        velocity_[c][Eigen::Index(faceIndex(c, q))] -=
+            (pressureAt(q, c) - pressureAt(below, c)) / h_;
+    });
 }
 
 } // namespace mfx::fluid

@@ -120,6 +120,18 @@ public:
     size_t faceIndex(int c, glm::ivec3 index) const;
     size_t cellIndex(glm::ivec3 index) const;
     glm::ivec3 faceCount(int c) const;
+    // Calls visit(c, q) for every face q of every component c: x faces, then y, then z, each x
+    // fastest (the order every face loop of the reference runs in).
+    template <class Visit>
+    void forEachFace(Visit visit) const {
+        for (int c = 0; c < 3; ++c) {
+            const glm::ivec3 n = faceCount(c);
+            for (int k = 0; k < n.z; ++k)
+                for (int j = 0; j < n.y; ++j)
+                    for (int i = 0; i < n.x; ++i)
+                        visit(c, glm::ivec3(i, j, k));
+        }
+    }
     glm::ivec3 cellCount() const { return cells_; }
 
 private:

@@ -21,21 +21,15 @@ double emitterWeight(const shared::FluidEmitter& e, glm::dvec3 x, double dt) {
 
 void ReferenceSolver::splatImpulses(std::span<const shared::FluidEmitter> emitters) {
     if (emitters.empty()) return;
-    for (int c = 0; c < 3; ++c) {
-        const glm::ivec3 n = faceCount(c);
-        for (int k = 0; k < n.z; ++k)
-            for (int j = 0; j < n.y; ++j)
-                for (int i = 0; i < n.x; ++i) {
-                    const glm::ivec3 q(i, j, k);
-                    if (wallNormalFace(c, q)) continue;
-                    double& value = velocity_[c][Eigen::Index(faceIndex(c, q))];
-                    const glm::dvec3 x = facePosition(c, q);
-                    for (const shared::FluidEmitter& e : emitters) {
-                        const double a = emitterWeight(e, x, dt());
-                        value += a * (double(e.velocityStrength[c]) - value);
-                    }
-                }
-    }
+    forEachFace([&](int c, glm::ivec3 q) {
+        if (wallNormalFace(c, q)) return;
+        double& value = velocity_[c][Eigen::Index(faceIndex(c, q))];
+        const glm::dvec3 x = facePosition(c, q);
+        for (const shared::FluidEmitter& e : emitters) {
+            const double a = emitterWeight(e, x, dt());
+            value += a * (double(e.velocityStrength[c]) - value);
+        }
+    });
     for (int k = 0; k < cells_.z; ++k)
         for (int j = 0; j < cells_.y; ++j)
             for (int i = 0; i < cells_.x; ++i) {

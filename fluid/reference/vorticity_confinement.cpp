@@ -59,27 +59,21 @@ void ReferenceSolver::vorticityConfinement() {
     };
 
     // applyVorticityForce
-    for (int c = 0; c < 3; ++c) {
-        const glm::ivec3 n = faceCount(c);
-        for (int k = 0; k < n.z; ++k)
-            for (int j = 0; j < n.y; ++j)
-                for (int i = 0; i < n.x; ++i) {
-                    const glm::ivec3 q(i, j, k);
-                    if (wallNormalFace(c, q)) continue;
-                    glm::ivec3 below = q;
-                    below[c] -= 1;
-                    // Cells outside the grid are clamped or wrapped, as fetchCell does.
-                    auto resolve = [&](glm::ivec3 cell) {
-                        for (int a = 0; a < 3; ++a)
-                            cell[a] = boundary(a, false) == Boundary::Periodic
-                                          ? ((cell[a] % cells_[a]) + cells_[a]) % cells_[a]
-                                          : std::clamp(cell[a], 0, cells_[a] - 1);
-                        return cell;
-                    };
-                    const double f = 0.5 * (force(resolve(below))[c] + force(resolve(q))[c]);
-                    velocity_[c][Eigen::Index(faceIndex(c, q))] += dt() * f;
-                }
-    }
+    forEachFace([&](int c, glm::ivec3 q) {
+        if (wallNormalFace(c, q)) return;
+        glm::ivec3 below = q;
+        below[c] -= 1;
+        // Cells outside the grid are clamped or wrapped, as fetchCell does.
+        auto resolve = [&](glm::ivec3 cell) {
+            for (int a = 0; a < 3; ++a)
+                cell[a] = boundary(a, false) == Boundary::Periodic
+                              ? ((cell[a] % cells_[a]) + cells_[a]) % cells_[a]
+                              : std::clamp(cell[a], 0, cells_[a] - 1);
+            return cell;
+        };
+        const double f = 0.5 * (force(resolve(below))[c] + force(resolve(q))[c]);
+        velocity_[c][Eigen::Index(faceIndex(c, q))] += dt() * f;
+    });
 }
 
 } // namespace mfx::fluid
