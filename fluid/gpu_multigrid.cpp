@@ -3,7 +3,8 @@
 // mgpcg.cpp; Trottenberg, Oosterlee, Schueller, "Multigrid", 2001, ch. 2; McAdams, Sifakis,
 // Teran, "A Parallel Multigrid Poisson Solver for Fluids Simulation on Large Grids", SCA 2010;
 // Saad, "Iterative Methods for Sparse Linear Systems", 2003, alg. 9.1), recorded as dispatches of
-// the kernels in shaders/fluid/{load_pressure_system,relax_colour,compute_residual,restrict_residual,
+// the kernels in
+// shaders/fluid/{load_pressure_system,relax_colour,compute_residual,restrict_residual,
 // prolong_correction,cycle_coarse_levels,remove_mean,apply_pressure_operator,update_cg_solution,
 // sum_cg_products,update_cg_direction,finish_reduction,store_pressure}.comp.
 #include "fluid/gpu_multigrid.h"
@@ -20,8 +21,8 @@ namespace mfx::fluid {
 
 namespace {
 
-// Partial-sum slots (shaders/fluid/pressure_partial_sums.glsl); finish_reduction reads a slot and the
-// next one.
+// Partial-sum slots (shaders/fluid/pressure_partial_sums.glsl); finish_reduction reads a slot and
+// the next one.
 constexpr uint32_t kSlotRhsSum = 0;           // sum b (its mean)
 constexpr uint32_t kSlotRhsSquares = 1;       // (b, b)
 constexpr uint32_t kSlotResidualSquares = 2;  // (r, r), CG's first residual
@@ -123,22 +124,30 @@ void GpuMultigrid::run(VkCommandBuffer cmd, Kernel kernel,
                        const shared::PressureDispatch& constants, Grid grid, bool indirect,
                        int gridLevel) {
     gpu::Program& prog = program(kernel);
-    // Every kernel binds the same resources (shaders/fluid/pressure_solve_common.glsl).
-    const gpu::DescriptorWrite writes[] = {
-        gpu::bindBuffer(0, levelTable_),
-        gpu::bindBuffer(1, axisCells_),
-        gpu::bindBuffer(2, restrictions_),
-        gpu::bindBuffer(3, coarsestMatrix_),
-        gpu::bindBuffer(4, vectors_),
-        gpu::bindBuffer(5, vectors_),
-        gpu::bindBuffer(6, partials_),
-        gpu::bindBuffer(7, scalars_),
-        gpu::bindBuffer(8, arguments_),
-        gpu::bindImage(9, *divergence_, VK_IMAGE_LAYOUT_GENERAL),
-        gpu::bindImage(10, *pressure_, VK_IMAGE_LAYOUT_GENERAL),
-        gpu::bindBuffer(11, *out_),
-    };
-    prog.bind(cmd, writes);
+    // Every kernel binds the same resources (shaders/fluid/pressure_solve_common.glsl) with the
+    // same push constants, so their layouts are compatible: the resources are pushed with the
+    // solve's first dispatch and stay bound for the rest (a solve of many small dispatches would
+    // otherwise spend its time pushing them again).
+    if (resourcesPushed_) {
+        prog.bindPipeline(cmd);
+    } else {
+        const gpu::DescriptorWrite writes[] = {
+            gpu::bindBuffer(0, levelTable_),
+            gpu::bindBuffer(1, axisCells_),
+            gpu::bindBuffer(2, restrictions_),
+            gpu::bindBuffer(3, coarsestMatrix_),
+            gpu::bindBuffer(4, vectors_),
+            gpu::bindBuffer(5, vectors_),
+            gpu::bindBuffer(6, partials_),
+            gpu::bindBuffer(7, scalars_),
+            gpu::bindBuffer(8, arguments_),
+            gpu::bindImage(9, *divergence_, VK_IMAGE_LAYOUT_GENERAL),
+            gpu::bindImage(10, *pressure_, VK_IMAGE_LAYOUT_GENERAL),
+            gpu::bindBuffer(11, *out_),
+        };
+        prog.bind(cmd, writes);
+        resourcesPushed_ = true;
+    }
     prog.push(cmd, constants);
     ++dispatches_;
     const size_t levelCount = levels_.size();
@@ -178,6 +187,7 @@ uint32_t GpuMultigrid::record(VkCommandBuffer cmd, const gpu::Image& divergence,
     pressure_ = &pressure;
     out_ = &out;
     dispatches_ = 0;
+    resourcesPushed_ = false; // another program may have pushed its own since the last solve
     switch (options_.pressureSolver) {
     case PressureSolver::RedBlackGaussSeidel:
         solveRedBlack(cmd);

@@ -164,6 +164,7 @@ private:
     const gpu::Image* pressure_ = nullptr;
     const gpu::Buffer* out_ = nullptr;
     uint32_t dispatches_ = 0;
+    bool resourcesPushed_ = false; // by this record()'s first dispatch
 };
 
 } // namespace mfx::fluid

@@ -343,6 +343,10 @@ void Program::bind(VkCommandBuffer cmd, std::span<const DescriptorWrite> writes)
                          vkWrites);
 }
 
+void Program::bindPipeline(VkCommandBuffer cmd) const {
+    vkCmdBindPipeline(cmd, bindPoint_, pipeline_.get());
+}
+
 void Program::push(VkCommandBuffer cmd, const void* data, uint32_t size) const {
     if (size != pushConstantSize_)
         throw std::logic_error("program " + name_ + ": pushed " + std::to_string(size) +

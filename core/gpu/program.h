@@ -99,6 +99,10 @@ public:
     void bind(VkCommandBuffer cmd, std::initializer_list<DescriptorWrite> writes) const {
         bind(cmd, std::span<const DescriptorWrite>(writes.begin(), writes.size()));
     }
+    // Binds the pipeline alone, keeping the resources pushed last: only right after bind(cmd,
+    // writes) of a program with the same bindings and push constants in the same command buffer
+    // (a compatible layout), with nothing pushed or bound in between by another program.
+    void bindPipeline(VkCommandBuffer cmd) const;
     // Pushes `size` bytes; must equal the declared push constant size.
     void push(VkCommandBuffer cmd, const void* data, uint32_t size) const;
     template <typename T>
