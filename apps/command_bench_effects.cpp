@@ -10,8 +10,8 @@
 
 #include "core/gpu/commands.h"
 #include "core/gpu/context.h"
-#include "sim/scene_simulation.h"
 #include "render/scene_player.h"
+#include "sim/scene_simulation.h"
 
 #include <algorithm>
 #include <cstdio>

@@ -7,8 +7,8 @@
 #include "apps/progress.h"
 
 #include "core/gpu/commands.h"
-#include "sim/scene_simulation.h"
 #include "render/scene_player.h"
+#include "sim/scene_simulation.h"
 
 #include <algorithm>
 #include <chrono>

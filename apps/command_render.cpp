@@ -4,9 +4,9 @@
 #include "apps/progress.h"
 
 #include "core/gpu/commands.h"
-#include "sim/scene_simulation.h"
 #include "render/image_output.h"
 #include "render/scene_player.h"
+#include "sim/scene_simulation.h"
 
 #include <cstdio>
 #include <cstdlib>

@@ -10,11 +10,11 @@
 #include "core/gpu/commands.h"
 #include "core/gpu/resources.h"
 #include "core/gpu/swapchain.h"
-#include "sim/scene_simulation.h"
 #include "render/frame_renderer.h"
 #include "render/image_output.h"
 #include "render/scene_player.h"
 #include "render/text_overlay.h"
+#include "sim/scene_simulation.h"
 
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>

@@ -14,8 +14,8 @@ namespace mfx::fluid {
 
 namespace {
 
-// Partial-sum slots per reduction (shaders/fluid/pressure_partial_sums.glsl; gpu_multigrid.cpp names
-// them).
+// Partial-sum slots per reduction (shaders/fluid/pressure_partial_sums.glsl; gpu_multigrid.cpp
+// names them).
 constexpr uint32_t kSlots = 8;
 
 // The levels of at most this many bricks (16^3 cells) are cycled in one dispatch of one

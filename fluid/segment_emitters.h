@@ -1,8 +1,8 @@
 // The coupling of motion to smoke: the newest trajectory segment of a smoke effect becomes emitter
 // records (position in the grid's frame, impulse velocity, colour as pigment, strength weighted by
 // the segment's attenuation) in a GPU buffer the solver's splat reads (SmokeSolver::
-// setEmitterBuffer). A compute pass, shaders/fluid/segment_emitters.comp; segmentEmitters is its CPU
-// twin.
+// setEmitterBuffer). A compute pass, shaders/fluid/segment_emitters.comp; segmentEmitters is its
+// CPU twin.
 #pragma once
 
 #include "core/gpu/program.h"

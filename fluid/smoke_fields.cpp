@@ -84,8 +84,8 @@ SmokeFields::SmokeFields(const gpu::Context& ctx, const SolverOptions& options)
         pressure[i] = makeImage(cells, scalarFormat(options), "pressure");
     }
     divergence = makeImage(cells, VK_FORMAT_R32_SFLOAT, "divergence");
-    // Four x-consecutive cells per vec4 (shaders/fluid/solve_pressure.comp). A grid too large for one
-    // storage buffer solves on the r32f images alone (placeholders fill the unused bindings).
+    // Four x-consecutive cells per vec4 (shaders/fluid/solve_pressure.comp). A grid too large for
+    // one storage buffer solves on the r32f images alone (placeholders fill the unused bindings).
     VkDeviceSize packedBytes = VkDeviceSize((cells.x + kPressureBrickX - 1) / kPressureBrickX) *
                                cells.y * cells.z * 4 * sizeof(float);
     packedSolve = packedBytes <= ctx.limits().maxStorageBufferRange;
@@ -97,8 +97,8 @@ SmokeFields::SmokeFields(const gpu::Context& ctx, const SolverOptions& options)
                                          gpu::MemoryUsage::DeviceLocal, "packed divergence");
     vorticity = makeImage(cells, VK_FORMAT_R32G32B32A32_SFLOAT, "vorticity");
     force = makeImage(cells, VK_FORMAT_R32G32B32A32_SFLOAT, "confinement force");
-    // Stages that write a whole field write it here first (shaders/fluid/fluid_common.glsl): one buffer
-    // per velocity component, the first also large enough for four floats per cell.
+    // Stages that write a whole field write it here first (shaders/fluid/fluid_common.glsl): one
+    // buffer per velocity component, the first also large enough for four floats per cell.
     VkDeviceSize faceFloats = 0;
     for (int c = 0; c < 3; ++c) {
         const glm::uvec3 n = faceExtent(options.grid, c);

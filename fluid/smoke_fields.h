@@ -54,8 +54,9 @@ struct SmokeFields {
     // pigment.
     std::array<gpu::Buffer, 3> scratch;
     // The Jacobi pressure solve's working copies, four cells per vec4
-    // (shaders/fluid/solve_pressure.comp): pressure (ping-pong) and divergence; packedSolve is false for
-    // a grid too large for one storage buffer (placeholders then fill the unused bindings).
+    // (shaders/fluid/solve_pressure.comp): pressure (ping-pong) and divergence; packedSolve is
+    // false for a grid too large for one storage buffer (placeholders then fill the unused
+    // bindings).
     std::array<gpu::Buffer, 2> packedPressure;
     gpu::Buffer packedDivergence;
     bool packedSolve = true;

@@ -348,8 +348,8 @@ void SmokeSolver::solvePressure(VkCommandBuffer cmd) {
         barrier(cmd);
     }
     // Bricks of 4 x kPressureRows x kPressureLayers cells. Between the first and the last sweep
-    // pressure and divergence live packed (shaders/fluid/solve_pressure.comp): the first sweep reads
-    // the live r32f image, the last writes the other one.
+    // pressure and divergence live packed (shaders/fluid/solve_pressure.comp): the first sweep
+    // reads the live r32f image, the last writes the other one.
     const uint32_t sweeps = options_.jacobiIterations;
     const glm::uvec3 bricks((f.cells.x + kPressureBrickX - 1) / kPressureBrickX,
                             (f.cells.y + kPressureRows - 1) / kPressureRows,

@@ -6,8 +6,8 @@
 //   diffuseViscosity → applyBoundaries → computeDivergence → solvePressure → project →
 //   applyBoundaries
 //
-// solvePressure runs Jacobi sweeps here (shaders/fluid/solve_pressure.comp), or red-black Gauss-Seidel,
-// multigrid or MGPCG (fluid/gpu_multigrid.h), as SolverOptions::pressureSolver asks.
+// solvePressure runs Jacobi sweeps here (shaders/fluid/solve_pressure.comp), or red-black
+// Gauss-Seidel, multigrid or MGPCG (fluid/gpu_multigrid.h), as SolverOptions::pressureSolver asks.
 //
 // The fields are a SmokeFields (fluid/smoke_fields.h): r32f / rgba32f 3D storage images in GENERAL
 // layout. A stage that rewrites a whole field writes it into a storage buffer, which is then

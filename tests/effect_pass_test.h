@@ -5,8 +5,8 @@
 
 #include "core/gpu/commands.h"
 #include "core/scene/scene.h"
-#include "sim/scene_simulation.h"
 #include "shaders/shared/skinning.h"
+#include "sim/scene_simulation.h"
 #include "tests/gpu_test.h"
 
 #include <cstdint>

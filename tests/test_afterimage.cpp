@@ -4,10 +4,10 @@
 // refusals. The scenes are small (the fighter's sword) and run a few frames.
 #include "core/gpu/commands.h"
 #include "core/scene/scene.h"
-#include "sim/scene_simulation.h"
 #include "render/afterimage_pass.h"
 #include "render/frame_renderer.h"
 #include "render/render_target.h"
+#include "sim/scene_simulation.h"
 #include "tests/effect_pass_test.h"
 
 #include <algorithm>

@@ -1,11 +1,11 @@
 // The effect passes over the scene pass: each drawn effect changes the picture where its trail
 // is, and writes the picture for a look.
 #include "core/gpu/commands.h"
-#include "sim/scene_simulation.h"
 #include "render/character_pass.h"
 #include "render/effect_pass.h"
 #include "render/image_output.h"
 #include "render/render_target.h"
+#include "sim/scene_simulation.h"
 #include "tests/gpu_test.h"
 
 #include <glm/gtc/matrix_transform.hpp>

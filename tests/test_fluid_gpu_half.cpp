@@ -1,6 +1,7 @@
 // fp16 storage on the GPU (binary16 images for velocity, pressure and pigment;
-// shaders/fluid/field_formats.glsl) against the reference's fp16 model (fluid/reference/half_storage.cpp:
-// the same values rounded to the nearest binary16 wherever the GPU stores them).
+// shaders/fluid/field_formats.glsl) against the reference's fp16 model
+// (fluid/reference/half_storage.cpp: the same values rounded to the nearest binary16 wherever the
+// GPU stores them).
 //
 // The bound. The GPU computes a stage in fp32 and the reference in fp64; both then round to
 // binary16. Where the two results straddle a rounding midpoint they land on neighbouring binary16

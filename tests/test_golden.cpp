@@ -7,9 +7,9 @@
 
 #include "core/gpu/commands.h"
 #include "core/scene/scene.h"
-#include "sim/scene_simulation.h"
 #include "render/frame_renderer.h"
 #include "render/image_output.h"
+#include "sim/scene_simulation.h"
 
 #include <algorithm>
 #include <cmath>

@@ -24,7 +24,7 @@ scene::Scene parseScene(const std::string& text) {
 }
 
 std::unique_ptr<sim::SceneSimulation> simulate(const gpu::Context& ctx, const scene::Scene& s,
-                                                 const anim::Character& character) {
+                                               const anim::Character& character) {
     auto created = sim::SceneSimulation::create(ctx, s, character);
     EXPECT_TRUE(created.ok()) << created.error().message;
     return created ? std::move(created).value() : nullptr;

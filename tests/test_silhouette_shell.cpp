@@ -5,8 +5,8 @@
 // small (the fighter's kicking leg) and run a few frames.
 #include "core/gpu/commands.h"
 #include "core/scene/scene.h"
-#include "sim/scene_simulation.h"
 #include "render/silhouette_shell_pass.h"
+#include "sim/scene_simulation.h"
 #include "tests/effect_pass_test.h"
 
 #include <algorithm>

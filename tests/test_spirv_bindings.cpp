@@ -47,7 +47,8 @@ TEST(SpirvBindings, CombinedImageSamplerAndBuffers) {
 }
 
 TEST(SpirvBindings, UniformBufferImagesAndBufferOfASolverStage) {
-    // shaders/fluid/project.comp: the parameters uniform, velocity and pressure, the face buffer out.
+    // shaders/fluid/project.comp: the parameters uniform, velocity and pressure, the face buffer
+    // out.
     const auto bindings =
         gpu::spirvBindings(shaders::project_comp, VK_SHADER_STAGE_COMPUTE_BIT, "project");
     ASSERT_EQ(bindings.size(), 6u);

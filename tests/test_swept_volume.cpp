@@ -5,8 +5,8 @@
 // (the fighter's sword) and run a few frames.
 #include "core/gpu/commands.h"
 #include "core/scene/scene.h"
-#include "sim/scene_simulation.h"
 #include "render/swept_volume_pass.h"
+#include "sim/scene_simulation.h"
 #include "tests/effect_pass_test.h"
 
 #include <cmath>

@@ -1,7 +1,7 @@
 // Skinning on the CPU: dual quaternion linear blending with scale (docs/architecture.md "Formulas";
 // Kavan et al. 2008, with scale split off and blended linearly) and linear blend skinning beside it
-// for comparison. The GPU pass (core/anim/skin_vertices.h, shaders/core/skin_vertices.comp) is the twin
-// of skinDualQuat and uses the same palette.
+// for comparison. The GPU pass (core/anim/skin_vertices.h, shaders/core/skin_vertices.comp) is the
+// twin of skinDualQuat and uses the same palette.
 #pragma once
 
 #include "core/anim/character.h"

@@ -15,8 +15,8 @@
 //     wall (Algorithm 3), indexing the same samples.
 //
 // The unsplit baseline (method Unsplit, for measurement only) rebuilds every live segment every
-// frame from the palettes of the last L + 1 frames (shaders/core/build_trail.comp). Method StreamOutput
-// builds the split segment with a geometry shader and transform feedback
+// frame from the palettes of the last L + 1 frames (shaders/core/build_trail.comp). Method
+// StreamOutput builds the split segment with a geometry shader and transform feedback
 // (shaders/build_segment_xfb.*), also for measurement.
 #pragma once
 

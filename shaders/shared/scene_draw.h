@@ -1,5 +1,5 @@
-// Structures of the scene pass (render/character_pass.h, shaders/render/character.vert/.frag), shared by
-// GLSL and C++.
+// Structures of the scene pass (render/character_pass.h, shaders/render/character.vert/.frag),
+// shared by GLSL and C++.
 #ifndef MFX_SHARED_SCENE_DRAW_H
 #define MFX_SHARED_SCENE_DRAW_H
 

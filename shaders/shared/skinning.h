@@ -1,5 +1,5 @@
-// Structures of the skinning pass (core/anim/skin_vertices.h, shaders/core/skin_vertices.comp), shared
-// by GLSL and C++.
+// Structures of the skinning pass (core/anim/skin_vertices.h, shaders/core/skin_vertices.comp),
+// shared by GLSL and C++.
 #ifndef MFX_SHARED_SKINNING_H
 #define MFX_SHARED_SKINNING_H
 
