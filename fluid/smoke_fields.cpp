@@ -30,6 +30,15 @@ bool isHalf(VkFormat format) {
     return format == VK_FORMAT_R16_SFLOAT || format == VK_FORMAT_R16G16B16A16_SFLOAT;
 }
 
+void fieldBarrier(VkCommandBuffer cmd) {
+    const VkPipelineStageFlags2 stages =
+        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
+    gpu::memoryBarrier(
+        cmd, stages, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT, stages,
+        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
+            VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT);
+}
+
 uint16_t toHalfBits(float v) {
     uint32_t bits = 0;
     std::memcpy(&bits, &v, sizeof bits);
@@ -129,13 +138,7 @@ SmokeFields::SmokeFields(const gpu::Context& ctx, const SolverOptions& options)
         clear(divergence);
         clear(vorticity);
         clear(force);
-        const VkPipelineStageFlags2 stages =
-            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
-        gpu::memoryBarrier(
-            cmd, stages, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
-            stages,
-            VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
-                VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT);
+        fieldBarrier(cmd);
     });
 }
 

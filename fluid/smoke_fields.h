@@ -35,6 +35,10 @@ bool isHalf(VkFormat format);
 uint16_t toHalfBits(float v);
 float fromHalfBits(uint16_t h);
 
+// Records the dependency between the fields' writes (compute stores, transfers) and every later
+// read or write of them: what separates the solver's dispatches and copies.
+void fieldBarrier(VkCommandBuffer cmd);
+
 // Every field lives in a 3D storage image in GENERAL layout for the whole of its life, starting
 // at rest. Velocity, pigment and pressure ping-pong between two images; current* says which is
 // live.
@@ -63,10 +67,6 @@ struct SmokeFields {
     int currentVelocity = 0;
     int currentPigment = 0;
     int currentPressure = 0;
-
-    const std::array<gpu::Image, 3>& liveVelocity() const {
-        return velocity[size_t(currentVelocity)];
-    }
 
     // Uploads / reads back the live fields (waits for the GPU).
     void upload(const gpu::Context& ctx, const FieldState& state);

@@ -103,15 +103,6 @@ void SmokeSolver::writeParameters() {
     std::memcpy(parameters_.mapped, &parameters, sizeof(parameters));
 }
 
-void SmokeSolver::barrier(VkCommandBuffer cmd) const {
-    const VkPipelineStageFlags2 stages =
-        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
-    gpu::memoryBarrier(
-        cmd, stages, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT, stages,
-        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
-            VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT);
-}
-
 void SmokeSolver::dispatch(VkCommandBuffer cmd, gpu::Program& program,
                            std::span<const gpu::DescriptorWrite> writes, glm::uvec3 extent) const {
     program.bind(cmd, writes);
@@ -129,14 +120,14 @@ void SmokeSolver::copyToImages(
     for (const auto& pair : fields)
         (isHalf(pair.second->format) ? converted : copies).push_back(pair);
     if (!converted.empty()) {
-        barrier(cmd);
+        fieldBarrier(cmd);
         for (const auto& [buffer, image] : converted) {
             const bool rgba = image->format == VK_FORMAT_R16G16B16A16_SFLOAT;
             const gpu::DescriptorWrite writes[] = {gpu::bindBuffer(1, *buffer), storage(2, *image)};
             dispatch(cmd, programs_.get(rgba ? "store_half_rgba" : "store_half"), writes,
                      glm::uvec3(image->extent.width, image->extent.height, image->extent.depth));
         }
-        barrier(cmd);
+        fieldBarrier(cmd);
     }
     if (copies.empty()) return;
     // The dispatches that wrote the buffers → the copies, each image in TRANSFER_DST_OPTIMAL (its
@@ -204,7 +195,7 @@ void SmokeSolver::splatImpulses(VkCommandBuffer cmd) {
         ++dispatches_;
         vkCmdDispatchIndirect(cmd, splatRegions_.get(), target * sizeof(shared::SplatRegion));
     }
-    barrier(cmd);
+    fieldBarrier(cmd);
 }
 
 // The advection passes of options().advection (shaders/shared/fluid.h, MFX_ADVECT_*): each
@@ -306,7 +297,7 @@ void SmokeSolver::diffuseViscosity(VkCommandBuffer cmd) {
         for (uint32_t c = 0; c < 3; ++c)
             dispatch(cmd, programs_.get("diffuse_viscosity", c), w,
                      faceExtent(options_.grid, int(c)));
-        barrier(cmd);
+        fieldBarrier(cmd);
         in = out;
         out = out == other ? scratch : other;
     }
@@ -320,7 +311,7 @@ void SmokeSolver::applyBoundaries(VkCommandBuffer cmd) {
         layers[int(c)] = 2; // only the two boundary layers of faces normal to c
         dispatch(cmd, programs_.get("apply_boundaries", c), w, layers);
     }
-    barrier(cmd);
+    fieldBarrier(cmd);
 }
 
 void SmokeSolver::computeDivergence(VkCommandBuffer cmd) {
@@ -345,7 +336,7 @@ void SmokeSolver::solvePressure(VkCommandBuffer cmd) {
         const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
         vkCmdClearColorImage(cmd, f.pressure[size_t(f.currentPressure)].get(),
                              VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
-        barrier(cmd);
+        fieldBarrier(cmd);
     }
     // Bricks of 4 x kPressureRows x kPressureLayers cells. Between the first and the last sweep
     // pressure and divergence live packed (shaders/fluid/solve_pressure.comp): the first sweep
@@ -370,7 +361,7 @@ void SmokeSolver::solvePressure(VkCommandBuffer cmd) {
             gpu::bindBuffer(7, f.packedPressure[packedIn]),
         };
         dispatch(cmd, programs_.get("solve_pressure", 0, mode), writes, bricks);
-        barrier(cmd);
+        fieldBarrier(cmd);
         if (mode & 2u)
             packedIn = packedOut;
         else

@@ -103,7 +103,6 @@ private:
     SmokeSolver(const gpu::Context& ctx, const SolverOptions& options);
     void writeParameters();
     void recordStageOnly(VkCommandBuffer cmd, Stage stage, gpu::GpuTimer* timer);
-    void barrier(VkCommandBuffer cmd) const;
     // Records, after the dispatches that wrote them, copies of whole fields written x-fastest
     // into buffers into their images, and the barrier that makes them visible to what follows.
     void copyToImages(VkCommandBuffer cmd,

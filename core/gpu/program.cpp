@@ -316,7 +316,7 @@ void Program::bind(VkCommandBuffer cmd, std::span<const DescriptorWrite> writes)
         const DescriptorWrite& w = writes[i];
         const BindingDesc* b = declared(w.binding);
         if (b == nullptr) fail(w.binding, " is not declared by the program's shaders");
-        const uint64_t bit = uint64_t(1) << (w.binding % 64);
+        const uint64_t bit = uint64_t(1) << w.binding; // declared, so below 64
         if ((written & bit) != 0) fail(w.binding, " is written twice");
         written |= bit;
         if (w.isImage != isImageType(b->type))
@@ -335,7 +335,7 @@ void Program::bind(VkCommandBuffer cmd, std::span<const DescriptorWrite> writes)
     }
     if (writes.size() != bindings_.size())
         for (const BindingDesc& b : bindings_)
-            if ((written & (uint64_t(1) << (b.binding % 64))) == 0)
+            if ((written & (uint64_t(1) << b.binding)) == 0)
                 fail(b.binding, " is declared but not written");
     vkCmdBindPipeline(cmd, bindPoint_, pipeline_.get());
     if (!writes.empty())
