@@ -141,9 +141,9 @@ int runBenchEffects(std::span<const std::string> args) {
     Progress progress("scenes", uint32_t(2 * files.size()));
     for (size_t i = 0; i < files.size(); ++i) {
         SceneArgument& with = withEffects[i];
-        std::string effect = scene::effectTypeName(with.scene.effects.front().type);
+        std::string effect = with.scene.effects.front().type();
         for (size_t e = 1; e < with.scene.effects.size(); ++e)
-            effect += std::string("+") + scene::effectTypeName(with.scene.effects[e].type);
+            effect += std::string("+") + with.scene.effects[e].type();
         SceneArgument alone{with.scene, with.character};
         alone.scene.effects.clear();
         Row row{effect, files[i]};

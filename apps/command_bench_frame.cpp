@@ -126,9 +126,9 @@ int runBenchFrame(std::span<const std::string> args) {
     std::array<uint32_t, 3> grid{0, 0, 0};
     uint32_t stepsPerFrame = 0;
     if (!sim.smokeGrids().empty()) {
-        const fluid::GridShape& g = sim.smokeGrids().front().solver->options().grid;
+        const fluid::GridShape& g = sim.smokeGrids().front().grid.solver().options().grid;
         grid = {g.cellsX, g.cellsY, g.cellsZ};
-        stepsPerFrame = sim.smokeGrids().front().stepsPerFrame;
+        stepsPerFrame = sim.smokeGrids().front().grid.settings().stepsPerFrame;
     }
     std::printf("frame benchmark on %s (%s)\n%s at %ux%u, %u samples per pixel, smoke grid "
                 "%ux%ux%u (%u steps per frame); median of %u frames after %u warm-up frames\n\n",

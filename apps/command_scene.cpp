@@ -2,6 +2,7 @@
 // vertices its bones and meshes select), or the one-line reason it is refused.
 #include "apps/commands.h"
 
+#include "core/scene/effect_source.h"
 #include "core/scene/scene.h"
 #include "core/trajectory/surface_source.h"
 #include "core/trajectory/trajectory_source.h"
@@ -45,20 +46,13 @@ int runScene(std::span<const std::string> args) {
                 double(s.stage.floorHeight));
     std::printf("effects      %zu\n", s.effects.size());
     for (const scene::EffectSpec& e : s.effects) {
-        trajectory::Selection selection;
-        selection.meshes = e.meshes;
-        selection.bones = e.bones;
-        selection.minBoneWeight = e.minBoneWeight;
-        const bool surface =
-            e.type == scene::EffectType::Smoke && e.emission == scene::Emission::Surface;
+        const std::optional<float> surfaceStep = e.kind().surfaceSampling();
+        const bool surface = surfaceStep.has_value();
         trajectory::SurfaceReport report;
-        const Result<trajectory::Source> source =
-            surface ? trajectory::selectSurfaceSource(c, selection, e.surfaceStep, &report)
-                    : trajectory::selectSource(c, selection);
+        const Result<trajectory::Source> source = scene::effectSource(c, e, &report);
         std::string window = "from " + std::to_string(e.start).substr(0, 5) + " s";
         if (e.end) window += " to " + std::to_string(*e.end).substr(0, 5) + " s";
-        std::printf("  %-18s %-16s %s, ", e.name.c_str(), scene::effectTypeName(e.type),
-                    window.c_str());
+        std::printf("  %-18s %-16s %s, ", e.name.c_str(), e.type(), window.c_str());
         if (!source) {
             std::printf("%s\n", source.error().message.c_str());
             continue;
@@ -70,14 +64,16 @@ int runScene(std::span<const std::string> args) {
                 bones += (bones.empty() ? "" : ", ") + b;
         }
         if (!surface) {
-            std::printf("%zu vertices, %zu triangles selected, stride %u\n",
-                        source.value().vertices.size(), source.value().triangles.size() / 3,
-                        e.stride);
+            std::printf("%zu vertices, %zu triangles selected", source.value().vertices.size(),
+                        source.value().triangles.size() / 3);
+            if (const scene::TrailSpec* trail = e.kind().queue())
+                std::printf(", stride %u", trail->stride);
+            std::printf("\n");
             std::printf("  %-18s bones: %s\n", "", bones.c_str());
             continue;
         }
         std::printf("%zu surface points from %zu triangles (step %.3g)", report.samples,
-                    report.triangles, double(e.surfaceStep));
+                    report.triangles, double(*surfaceStep));
         if (report.degenerateInUv + report.degenerateInModel + report.withoutUv > 0)
             std::printf("; skipped %zu degenerate in UV, %zu without area, %zu without UVs",
                         report.degenerateInUv, report.degenerateInModel, report.withoutUv);

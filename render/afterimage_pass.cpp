@@ -63,20 +63,22 @@ std::vector<uint32_t> afterimageCopies(const std::vector<shared::SkinVertexIn>& 
 
 AfterimagePass::AfterimagePass(const gpu::Context& ctx, const scene::Scene& scene,
                                const anim::Character& character, VkSampleCountFlagBits samples)
-    : ctx_(ctx), character_(character), skinning_(ctx) {
+    : MeshEffectPass(ctx, character) {
     for (size_t i = 0; i < scene.effects.size(); ++i) {
         const scene::EffectSpec& e = scene.effects[i];
-        if (e.type != scene::EffectType::AfterimageSmear) continue;
+        const auto* kind = e.as<scene::AfterimageSpec>();
+        if (!kind) continue;
         Result<trajectory::Source> selected = scene::effectSource(character, e);
         if (!selected || selected.value().vertices.empty()) continue;
-        Effect effect(MeshEffect(ctx, i, e, std::move(selected).value(),
-                                 VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "afterimage"));
+        Effect effect(MeshEffect(ctx, i, meshEffectColour(*kind), std::move(selected).value(),
+                                 VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "afterimage"),
+                      *kind);
         const trajectory::Source& source = effect.source;
-        const scene::AfterimageVariant variant = e.afterimage.variant;
+        const scene::AfterimageVariant variant = kind->variant;
         // Smith 2016, Sec. 4.1.1: one afterimage needs the last frame only; an arc through n
         // afterimages needs the n frames before this one.
         effect.historySlots =
-            variant == scene::AfterimageVariant::Multi ? e.afterimage.afterimages + 1 : 2;
+            variant == scene::AfterimageVariant::Multi ? kind->afterimages + 1 : 2;
         const uint32_t n = effect.vertexCount;
         std::vector<uint32_t> primitives;
         if (variant == scene::AfterimageVariant::Smear) {
@@ -88,7 +90,7 @@ AfterimagePass::AfterimagePass(const gpu::Context& ctx, const scene::Scene& scen
         }
         effect.outputCapacity = variant == scene::AfterimageVariant::SpeedLines ? 2 * n
                                 : variant == scene::AfterimageVariant::Multi
-                                    ? effect.primitiveCount * 6 * e.afterimage.afterimages
+                                    ? effect.primitiveCount * 6 * kind->afterimages
                                     : 0;
 
         effect.history =
@@ -170,8 +172,7 @@ void AfterimagePass::advance(VkCommandBuffer cmd, const sim::SceneSimulation& si
         vkCmdUpdateBuffer(cmd, effect.counters.get(), 0, sizeof zero, &zero);
         transferToComputeBarrier(cmd);
 
-        const scene::EffectSpec& e = effect.spec;
-        const scene::AfterimageSpec& a = e.afterimage;
+        const scene::AfterimageSpec& a = effect.kind;
         shared::AfterimageConstants c{};
         c.characterMotion = glm::vec4(characterMotion, 0.0f);
         c.vertexCount = effect.vertexCount;
@@ -192,11 +193,11 @@ void AfterimagePass::advance(VkCommandBuffer cmd, const sim::SceneSimulation& si
         c.taper = a.taper;
         c.minSpeed = a.minSpeed / scene.output.fps; // per second → per frame
         c.relativeSpeed = a.relativeSpeed;
-        c.alphaStart = e.alphaStart;
-        c.alphaEnd = e.alphaEnd;
-        c.alphaPower = e.alphaPower;
+        c.alphaStart = a.alphaStart;
+        c.alphaEnd = a.alphaEnd;
+        c.alphaPower = a.alphaPower;
         c.influencePower = a.influencePower;
-        c.stride = e.stride;
+        c.stride = a.stride;
 
         const uint32_t vertexGroups =
             gpu::groupCount(effect.vertexCount, MFX_AFTERIMAGE_GROUP_SIZE);
@@ -205,7 +206,7 @@ void AfterimagePass::advance(VkCommandBuffer cmd, const sim::SceneSimulation& si
         vkCmdDispatch(cmd, vertexGroups, 1, 1);
         // Outside its window the effect records its history (so it enters the window with the
         // right motion) but builds nothing.
-        const bool live = simulation.effectLive(e, time);
+        const bool live = simulation.effectLive(simulation.scene().effects[effect.index], time);
         if (live) {
             computeToComputeBarrier(cmd);
             smear_.bind(cmd, effect.resources);
@@ -237,11 +238,11 @@ uint32_t AfterimagePass::draw(VkCommandBuffer cmd, const sim::SceneSimulation& s
     const VkDeviceSize offset = 0;
     for (const Effect& effect : effects_) {
         if (!effectShown(shown, effect.index)) continue;
-        const scene::AfterimageVariant variant = effect.spec.afterimage.variant;
+        const scene::AfterimageVariant variant = effect.kind.variant;
         // Every vertex is drawn at time 0 with sample time 0: no age fade (effect_common.glsl);
         // the alpha along the push or the arc is in the vertex colour.
         shared::EffectDraw d{};
-        d.timing = glm::vec4(0.0f, 1.0f, effect.spec.width, 1.0f / scene.output.fps);
+        d.timing = glm::vec4(0.0f, 1.0f, effect.kind.width, 1.0f / scene.output.fps);
         d.tint = glm::vec4(1.0f);
         if (variant == scene::AfterimageVariant::Smear) {
             smearDraw_.bind(cmd, {gpu::bindBuffer(0, frame_)});
@@ -267,15 +268,8 @@ uint32_t AfterimagePass::draw(VkCommandBuffer cmd, const sim::SceneSimulation& s
     return draws;
 }
 
-const AfterimagePass::Effect* AfterimagePass::find(size_t effect) const {
-    return findEffect(effects_, effect);
-}
-
 AfterimagePass::Counts AfterimagePass::counts(size_t effect) const {
-    const Effect* e = find(effect);
-    if (!e) return {};
-    shared::AfterimageCounters c{};
-    std::memcpy(&c, e->counters.mapped, sizeof c);
+    const auto c = builtCounters<shared::AfterimageCounters>(effect);
     Counts out;
     out.pushedVertices = c.pushedVertices;
     out.triangles = c.indexCount / 3;
@@ -300,7 +294,7 @@ std::vector<shared::TrajectoryVertex> AfterimagePass::geometry(size_t effect) co
     const Effect* e = find(effect);
     if (!e) return {};
     const Counts c = counts(effect);
-    if (e->spec.afterimage.variant == scene::AfterimageVariant::Smear) {
+    if (e->kind.variant == scene::AfterimageVariant::Smear) {
         const auto vertices = gpu::readBufferAs<shared::TrajectoryVertex>(ctx_, e->pushed);
         const auto indices = gpu::readBufferAs<uint32_t>(ctx_, e->indices);
         std::vector<shared::TrajectoryVertex> out;
@@ -308,9 +302,7 @@ std::vector<shared::TrajectoryVertex> AfterimagePass::geometry(size_t effect) co
             out.push_back(vertices[indices[k]]);
         return out;
     }
-    auto vertices = gpu::readBufferAs<shared::TrajectoryVertex>(ctx_, e->output);
-    vertices.resize(std::min<size_t>(vertices.size(), c.lineVertices));
-    return vertices;
+    return builtVertices(effect, c.lineVertices);
 }
 
 } // namespace mfx::render

@@ -24,10 +24,12 @@
 #include "core/anim/skin_vertices.h"
 #include "core/gpu/program.h"
 #include "core/gpu/resources.h"
+#include "core/scene/kinds/afterimage_effect.h"
 #include "core/scene/scene.h"
 #include "core/trajectory/trajectory_source.h"
 #include "render/effect_geometry.h"
 #include "render/effect_kind_pass.h"
+#include "render/mesh_effect_pass.h"
 #include "render/scene_camera.h"
 #include "shaders/shared/afterimage.h"
 #include "shaders/shared/trajectory.h"
@@ -42,7 +44,18 @@ class SceneSimulation;
 
 namespace mfx::render {
 
-class AfterimagePass : public EffectKindPass {
+// One effect of the pass (render/mesh_effect_pass.h).
+struct AfterimageEffect : MeshEffect {
+    AfterimageEffect(MeshEffect common, const scene::AfterimageSpec& settings)
+        : MeshEffect(std::move(common)), kind(settings) {}
+    scene::AfterimageSpec kind;
+    uint32_t primitiveCount = 0, historySlots = 2, outputCapacity = 0;
+    gpu::Buffer history, decided, copies, pushed, primitives, indices;
+    std::vector<uint32_t> copyTable; // as uploaded to `copies`
+    uint32_t newest = 0, filled = 0;
+};
+
+class AfterimagePass : public MeshEffectPass<AfterimageEffect> {
 public:
     // The scene's afterimage_smear effects on `character` (which must outlive the pass), drawn
     // into targets of `samples` samples. Effects whose selection leaves no vertex are left out
@@ -51,10 +64,7 @@ public:
                    const anim::Character& character,
                    VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT);
 
-    bool empty() const { return effects_.empty(); }
-
-    // EffectKindPass: advance() skins the bound vertices, moves the history on and builds the
-    // geometry; draw() draws what was last built (a paused frame draws the same).
+    // EffectKindPass (render/mesh_effect_pass.h).
     void advance(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
                  uint32_t frame) override;
     uint32_t draw(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
@@ -83,23 +93,9 @@ public:
     Decisions decisions(size_t effect) const;
 
 private:
-    struct Effect : MeshEffect {
-        explicit Effect(MeshEffect common) : MeshEffect(std::move(common)) {}
-        uint32_t primitiveCount = 0, historySlots = 2, outputCapacity = 0;
-        gpu::Buffer history, decided, copies, pushed, primitives, indices;
-        std::vector<uint32_t> copyTable; // as uploaded to `copies`
-        uint32_t newest = 0, filled = 0;
-    };
-    const Effect* find(size_t effect) const;
-
-    const gpu::Context& ctx_;
-    const anim::Character& character_;
-    anim::SkinVertices skinning_;
+    using Effect = AfterimageEffect;
     gpu::Program record_, smear_, weld_, build_;
     gpu::Program smearDraw_, lineDraw_, arcDraw_;
-    gpu::Buffer frame_;
-    std::vector<Effect> effects_;
-    FrameHistory history_;
     glm::vec3 lastRoot_{0.0f};
 };
 

@@ -83,11 +83,9 @@ gpu::Buffer effectCounters(const gpu::Context& ctx, VkDeviceSize bytes, const ch
     return counters;
 }
 
-MeshEffect::MeshEffect(const gpu::Context& ctx, size_t effectIndex,
-                       const scene::EffectSpec& effectSpec, trajectory::Source bound,
-                       VkBufferUsageFlags skinnedUsage, const char* label)
-    : index(effectIndex), spec(effectSpec), source(std::move(bound)),
-      vertexCount(uint32_t(source.vertices.size())) {
+MeshEffect::MeshEffect(const gpu::Context& ctx, size_t effectIndex, std::optional<glm::vec4> colour,
+                       trajectory::Source bound, VkBufferUsageFlags skinnedUsage, const char* label)
+    : index(effectIndex), source(std::move(bound)), vertexCount(uint32_t(source.vertices.size())) {
     const std::string name(label);
     const VkDeviceSize n = vertexCount;
     input = effectStorage(ctx, n * sizeof(shared::SkinVertexIn), 0, (name + " bind pose").c_str());
@@ -98,7 +96,7 @@ MeshEffect::MeshEffect(const gpu::Context& ctx, size_t effectIndex,
     skinned = effectStorage(ctx, n * sizeof(shared::SkinVertexOut), skinnedUsage,
                             (name + " skinned").c_str());
     std::vector<glm::vec4> rgba = source.colours;
-    if (!spec.useMeshColour) std::fill(rgba.begin(), rgba.end(), spec.colour);
+    if (colour) std::fill(rgba.begin(), rgba.end(), *colour);
     colours = effectStorage(ctx, n * sizeof(glm::vec4), 0, (name + " colours").c_str());
     gpu::uploadBuffer(ctx, colours, std::span<const glm::vec4>(rgba));
 }

@@ -64,13 +64,13 @@ gpu::Buffer effectCounters(const gpu::Context& ctx, VkDeviceSize bytes, const ch
 
 // What every mesh-effect pass keeps of one of its effects: the bound vertices (`source`), their
 // bind pose (`input`), skinning palette and skinned vertices, their colours (the mesh's, or the
-// spec's colour without use_mesh_colour), the built geometry and its counters, and what each of
+// effect's colour where it has one), the built geometry and its counters, and what each of
 // the effect's compute programs binds. A pass's own effect struct derives from it.
 struct MeshEffect {
     MeshEffect() = default;
     // Makes input, palette, skinned (with `skinnedUsage` as well) and colours, named "<label> bind
     // pose", "<label> palette", ...; output, counters and resources are the pass's to make.
-    MeshEffect(const gpu::Context& ctx, size_t index, const scene::EffectSpec& spec,
+    MeshEffect(const gpu::Context& ctx, size_t index, std::optional<glm::vec4> colour,
                trajectory::Source source, VkBufferUsageFlags skinnedUsage, const char* label);
 
     // Records the skinning of the bound vertices in `pose`, the character placed by `placement`,
@@ -80,12 +80,17 @@ struct MeshEffect {
               const anim::Pose& pose, const glm::mat4& placement) const;
 
     size_t index = 0; // in scene.effects
-    scene::EffectSpec spec;
     trajectory::Source source;
     uint32_t vertexCount = 0;
     gpu::Buffer input, palette, skinned, colours, output, counters;
     std::vector<gpu::DescriptorWrite> resources;
 };
+
+// A mesh effect's colour: its kind's, or none (the mesh's own) where the scene gave none.
+template <class Kind>
+std::optional<glm::vec4> meshEffectColour(const Kind& kind) {
+    return kind.useMeshColour ? std::nullopt : std::optional<glm::vec4>(kind.colour);
+}
 
 // Records the unsorted, non-indexed draw of the triangles a build wrote into `vertices`, its
 // VkDrawIndirectCommand at the start of `counters`. Every vertex is drawn at time 0 with sample

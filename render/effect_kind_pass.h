@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <string>
 #include <vector>
 #include <vulkan/vulkan.h>
 
@@ -19,9 +20,6 @@ class Context;
 }
 namespace mfx::sim {
 class SceneSimulation;
-}
-namespace mfx::scene {
-enum class EffectType;
 }
 
 namespace mfx::render {
@@ -41,11 +39,11 @@ public:
                           std::span<const uint8_t> shown = {}) = 0;
 };
 
-// One registered kind of pass: the effect types it draws and how to make it for a simulation's
-// scene and character, drawing into targets of `samples` samples.
+// One registered kind of pass: the effect types it draws (scene "type" names) and how to make it
+// for a simulation's scene and character, drawing into targets of `samples` samples.
 struct EffectPassKind {
     const char* name;
-    std::vector<scene::EffectType> types;
+    std::vector<std::string> types;
     std::unique_ptr<EffectKindPass> (*make)(const gpu::Context& ctx,
                                             const sim::SceneSimulation& simulation,
                                             VkSampleCountFlagBits samples);

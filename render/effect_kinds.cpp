@@ -1,5 +1,9 @@
 // The registry of effect passes (render/effect_kind_pass.h). Adding a kind of effect pass means
 // one line here; the order of the lines is the order they draw in.
+#include "core/scene/kinds/afterimage_effect.h"
+#include "core/scene/kinds/silhouette_shell_effect.h"
+#include "core/scene/kinds/swept_volume_effect.h"
+#include "core/scene/kinds/trail_effects.h"
 #include "core/scene/scene.h"
 #include "render/afterimage_pass.h"
 #include "render/effect_kind_pass.h"
@@ -13,8 +17,6 @@
 namespace mfx::render {
 
 namespace {
-
-using scene::EffectType;
 
 // A pass made from the simulation's scene and character.
 template <class Pass>
@@ -36,12 +38,13 @@ std::unique_ptr<EffectKindPass> make<EffectPass>(const gpu::Context& ctx,
 std::span<const EffectPassKind> effectPassKinds() {
     static const EffectPassKind kinds[] = {
         // The smear first: by default an opaque copy of the mesh, it writes depth.
-        {"afterimage", {EffectType::AfterimageSmear}, make<AfterimagePass>},
-        {"swept_volume", {EffectType::SweptVolume}, make<SweptVolumePass>},
-        {"silhouette_shell", {EffectType::SilhouetteShell}, make<SilhouetteShellPass>},
+        {"afterimage", {scene::AfterimageSpec::kType}, make<AfterimagePass>},
+        {"swept_volume", {scene::SweptVolumeSpec::kType}, make<SweptVolumePass>},
+        {"silhouette_shell", {scene::SilhouetteShellSpec::kType}, make<SilhouetteShellPass>},
         // Blur volumes, then speed-lines, then particles: the thin effects stay on top.
         {"trajectory",
-         {EffectType::MotionBlur, EffectType::SpeedLines, EffectType::MotionParticles},
+         {scene::MotionBlurSpec::kType, scene::SpeedLinesSpec::kType,
+          scene::MotionParticlesSpec::kType},
          make<EffectPass>},
     };
     return kinds;
@@ -52,11 +55,12 @@ makeEffectPasses(const gpu::Context& ctx, const sim::SceneSimulation& simulation
                  VkSampleCountFlagBits samples) {
     std::vector<std::unique_ptr<EffectKindPass>> passes;
     for (const EffectPassKind& kind : effectPassKinds()) {
-        const bool used = std::any_of(
-            simulation.scene().effects.begin(), simulation.scene().effects.end(),
-            [&](const scene::EffectSpec& e) {
-                return std::find(kind.types.begin(), kind.types.end(), e.type) != kind.types.end();
-            });
+        const bool used =
+            std::any_of(simulation.scene().effects.begin(), simulation.scene().effects.end(),
+                        [&](const scene::EffectSpec& e) {
+                            return std::find(kind.types.begin(), kind.types.end(),
+                                             std::string(e.type())) != kind.types.end();
+                        });
         if (used) passes.push_back(kind.make(ctx, simulation, samples));
     }
     return passes;

@@ -6,7 +6,10 @@
 #include "shaders/embedded.h"
 #include "shaders/shared/effect_draw.h"
 
+#include "core/scene/kinds/trail_effects.h"
+
 #include <cstring>
+#include <string_view>
 
 namespace mfx::render {
 
@@ -25,13 +28,14 @@ uint32_t EffectPass::draw(VkCommandBuffer cmd, const sim::SceneSimulation& simul
     std::memcpy(frame_.mapped, &frame, sizeof frame);
     uint32_t draws = 0;
     // Volumes first, then lines, then particles: the thin effects stay on top of the blur.
-    for (scene::EffectType type : {scene::EffectType::MotionBlur, scene::EffectType::SpeedLines,
-                                   scene::EffectType::MotionParticles}) {
-        gpu::Program& program = type == scene::EffectType::MotionBlur   ? volumes_
-                                : type == scene::EffectType::SpeedLines ? lines_
-                                                                        : particles_;
+    const std::pair<const char*, gpu::Program*> kinds[] = {
+        {scene::MotionBlurSpec::kType, &volumes_},
+        {scene::SpeedLinesSpec::kType, &lines_},
+        {scene::MotionParticlesSpec::kType, &particles_}};
+    for (const auto& [type, kindProgram] : kinds) {
+        gpu::Program& program = *kindProgram;
         for (const sim::SceneSimulation::TrajectoryEffect& effect : simulation.trajectories()) {
-            if (effect.spec->type != type) continue;
+            if (std::string_view(effect.spec->type()) != type) continue;
             const size_t index = simulation.effectIndex(effect);
             if (!effectShown(shown, index)) continue;
             const trajectory::Queue& queue = *effect.queue;
@@ -39,10 +43,12 @@ uint32_t EffectPass::draw(VkCommandBuffer cmd, const sim::SceneSimulation& simul
             if (live.empty()) continue;
             program.bind(cmd, {gpu::bindBuffer(0, frame_)});
             shared::EffectDraw d{};
-            d.timing = glm::vec4(now, float(effect.spec->lifetime) / simulation.scene().output.fps,
-                                 type == scene::EffectType::SpeedLines ? effect.spec->width
-                                                                       : effect.spec->size,
-                                 1.0f / simulation.scene().output.fps);
+            // The ribbon's width or the sprite's size (volumes have neither).
+            const auto* lines = effect.spec->as<scene::SpeedLinesSpec>();
+            const auto* particles = effect.spec->as<scene::MotionParticlesSpec>();
+            const float width = lines ? lines->width : particles ? particles->size : 0.0f;
+            d.timing = glm::vec4(now, float(effect.trail->lifetime) / simulation.scene().output.fps,
+                                 width, 1.0f / simulation.scene().output.fps);
             d.tint = glm::vec4(1.0f);
             program.push(cmd, d);
             const VkBuffer vertices = queue.vertices().get();

@@ -74,10 +74,11 @@ ShellCadence shellCadence(const scene::SilhouetteShellSpec& shell, float fps) {
 SilhouetteShellPass::SilhouetteShellPass(const gpu::Context& ctx, const scene::Scene& scene,
                                          const anim::Character& character,
                                          VkSampleCountFlagBits samples)
-    : ctx_(ctx), character_(character), skinning_(ctx) {
+    : MeshEffectPass(ctx, character) {
     for (size_t i = 0; i < scene.effects.size(); ++i) {
         const scene::EffectSpec& e = scene.effects[i];
-        if (e.type != scene::EffectType::SilhouetteShell) continue;
+        const auto* kind = e.as<scene::SilhouetteShellSpec>();
+        if (!kind) continue;
         Result<trajectory::Source> selected = scene::effectSource(character, e);
         if (!selected || selected.value().triangles.empty()) continue;
         // A triangle with two corners at one point has no edge to sweep: its strip would be a
@@ -93,18 +94,20 @@ SilhouetteShellPass::SilhouetteShellPass(const gpu::Context& ctx, const scene::S
         }
         if (kept.empty()) continue;
         selected.value().triangles = std::move(kept);
-        Effect effect(MeshEffect(ctx, i, e, std::move(selected).value(), 0, "shell"));
+        Effect effect(
+            MeshEffect(ctx, i, meshEffectColour(*kind), std::move(selected).value(), 0, "shell"),
+            *kind);
         const trajectory::Source& source = effect.source;
         const uint32_t n = effect.vertexCount;
         effect.triangleCount = uint32_t(source.triangles.size() / 3);
         // Sec. 3.2.3: one ring slot a subdivision, and one for the latest update (the live mesh).
-        effect.historySlots = e.shell.subdivisions + 1;
-        effect.cadence = shellCadence(e.shell, scene.output.fps);
+        effect.historySlots = kind->subdivisions + 1;
+        effect.cadence = shellCadence(*kind, scene.output.fps);
         const std::vector<uint32_t> adjacency =
             shellVertexTriangles(source.vertices, source.triangles);
         // Every polygon drawing a full strip: the most one frame can build (Sec. 3.2.5).
         const VkDeviceSize outputCapacity =
-            VkDeviceSize(effect.triangleCount) * 6 * e.shell.subdivisions;
+            VkDeviceSize(effect.triangleCount) * 6 * kind->subdivisions;
 
         effect.adjacency =
             effectStorage(ctx, adjacency.size() * sizeof(uint32_t), 0, "shell adjacency");
@@ -172,18 +175,18 @@ void SilhouetteShellPass::advance(VkCommandBuffer cmd, const sim::SceneSimulatio
         }
         transferToComputeBarrier(cmd);
 
-        const scene::EffectSpec& e = effect.spec;
+        const scene::SilhouetteShellSpec& e = effect.kind;
         shared::SilhouetteShellConstants c{};
         c.vertexCount = effect.vertexCount;
         c.triangleCount = effect.triangleCount;
         c.historySlots = effect.historySlots;
-        c.subdivisions = e.shell.subdivisions;
+        c.subdivisions = e.subdivisions;
         c.newest = effect.newest;
         c.updatesPerFrame = effect.cadence.updatesPerFrame;
-        c.edgeRule = e.shell.edgeRule == scene::ShellEdgeRule::Back ? MFX_SHELL_EDGE_BACK
-                                                                    : MFX_SHELL_EDGE_FRONT;
-        c.initialAlpha = e.shell.initialAlpha;
-        c.fadeOut = e.shell.fadeOut;
+        c.edgeRule =
+            e.edgeRule == scene::ShellEdgeRule::Back ? MFX_SHELL_EDGE_BACK : MFX_SHELL_EDGE_FRONT;
+        c.initialAlpha = e.initialAlpha;
+        c.fadeOut = e.fadeOut;
 
         normals_.bind(cmd, effect.resources);
         normals_.push(cmd, c);
@@ -219,7 +222,7 @@ void SilhouetteShellPass::advance(VkCommandBuffer cmd, const sim::SceneSimulatio
 
         // Outside its window the effect keeps updating its rings (so it enters the window with
         // the right history) but builds nothing.
-        const bool live = simulation.effectLive(e, time);
+        const bool live = simulation.effectLive(simulation.scene().effects[effect.index], time);
         if (!live) continue;
         build_.bind(cmd, effect.resources);
         build_.push(cmd, c);
@@ -231,20 +234,13 @@ void SilhouetteShellPass::advance(VkCommandBuffer cmd, const sim::SceneSimulatio
 uint32_t SilhouetteShellPass::draw(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
                                    const SceneCamera& camera, float,
                                    std::span<const uint8_t> shown) {
-    const scene::Scene& scene = simulation.scene();
-    if (effects_.empty() || !history_.recorded()) return 0;
-    return drawBuiltEffects(cmd, effects_, scene, camera, shown, frame_, shellDraw_);
-}
-
-const SilhouetteShellPass::Effect* SilhouetteShellPass::find(size_t effect) const {
-    return findEffect(effects_, effect);
+    return drawBuilt(cmd, simulation, camera, shown, shellDraw_);
 }
 
 SilhouetteShellPass::Counts SilhouetteShellPass::counts(size_t effect) const {
     const Effect* e = find(effect);
     if (!e) return {};
-    shared::SilhouetteShellCounters c{};
-    std::memcpy(&c, e->counters.mapped, sizeof c);
+    const auto c = builtCounters<shared::SilhouetteShellCounters>(effect);
     Counts out;
     out.vertices = c.vertexCount;
     out.silhouetteTriangles = c.silhouetteTriangles;
@@ -257,11 +253,7 @@ SilhouetteShellPass::Counts SilhouetteShellPass::counts(size_t effect) const {
 }
 
 std::vector<shared::TrajectoryVertex> SilhouetteShellPass::geometry(size_t effect) const {
-    const Effect* e = find(effect);
-    if (!e) return {};
-    auto vertices = gpu::readBufferAs<shared::TrajectoryVertex>(ctx_, e->output);
-    vertices.resize(std::min<size_t>(vertices.size(), counts(effect).vertices));
-    return vertices;
+    return builtVertices(effect, counts(effect).vertices);
 }
 
 std::vector<glm::vec3> SilhouetteShellPass::livePositions(size_t effect) const {

@@ -21,10 +21,12 @@
 #include "core/anim/skin_vertices.h"
 #include "core/gpu/program.h"
 #include "core/gpu/resources.h"
+#include "core/scene/kinds/silhouette_shell_effect.h"
 #include "core/scene/scene.h"
 #include "core/trajectory/trajectory_source.h"
 #include "render/effect_geometry.h"
 #include "render/effect_kind_pass.h"
+#include "render/mesh_effect_pass.h"
 #include "render/scene_camera.h"
 #include "shaders/shared/silhouette_shell.h"
 #include "shaders/shared/trajectory.h"
@@ -48,7 +50,20 @@ struct ShellCadence {
     uint32_t framesPerUpdate = 1; // recorded frames from one update to the next
 };
 
-class SilhouetteShellPass : public EffectKindPass {
+// One effect of the pass (render/mesh_effect_pass.h).
+struct SilhouetteShellEffect : MeshEffect {
+    SilhouetteShellEffect(MeshEffect common, const scene::SilhouetteShellSpec& settings)
+        : MeshEffect(std::move(common)), kind(settings) {}
+    scene::SilhouetteShellSpec kind;
+    uint32_t triangleCount = 0, historySlots = 2;
+    ShellCadence cadence;
+    uint32_t framesSinceUpdate = 0; // recorded frames since the last update (or start)
+    bool updated = false;           // whether the last recorded frame updated
+    gpu::Buffer adjacency, triangles, current, last, states, history;
+    uint32_t newest = 0;
+};
+
+class SilhouetteShellPass : public MeshEffectPass<SilhouetteShellEffect> {
 public:
     // The scene's silhouette_shell effects on `character` (which must outlive the pass), drawn
     // into targets of `samples` samples. Effects whose selection leaves no triangle are left out.
@@ -56,10 +71,7 @@ public:
                         const anim::Character& character,
                         VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT);
 
-    bool empty() const { return effects_.empty(); }
-
-    // EffectKindPass: advance() skins the bound vertices, moves the history on and builds the
-    // geometry; draw() draws what was last built (a paused frame draws the same).
+    // EffectKindPass (render/mesh_effect_pass.h).
     void advance(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
                  uint32_t frame) override;
     uint32_t draw(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
@@ -89,24 +101,8 @@ public:
     std::vector<glm::vec3> livePositions(size_t effect) const;
 
 private:
-    struct Effect : MeshEffect {
-        explicit Effect(MeshEffect common) : MeshEffect(std::move(common)) {}
-        uint32_t triangleCount = 0, historySlots = 2;
-        ShellCadence cadence;
-        uint32_t framesSinceUpdate = 0; // recorded frames since the last update (or start)
-        bool updated = false;           // whether the last recorded frame updated
-        gpu::Buffer adjacency, triangles, current, last, states, history;
-        uint32_t newest = 0;
-    };
-    const Effect* find(size_t effect) const;
-
-    const gpu::Context& ctx_;
-    const anim::Character& character_;
-    anim::SkinVertices skinning_;
+    using Effect = SilhouetteShellEffect;
     gpu::Program normals_, update_, build_, shellDraw_;
-    gpu::Buffer frame_;
-    std::vector<Effect> effects_;
-    FrameHistory history_;
 };
 
 // The polygons around each vertex as silhouette_shell_normals.comp reads them: vertexCount + 1

@@ -121,7 +121,8 @@ uint32_t SmokePass::draw(VkCommandBuffer cmd, RenderTarget& target,
             visible = visible || (index < shown.size() && shown[index] != 0);
         }
         if (!visible) continue;
-        volumes.push_back({&grid.solver->pigmentImage(), grid.solver->options().grid, grid.origin});
+        volumes.push_back({&grid.grid.solver().pigmentImage(), grid.grid.solver().options().grid,
+                           grid.grid.origin()});
     }
     if (volumes.empty()) return 0;
     const scene::LightSpec key =

@@ -67,23 +67,26 @@ std::vector<uint32_t> sweptVolumeEdges(const std::vector<shared::SkinVertexIn>& 
 
 SweptVolumePass::SweptVolumePass(const gpu::Context& ctx, const scene::Scene& scene,
                                  const anim::Character& character, VkSampleCountFlagBits samples)
-    : ctx_(ctx), character_(character), skinning_(ctx) {
+    : MeshEffectPass(ctx, character) {
     for (size_t i = 0; i < scene.effects.size(); ++i) {
         const scene::EffectSpec& e = scene.effects[i];
-        if (e.type != scene::EffectType::SweptVolume) continue;
+        const auto* kind = e.as<scene::SweptVolumeSpec>();
+        if (!kind) continue;
         Result<trajectory::Source> selected = scene::effectSource(character, e);
         if (!selected || selected.value().vertices.empty()) continue;
-        Effect effect(MeshEffect(ctx, i, e, std::move(selected).value(), 0, "swept"));
+        Effect effect(
+            MeshEffect(ctx, i, meshEffectColour(*kind), std::move(selected).value(), 0, "swept"),
+            *kind);
         const trajectory::Source& source = effect.source;
         const uint32_t n = effect.vertexCount;
         effect.triangleCount = uint32_t(source.triangles.size() / 3);
         const std::vector<uint32_t> edges = sweptVolumeEdges(source.vertices, source.triangles);
         effect.edgeCount = uint32_t(edges.size() / 6);
         // Sec. 4.2: an n-segment sweep needs the positions at n + 1 times.
-        effect.historySlots = e.swept.segments + 1;
+        effect.historySlots = kind->segments + 1;
         // Every edge joined and every triangle trailing: the most one frame can build.
         const VkDeviceSize outputCapacity =
-            VkDeviceSize(effect.edgeCount) * 6 * e.swept.segments * e.subSamples +
+            VkDeviceSize(effect.edgeCount) * 6 * kind->segments * kind->subSamples +
             VkDeviceSize(effect.triangleCount) * 3;
 
         effect.history = effectStorage(
@@ -141,7 +144,7 @@ void SweptVolumePass::advance(VkCommandBuffer cmd, const sim::SceneSimulation& s
         vkCmdUpdateBuffer(cmd, effect.counters.get(), 0, sizeof zero, &zero);
         transferToComputeBarrier(cmd);
 
-        const scene::EffectSpec& e = effect.spec;
+        const scene::SweptVolumeSpec& e = effect.kind;
         shared::SweptVolumeConstants c{};
         c.cameraPosition = glm::vec4(scene.camera.position, 1.0f);
         c.vertexCount = effect.vertexCount;
@@ -151,17 +154,17 @@ void SweptVolumePass::advance(VkCommandBuffer cmd, const sim::SceneSimulation& s
         c.newest = effect.newest;
         c.filled = effect.filled;
         c.reset = reset ? 1 : 0;
-        c.segments = e.swept.segments;
+        c.segments = e.segments;
         c.pieces = e.subSamples;
-        c.temporalFilter = filterCode(e.swept.filter);
-        c.alphaFloor = e.swept.alphaFloor;
+        c.temporalFilter = filterCode(e.filter);
+        c.alphaFloor = e.alphaFloor;
 
         record_.bind(cmd, effect.resources);
         record_.push(cmd, c);
         vkCmdDispatch(cmd, gpu::groupCount(effect.vertexCount, MFX_SWEPT_GROUP_SIZE), 1, 1);
         // Outside its window the effect records its history (so it enters the window with the
         // right motion) but builds nothing.
-        const bool live = simulation.effectLive(e, time);
+        const bool live = simulation.effectLive(simulation.scene().effects[effect.index], time);
         if (!live) continue;
         computeToComputeBarrier(cmd);
         motion_.bind(cmd, effect.resources);
@@ -179,20 +182,11 @@ void SweptVolumePass::advance(VkCommandBuffer cmd, const sim::SceneSimulation& s
 
 uint32_t SweptVolumePass::draw(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
                                const SceneCamera& camera, float, std::span<const uint8_t> shown) {
-    const scene::Scene& scene = simulation.scene();
-    if (effects_.empty() || !history_.recorded()) return 0;
-    return drawBuiltEffects(cmd, effects_, scene, camera, shown, frame_, volumeDraw_);
-}
-
-const SweptVolumePass::Effect* SweptVolumePass::find(size_t effect) const {
-    return findEffect(effects_, effect);
+    return drawBuilt(cmd, simulation, camera, shown, volumeDraw_);
 }
 
 SweptVolumePass::Counts SweptVolumePass::counts(size_t effect) const {
-    const Effect* e = find(effect);
-    if (!e) return {};
-    shared::SweptVolumeCounters c{};
-    std::memcpy(&c, e->counters.mapped, sizeof c);
+    const auto c = builtCounters<shared::SweptVolumeCounters>(effect);
     Counts out;
     out.vertices = c.vertexCount;
     out.contourEdges = c.contourEdges;
@@ -205,11 +199,7 @@ SweptVolumePass::Counts SweptVolumePass::counts(size_t effect) const {
 }
 
 std::vector<shared::TrajectoryVertex> SweptVolumePass::geometry(size_t effect) const {
-    const Effect* e = find(effect);
-    if (!e) return {};
-    auto vertices = gpu::readBufferAs<shared::TrajectoryVertex>(ctx_, e->output);
-    vertices.resize(std::min<size_t>(vertices.size(), counts(effect).vertices));
-    return vertices;
+    return builtVertices(effect, counts(effect).vertices);
 }
 
 } // namespace mfx::render

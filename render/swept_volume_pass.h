@@ -21,10 +21,12 @@
 #include "core/anim/skin_vertices.h"
 #include "core/gpu/program.h"
 #include "core/gpu/resources.h"
+#include "core/scene/kinds/swept_volume_effect.h"
 #include "core/scene/scene.h"
 #include "core/trajectory/trajectory_source.h"
 #include "render/effect_geometry.h"
 #include "render/effect_kind_pass.h"
+#include "render/mesh_effect_pass.h"
 #include "render/scene_camera.h"
 #include "shaders/shared/swept_volume.h"
 #include "shaders/shared/trajectory.h"
@@ -39,7 +41,17 @@ class SceneSimulation;
 
 namespace mfx::render {
 
-class SweptVolumePass : public EffectKindPass {
+// One effect of the pass (render/mesh_effect_pass.h).
+struct SweptVolumeEffect : MeshEffect {
+    SweptVolumeEffect(MeshEffect common, const scene::SweptVolumeSpec& settings)
+        : MeshEffect(std::move(common)), kind(settings) {}
+    scene::SweptVolumeSpec kind;
+    uint32_t triangleCount = 0, edgeCount = 0, historySlots = 2;
+    gpu::Buffer history, triangles, edges;
+    uint32_t newest = 0, filled = 0;
+};
+
+class SweptVolumePass : public MeshEffectPass<SweptVolumeEffect> {
 public:
     // The scene's swept_volume effects on `character` (which must outlive the pass), drawn into
     // targets of `samples` samples. Effects whose selection leaves no vertex are left out (the
@@ -48,10 +60,7 @@ public:
                     const anim::Character& character,
                     VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT);
 
-    bool empty() const { return effects_.empty(); }
-
-    // EffectKindPass: advance() skins the bound vertices, moves the history on and builds the
-    // geometry; draw() draws what was last built (a paused frame draws the same).
+    // EffectKindPass (render/mesh_effect_pass.h).
     void advance(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
                  uint32_t frame) override;
     uint32_t draw(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
@@ -77,21 +86,8 @@ public:
     std::vector<shared::TrajectoryVertex> geometry(size_t effect) const;
 
 private:
-    struct Effect : MeshEffect {
-        explicit Effect(MeshEffect common) : MeshEffect(std::move(common)) {}
-        uint32_t triangleCount = 0, edgeCount = 0, historySlots = 2;
-        gpu::Buffer history, triangles, edges;
-        uint32_t newest = 0, filled = 0;
-    };
-    const Effect* find(size_t effect) const;
-
-    const gpu::Context& ctx_;
-    const anim::Character& character_;
-    anim::SkinVertices skinning_;
+    using Effect = SweptVolumeEffect;
     gpu::Program record_, motion_, build_, volumeDraw_;
-    gpu::Buffer frame_;
-    std::vector<Effect> effects_;
-    FrameHistory history_;
 };
 
 // The interior edges of a triangle list as swept_volume_build.comp reads them, 6 words an edge:

@@ -26,7 +26,7 @@ Result<SceneImpulses> recordSceneImpulses(const gpu::Context& ctx, const scene::
     // queues that no emitter reads.
     scene::Scene smokeOnly = scene;
     std::erase_if(smokeOnly.effects,
-                  [](const scene::EffectSpec& e) { return e.type != scene::EffectType::Smoke; });
+                  [](const scene::EffectSpec& e) { return !e.is<scene::SmokeSpec>(); });
     if (smokeOnly.effects.empty())
         return Error{scene.file + ": no smoke effect, so no impulses to record"};
     if (maxSteps == 0) return Error{"recording a scene's impulses needs at least one step"};
@@ -35,18 +35,18 @@ Result<SceneImpulses> recordSceneImpulses(const gpu::Context& ctx, const scene::
     SceneSimulation& sim = *created.value();
     sim.setCaptureEmitters(true);
 
-    const SceneSimulation::SmokeGrid& grid = sim.smokeGrids().front();
+    const fluid::SmokeGrid& grid = sim.smokeGrids().front().grid;
     SceneImpulses out;
     out.scene = scene.file;
-    out.grid = grid.name;
-    out.options = grid.solver->options();
-    out.stepsPerSecond = smokeOnly.output.fps * float(grid.stepsPerFrame);
+    out.grid = grid.name();
+    out.options = grid.solver().options();
+    out.stepsPerSecond = smokeOnly.output.fps * float(grid.settings().stepsPerFrame);
     bool started = false;
     for (uint32_t frame = 0; frame < sim.frameCount() && out.steps.size() < maxSteps; ++frame) {
         sim.runFrame(frame);
         // A following grid has moved by whole cells since it was placed: records in its frame
         // plus that move are in the frame of the placed grid, which the replay keeps still.
-        const glm::vec3 moved = grid.origin - grid.placedOrigin;
+        const glm::vec3 moved = grid.origin() - grid.placedOrigin();
         for (CapturedStep& step : sim.capturedEmitters(0)) {
             if (!started && step.emitters.empty()) continue;
             if (!started) out.firstStep = step.step;

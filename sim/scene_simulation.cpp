@@ -21,22 +21,6 @@ namespace {
 
 constexpr uint32_t kMaxPasses = 512;
 
-trajectory::Kind kindOf(scene::EffectType type) {
-    switch (type) {
-    case scene::EffectType::SpeedLines:
-        return trajectory::Kind::Lines;
-    case scene::EffectType::MotionBlur:
-        return trajectory::Kind::Volumes;
-    case scene::EffectType::MotionParticles:
-    case scene::EffectType::Smoke:
-    case scene::EffectType::AfterimageSmear: // no queue (render/afterimage_pass.h)
-    case scene::EffectType::SweptVolume:     // no queue (render/swept_volume_pass.h)
-    case scene::EffectType::SilhouetteShell: // no queue (render/silhouette_shell_pass.h)
-        return trajectory::Kind::Particles;
-    }
-    return trajectory::Kind::Lines;
-}
-
 // Every stride-th vertex of `source` (triangles dropped: only volumes use them, and volumes keep
 // every vertex).
 trajectory::Source strided(const trajectory::Source& source, uint32_t stride) {
@@ -49,13 +33,6 @@ trajectory::Source strided(const trajectory::Source& source, uint32_t stride) {
         if (v < source.uvs.size()) out.uvs.push_back(source.uvs[v]);
     }
     return out;
-}
-
-bool sameGrid(const scene::EffectSpec& a, const scene::EffectSpec& b) {
-    return a.grid == b.grid && a.cellSize == b.cellSize && a.jacobi == b.jacobi &&
-           a.fade == b.fade && a.drag == b.drag && a.buoyancy == b.buoyancy &&
-           a.vorticity == b.vorticity && a.stepsPerSecond == b.stepsPerSecond &&
-           a.follow == b.follow;
 }
 
 } // namespace
@@ -88,32 +65,29 @@ Result<std::unique_ptr<SceneSimulation>> SceneSimulation::create(const gpu::Cont
             sim->scene_.file + ": effects[" + std::to_string(i) + "] (\"" + e.name + "\"): ";
         TrajectoryEffect effect;
         effect.spec = &e;
-        const bool surface =
-            e.type == scene::EffectType::Smoke && e.emission == scene::Emission::Surface;
         Result<trajectory::Source> selected = scene::effectSource(character, e, &effect.surface);
         if (!selected) return Error{where + selected.error().message};
-        // The afterimage smear keeps its own per-vertex history in the renderer (it deforms the
-        // mesh as drawn, render/afterimage_pass.h); it has no trajectory queue.
-        // So do the swept volume (render/swept_volume_pass.h) and the silhouette shell
-        // (render/silhouette_shell_pass.h).
-        if (e.type == scene::EffectType::AfterimageSmear ||
-            e.type == scene::EffectType::SweptVolume ||
-            e.type == scene::EffectType::SilhouetteShell)
-            continue;
-        effect.source = e.type == scene::EffectType::MotionBlur || surface
+        // Kinds without a trail keep their own per-vertex history in their pass (the afterimage,
+        // swept-volume and silhouette-shell passes, render/effect_geometry.h).
+        effect.trail = e.kind().queue();
+        if (!effect.trail) continue;
+        const scene::TrailSpec& trail = *effect.trail;
+        effect.smoke = e.as<scene::SmokeSpec>();
+        const bool surface = e.kind().surfaceSampling().has_value();
+        effect.source = trail.shape == trajectory::Kind::Volumes || surface
                             ? std::move(selected).value()
-                            : strided(selected.value(), e.stride);
-        if (!e.useMeshColour)
-            std::fill(effect.source.colours.begin(), effect.source.colours.end(), e.colour);
+                            : strided(selected.value(), trail.stride);
+        if (!trail.useMeshColour)
+            std::fill(effect.source.colours.begin(), effect.source.colours.end(), trail.colour);
         trajectory::QueueOptions options;
-        options.kind = kindOf(e.type);
-        options.segment.subSamples = e.subSamples;
-        options.segment.impulseScale = e.impulseScale;
-        options.segment.alphaStart = e.alphaStart;
-        options.segment.alphaEnd = e.alphaEnd;
-        options.segment.alphaPower = e.alphaPower;
-        options.lifetime = e.lifetime;
-        options.maxLifetime = e.lifetime;
+        options.kind = trail.shape;
+        options.segment.subSamples = trail.subSamples;
+        options.segment.impulseScale = effect.smoke ? effect.smoke->impulseScale : 1.0f;
+        options.segment.alphaStart = trail.alphaStart;
+        options.segment.alphaEnd = trail.alphaEnd;
+        options.segment.alphaPower = trail.alphaPower;
+        options.lifetime = trail.lifetime;
+        options.maxLifetime = trail.lifetime;
         auto queue = trajectory::Queue::create(ctx, effect.source, options);
         if (!queue) return Error{where + queue.error().message};
         effect.queue = std::move(queue).value();
@@ -121,30 +95,35 @@ Result<std::unique_ptr<SceneSimulation>> SceneSimulation::create(const gpu::Cont
     }
 
     // Smoke effects with the same grid settings share a grid.
+    std::vector<std::vector<size_t>> groups;
     for (size_t i = 0; i < sim->trajectories_.size(); ++i) {
-        const scene::EffectSpec& e = *sim->trajectories_[i].spec;
-        if (e.type != scene::EffectType::Smoke) continue;
-        auto shared = std::find_if(sim->grids_.begin(), sim->grids_.end(), [&](const SmokeGrid& g) {
-            return sameGrid(*sim->trajectories_[g.effects.front()].spec, e);
+        const scene::SmokeSpec* smoke = sim->trajectories_[i].smoke;
+        if (!smoke) continue;
+        auto shared = std::find_if(groups.begin(), groups.end(), [&](const auto& g) {
+            return sim->trajectories_[g.front()].smoke->grid == smoke->grid;
         });
-        if (shared != sim->grids_.end()) {
-            shared->effects.push_back(i);
-            shared->sleepThreshold = std::min(shared->sleepThreshold, e.sleepThreshold);
-            continue;
-        }
-        SmokeGrid grid;
-        grid.name = "smoke" + std::to_string(sim->grids_.size());
-        grid.effects.push_back(i);
-        grid.sleepThreshold = e.sleepThreshold;
-        sim->grids_.push_back(std::move(grid));
+        if (shared != groups.end())
+            shared->push_back(i);
+        else
+            groups.push_back({i});
     }
-    for (SmokeGrid& grid : sim->grids_) {
-        const scene::EffectSpec& e = *sim->trajectories_[grid.effects.front()].spec;
-        fluid::SolverOptions options;
-        options.grid = fluid::GridShape{e.grid[0], e.grid[1], e.grid[2], e.cellSize};
-        grid.stepsPerFrame =
+    for (const std::vector<size_t>& effects : groups) {
+        const scene::SmokeGridSpec& e = sim->trajectories_[effects.front()].smoke->grid;
+        fluid::SmokeGridSettings settings;
+        settings.name = "smoke" + std::to_string(sim->grids_.size());
+        settings.follow = e.follow;
+        settings.sleepThreshold = std::numeric_limits<float>::max();
+        settings.emitterCapacity = 0;
+        for (size_t i : effects) {
+            const scene::SmokeSpec& smoke = *sim->trajectories_[i].smoke;
+            settings.sleepThreshold = std::min(settings.sleepThreshold, smoke.sleepThreshold);
+            settings.emitterCapacity += smoke.maxEmitters;
+        }
+        settings.stepsPerFrame =
             std::max(1u, uint32_t(std::ceil(e.stepsPerSecond / sim->scene_.output.fps - 1e-4f)));
-        options.dt = 1.0f / (sim->scene_.output.fps * float(grid.stepsPerFrame));
+        fluid::SolverOptions& options = settings.options;
+        options.grid = fluid::GridShape{e.cells[0], e.cells[1], e.cells[2], e.cellSize};
+        options.dt = 1.0f / (sim->scene_.output.fps * float(settings.stepsPerFrame));
         options.fade = e.fade;
         options.drag = e.drag;
         options.buoyancy = e.buoyancy;
@@ -153,26 +132,12 @@ Result<std::unique_ptr<SceneSimulation>> SceneSimulation::create(const gpu::Cont
         for (fluid::FaceBoundary& face : options.boundaries)
             face.kind = fluid::Boundary::Open;
         options.boundaries[fluid::FaceLowY].kind = fluid::Boundary::WallFreeSlip; // the stage floor
-        auto solver = fluid::SmokeSolver::create(ctx, options);
-        if (!solver)
-            return Error{sim->scene_.file + ": " + grid.name + ": " + solver.error().message};
-        grid.solver = std::move(solver).value();
-        uint32_t capacity = 0;
-        for (size_t i : grid.effects)
-            capacity += sim->trajectories_[i].spec->maxEmitters;
-        // Transfer source for setCaptureEmitters' copies.
-        grid.emitters =
-            gpu::createBuffer(ctx, capacity * sizeof(shared::FluidEmitter),
-                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                              gpu::MemoryUsage::DeviceLocal, "smoke emitters");
-        grid.activity =
-            gpu::createBuffer(ctx, 2 * sizeof(uint32_t),
-                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                              gpu::MemoryUsage::Readback, "smoke activity");
-        if (Status placed = sim->placeGrid(grid); !placed) return placed.error();
-        grid.follow = e.follow;
-        grid.placedOrigin = grid.origin;
-        grid.rootAtPlacement = sim->rootPosition(sim->poseAt(sim->frameTime(0)));
+        const std::string name = settings.name;
+        auto grid = fluid::SmokeGrid::create(ctx, std::move(settings));
+        if (!grid) return Error{sim->scene_.file + ": " + name + ": " + grid.error().message};
+        sim->grids_.emplace_back(std::move(grid).value());
+        sim->grids_.back().effects = effects;
+        sim->placeGrid(sim->grids_.back());
     }
     if (!sim->grids_.empty()) sim->coupling_ = std::make_unique<fluid::SegmentEmitters>(ctx);
     sim->timer_ = gpu::GpuTimer(ctx, kMaxPasses);
@@ -190,7 +155,7 @@ bool SceneSimulation::effectLive(const scene::EffectSpec& e, float time) const {
 // The grid is centred on the bounds its effects' vertices sweep over their windows (sampled at
 // the frame rate), and stands on the floor (y = stage.floorHeight) when the stage has one and the
 // bounds allow.
-Status SceneSimulation::placeGrid(SmokeGrid& grid) {
+void SceneSimulation::placeGrid(SmokeGrid& grid) {
     glm::vec3 low(std::numeric_limits<float>::max()), high(std::numeric_limits<float>::lowest());
     const anim::Clip& clip = scene::sceneClip(scene_, character_);
     for (size_t i : grid.effects) {
@@ -214,16 +179,10 @@ Status SceneSimulation::placeGrid(SmokeGrid& grid) {
             }
         }
     }
-    const fluid::GridShape& shape = grid.solver->options().grid;
-    const glm::vec3 extent =
-        glm::vec3(float(shape.cellsX), float(shape.cellsY), float(shape.cellsZ)) * shape.cellSize;
-    if (low.x > high.x) { // no live frame at all: centre on the character's origin
-        low = high = scene_.character.position + glm::vec3(0.0f, 0.5f * extent.y, 0.0f);
-    }
-    grid.origin = 0.5f * (low + high) - 0.5f * extent;
-    const float floor = scene_.stage.floorHeight;
-    if (scene_.stage.floor && grid.origin.y < floor && low.y >= floor) grid.origin.y = floor;
-    return Ok{};
+    grid.grid.place(low, high, scene_.character.position,
+                    scene_.stage.floor ? std::optional<float>(scene_.stage.floorHeight)
+                                       : std::nullopt,
+                    rootPosition(poseAt(frameTime(0))));
 }
 
 anim::Pose SceneSimulation::poseAt(float time) const {
@@ -250,7 +209,7 @@ void SceneSimulation::recordFrame(VkCommandBuffer cmd, uint32_t frame) {
     timer_.reset(cmd);
     // The drawn effects: one segment per frame.
     for (TrajectoryEffect& effect : trajectories_) {
-        if (effect.spec->type == scene::EffectType::Smoke) continue;
+        if (effect.smoke) continue;
         effect.live = effectLive(*effect.spec, t);
         if (!effect.live) {
             effect.queue->skip(t);
@@ -278,27 +237,12 @@ glm::vec3 SceneSimulation::rootPosition(const anim::Pose& pose) const {
 // so 30 and 60 frames per second run the same steps. Its smoke effects build their segments at
 // the step rate too.
 void SceneSimulation::recordSmoke(VkCommandBuffer cmd, SmokeGrid& grid, uint32_t frame) {
-    grid.measured = false;
+    fluid::SmokeGrid& g = grid.grid;
+    g.beginFrame();
     grid.emittersThisFrame = 0;
     grid.capturedSteps.clear();
-    if (grid.follow) {
-        // Keep the grid where it was placed relative to the character's root, along the floor
-        // (x, z), by whole cells. Awake, the fields move the other way, so the smoke stays put;
-        // asleep, there is nothing to carry along.
-        const float h = grid.solver->options().grid.cellSize;
-        glm::vec3 moved = rootPosition(framePose_) - grid.rootAtPlacement;
-        moved.y = 0.0f;
-        const glm::ivec3 cells =
-            glm::ivec3(glm::round((grid.placedOrigin + moved - grid.origin) / h));
-        if (cells != glm::ivec3(0)) {
-            if (grid.awake) {
-                grid.solver->recordShift(cmd, cells);
-                addPass(grid.name + "/shift", 0);
-            }
-            grid.origin += glm::vec3(cells) * h;
-        }
-    }
-    const uint32_t n = grid.stepsPerFrame;
+    if (g.recordFollow(cmd, rootPosition(framePose_))) addPass(g.name() + "/shift", 0);
+    const uint32_t n = g.settings().stepsPerFrame;
     const float rate = scene_.output.fps * float(n);
     bool anyLiveThisFrame = false;
     for (uint32_t k = 0; k < n; ++k) {
@@ -317,7 +261,7 @@ void SceneSimulation::recordSmoke(VkCommandBuffer cmd, SmokeGrid& grid, uint32_t
                 continue;
             }
             anyLive = true;
-            const std::string name = grid.name + "/" + effect.spec->name + "/" +
+            const std::string name = g.name() + "/" + effect.spec->name + "/" +
                                      trajectory::methodName(effect.queue->options().method);
             timer_.begin(cmd, name);
             effect.queue->record(
@@ -326,42 +270,38 @@ void SceneSimulation::recordSmoke(VkCommandBuffer cmd, SmokeGrid& grid, uint32_t
             addPass(name, 1);
         }
         anyLiveThisFrame = anyLiveThisFrame || anyLive;
-        if (anyLive) grid.awake = true;
-        if (!grid.awake) continue;
+        if (anyLive) g.wake();
+        if (!g.awake()) continue;
         uint32_t emitters = 0;
         for (size_t i : grid.effects) {
             const TrajectoryEffect& effect = trajectories_[i];
             if (!effect.live) continue;
             fluid::CouplingParameters parameters;
-            parameters.gridOrigin = grid.origin;
-            parameters.radius = effect.spec->radius;
-            parameters.strength = effect.spec->strength;
-            parameters.maxEmitters = effect.spec->maxEmitters;
-            parameters.samplesPerVertex = effect.spec->subSamples + 1;
-            const std::string name = grid.name + "/" + effect.spec->name + "/segment_emitters";
+            parameters.gridOrigin = g.origin();
+            parameters.radius = effect.smoke->radius;
+            parameters.strength = effect.smoke->strength;
+            parameters.maxEmitters = effect.smoke->maxEmitters;
+            parameters.samplesPerVertex = effect.trail->subSamples + 1;
+            const std::string name = g.name() + "/" + effect.spec->name + "/segment_emitters";
             timer_.begin(cmd, name);
             emitters += coupling_->record(
                 cmd, effect.queue->vertices(), effect.queue->newestSegment().firstVertex,
-                effect.queue->verticesPerSegment(), grid.emitters, emitters, parameters);
+                effect.queue->verticesPerSegment(), g.emitters(), emitters, parameters);
             timer_.end(cmd);
             addPass(name, 1);
         }
         grid.emittersThisFrame += emitters;
         if (grid.captured) captureStep(cmd, grid, uint64_t(step), emitters);
-        grid.solver->setEmitterBuffer(grid.emitters, emitters);
-        timer_.setPrefix(grid.name + "/");
-        grid.solver->recordStep(cmd, &timer_);
-        timer_.setPrefix("");
-        for (const auto& [stage, count] : grid.solver->lastStepDispatches())
-            addPass(grid.name + "/" + stage, count);
+        g.recordStep(cmd, emitters, &timer_);
+        for (const auto& [stage, count] : g.solver().lastStepDispatches())
+            addPass(g.name() + "/" + stage, count);
     }
-    if (grid.awake && !anyLiveThisFrame) {
-        const std::string name = grid.name + "/measure_activity";
+    if (g.awake() && !anyLiveThisFrame) {
+        const std::string name = g.name() + "/measure_activity";
         timer_.begin(cmd, name);
-        grid.solver->recordMeasureActivity(cmd, grid.activity);
+        g.recordMeasureActivity(cmd);
         timer_.end(cmd);
         addPass(name, 1);
-        grid.measured = true;
     }
 }
 
@@ -369,10 +309,12 @@ void SceneSimulation::setCaptureEmitters(bool capture) {
     for (SmokeGrid& grid : grids_) {
         grid.capturedSteps.clear();
         grid.captured =
-            capture ? gpu::createBuffer(ctx_, grid.emitters.size * grid.stepsPerFrame,
-                                        VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                        gpu::MemoryUsage::Readback, "captured smoke emitters")
-                    : gpu::Buffer{};
+            capture
+                ? gpu::createBuffer(ctx_,
+                                    grid.grid.emitters().size * grid.grid.settings().stepsPerFrame,
+                                    VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryUsage::Readback,
+                                    "captured smoke emitters")
+                : gpu::Buffer{};
     }
 }
 
@@ -387,9 +329,10 @@ void SceneSimulation::captureStep(VkCommandBuffer cmd, SmokeGrid& grid, uint64_t
     gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
                        VK_ACCESS_2_TRANSFER_READ_BIT);
-    const VkBufferCopy region{0, VkDeviceSize(slot) * grid.emitters.size,
+    const gpu::Buffer& emitters = grid.grid.emitters();
+    const VkBufferCopy region{0, VkDeviceSize(slot) * emitters.size,
                               VkDeviceSize(count) * sizeof(shared::FluidEmitter)};
-    vkCmdCopyBuffer(cmd, grid.emitters.get(), grid.captured.get(), 1, &region);
+    vkCmdCopyBuffer(cmd, emitters.get(), grid.captured.get(), 1, &region);
     gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_HOST_BIT,
                        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_HOST_READ_BIT);
@@ -404,7 +347,7 @@ std::vector<CapturedStep> SceneSimulation::capturedEmitters(size_t grid) const {
         CapturedStep step;
         step.step = g.capturedSteps[slot].first;
         step.emitters.resize(g.capturedSteps[slot].second);
-        std::memcpy(step.emitters.data(), bytes + slot * g.emitters.size,
+        std::memcpy(step.emitters.data(), bytes + slot * g.grid.emitters().size,
                     step.emitters.size() * sizeof(shared::FluidEmitter));
         out.push_back(std::move(step));
     }
@@ -424,22 +367,14 @@ SimulationFrameStats SceneSimulation::finishFrame() {
             }
     for (SmokeGrid& grid : grids_) {
         GridFrameState state;
-        state.name = grid.name;
-        state.awake = grid.awake;
+        state.name = grid.grid.name();
+        state.awake = grid.grid.awake(); // before the sleep decision: whether it stepped
         state.emitters = grid.emittersThisFrame;
-        state.measured = grid.measured;
-        if (grid.awake) ++stats.awakeGrids;
-        if (grid.measured) {
-            uint32_t bits[2];
-            std::memcpy(bits, grid.activity.mapped, sizeof bits);
-            std::memcpy(&state.largestAlpha, &bits[0], 4);
-            std::memcpy(&state.largestSpeed, &bits[1], 4);
-            const fluid::GridShape& shape = grid.solver->options().grid;
-            const float speedThreshold =
-                grid.sleepThreshold * shape.cellSize / grid.solver->options().dt;
-            if (state.largestAlpha < grid.sleepThreshold && state.largestSpeed < speedThreshold)
-                grid.awake = false;
-        }
+        if (state.awake) ++stats.awakeGrids;
+        const fluid::SmokeGrid::Activity activity = grid.grid.finishFrame();
+        state.measured = activity.measured;
+        state.largestAlpha = activity.largestAlpha;
+        state.largestSpeed = activity.largestSpeed;
         stats.grids.push_back(state);
     }
     stats.fluidBytes = fluidBytes();
@@ -454,7 +389,7 @@ SimulationFrameStats SceneSimulation::runFrame(uint32_t frame) {
 uint64_t SceneSimulation::fluidBytes() const {
     uint64_t bytes = 0;
     for (const SmokeGrid& grid : grids_)
-        bytes += grid.solver->memoryBytes() + grid.emitters.size + grid.activity.size;
+        bytes += grid.grid.memoryBytes();
     return bytes;
 }
 

@@ -1,33 +1,32 @@
 // A scene's motion and smoke, frame by frame, on the GPU: only what the scene's effects call for.
 //
-//   * every effect gets a trajectory queue over the vertices its bones and meshes select
-//     (speed-lines: lines, blur: volumes, particles: points, smoke: the newest segment only);
-//     outside its time window an effect writes no segment and its trail ages out;
-//   * smoke effects with the same grid settings share one solver; no smoke effect, no grid: no
-//     fluid memory and no fluid dispatch;
+//   * every effect whose kind has a trail (core/scene/effect_spec.h) gets a trajectory queue over
+//     the vertices its bones and meshes select (speed-lines: lines, blur: volumes, particles:
+//     points, smoke: the newest segment only); outside its time window an effect writes no
+//     segment and its trail ages out; kinds without a trail keep their history in their pass;
+//   * smoke effects with the same grid settings share one grid (fluid/smoke_grid.h: its
+//     placement, follow, step and sleep); no smoke effect, no grid: no fluid memory and no
+//     fluid dispatch;
 //   * a grid steps at a fixed rate (steps_per_second, rounded up to whole steps per frame), and
 //     its smoke effects build their segments at that rate, so 30 and 60 frames per second
 //     simulate the same smoke;
 //   * each step every live smoke effect's newest segment becomes emitters on the GPU
 //     (segment_emitters: impulse velocity, colour as pigment, strength by attenuation), in the
-//     grid's own frame; the grid is placed around the effects' vertices over their windows, with
-//     its floor on the stage floor; with "follow" it moves with the character's root along the
-//     floor, by whole cells, its fields shifted the other way so the smoke stays in place;
-//   * a grid none of whose effects is live keeps stepping while its smoke settles and measures
-//     its largest pigment alpha and speed each frame; once both are below the effects' sleep
-//     threshold (speed: threshold x cell size / dt) it sleeps: zero dispatches until an effect is
-//     live again.
+//     grid's own frame; the grid is placed around the effects' vertices over their windows;
+//   * a grid none of whose effects is live keeps stepping while its smoke settles, until it
+//     sleeps (SmokeGrid::finishFrame).
 // Statistics per frame: every pass that ran, with its dispatches and GPU milliseconds, and the
 // fluid memory.
 #pragma once
 
 #include "core/gpu/resources.h"
 #include "core/gpu/timer.h"
+#include "core/scene/kinds/smoke_effect.h"
 #include "core/scene/scene.h"
 #include "core/trajectory/surface_source.h"
 #include "core/trajectory/trajectory_queue.h"
 #include "fluid/segment_emitters.h"
-#include "fluid/smoke_solver.h"
+#include "fluid/smoke_grid.h"
 
 #include <atomic>
 #include <memory>
@@ -72,29 +71,23 @@ class SceneSimulation {
 public:
     struct TrajectoryEffect {
         const scene::EffectSpec* spec = nullptr;
+        const scene::TrailSpec* trail = nullptr; // its kind's trail (never null)
+        const scene::SmokeSpec* smoke = nullptr; // its kind's settings for smoke, else null
         trajectory::Source source;
         std::unique_ptr<trajectory::Queue> queue;
         bool live = false;                 // wrote a segment this frame
         trajectory::SurfaceReport surface; // for smoke emitted from the surface
     };
+    // A smoke grid (fluid/smoke_grid.h: placement, follow, step, sleep) and the smoke effects
+    // that feed it.
     struct SmokeGrid {
-        std::string name; // "smoke<i>" (the pass names start with it)
-        std::unique_ptr<fluid::SmokeSolver> solver;
-        glm::vec3 origin{0.0f};      // world position of the grid's low corner
+        explicit SmokeGrid(fluid::SmokeGrid g) : grid(std::move(g)) {}
+        fluid::SmokeGrid grid;
         std::vector<size_t> effects; // indices into trajectories()
-        gpu::Buffer emitters;
-        gpu::Buffer activity; // two floats as uint bits: largest pigment alpha, largest speed
-        bool awake = false;
-        bool measured = false; // measured its activity this frame
-        float sleepThreshold = 1e-4f;
-        uint32_t stepsPerFrame = 1;
-        bool follow = false;             // moves with the character's root, by whole cells
-        glm::vec3 placedOrigin{0.0f};    // where placement put it
-        glm::vec3 rootAtPlacement{0.0f}; // the root's position then (frame 0)
         uint32_t emittersThisFrame = 0;
         // With setCaptureEmitters(true): a read-back copy of every step's emitter records, one
-        // slot of `emitters`' size per step of the frame, and the step and record count of each
-        // slot.
+        // slot of the emitter buffer's size per step of the frame, and the step and record count
+        // of each slot.
         gpu::Buffer captured;
         std::vector<std::pair<uint64_t, uint32_t>> capturedSteps;
     };
@@ -142,6 +135,8 @@ public:
 
     const std::vector<TrajectoryEffect>& trajectories() const { return trajectories_; }
     const std::vector<SmokeGrid>& smokeGrids() const { return grids_; }
+    // Non-const for reading a grid's fields back (SmokeSolver::state records a copy).
+    std::vector<SmokeGrid>& smokeGrids() { return grids_; }
     uint64_t fluidBytes() const;
     // Different for every simulation this process creates: a pass that keeps a history of frames
     // (FrameHistory, render/effect_geometry.h) knows from it when a restarted view began a new
@@ -158,7 +153,7 @@ private:
     void addPass(const std::string& name, uint32_t dispatches);
     void recordSmoke(VkCommandBuffer cmd, SmokeGrid& grid, uint32_t frame);
     void captureStep(VkCommandBuffer cmd, SmokeGrid& grid, uint64_t step, uint32_t count);
-    Status placeGrid(SmokeGrid& grid);
+    void placeGrid(SmokeGrid& grid);
 
     const gpu::Context& ctx_;
     scene::Scene scene_;

@@ -286,8 +286,8 @@ TEST(AfterimageScene, ReadsEveryOption) {
         "influence_power": 3}]})",
         "s.json");
     ASSERT_TRUE(s) << s.error().message;
-    const scene::AfterimageSpec& a = s.value().effects[0].afterimage;
-    EXPECT_EQ(s.value().effects[0].type, scene::EffectType::AfterimageSmear);
+    ASSERT_TRUE(s.value().effects[0].is<scene::AfterimageSpec>());
+    const scene::AfterimageSpec& a = *s.value().effects[0].as<scene::AfterimageSpec>();
     EXPECT_EQ(s.value().effects[0].name, "afterimage_smear#0");
     EXPECT_EQ(a.variant, scene::AfterimageVariant::Multi);
     EXPECT_EQ(a.strengthCharacter, 0.5f);

@@ -3,6 +3,8 @@
 #include "core/scene/scene.h"
 
 #include "core/anim/fighter.h"
+#include "core/scene/kinds/smoke_effect.h"
+#include "core/scene/kinds/trail_effects.h"
 
 #include <filesystem>
 #include <fstream>
@@ -21,7 +23,8 @@ scene::Scene parse(const std::string& text) {
 TEST(SceneFile, SpeedLinesAloneIsACompleteScene) {
     const scene::Scene s = parse(R"({"effects": [{"type": "speed_lines"}]})");
     ASSERT_EQ(s.effects.size(), 1u);
-    EXPECT_EQ(s.effects[0].type, scene::EffectType::SpeedLines);
+    EXPECT_TRUE(s.effects[0].is<scene::SpeedLinesSpec>());
+    EXPECT_STREQ(s.effects[0].type(), "speed_lines");
     EXPECT_TRUE(s.effects[0].bones.empty());
     EXPECT_TRUE(s.effects[0].automaticBones); // fitScene binds it to the fastest limb
     EXPECT_TRUE(s.effects[0].meshes.empty());
@@ -64,16 +67,20 @@ TEST(SceneFile, EveryKeyIsRead) {
     EXPECT_FALSE(s.lights[0].shadow);
     EXPECT_FALSE(s.stage.floor);
     EXPECT_EQ(*s.output.frames, 12u);
-    const scene::EffectSpec& smoke = s.effects[0];
-    EXPECT_EQ(smoke.name, "puff");
-    EXPECT_EQ(smoke.grid, (std::array<uint32_t, 3>{32, 24, 16}));
-    EXPECT_EQ(smoke.emission, scene::Emission::Surface);
-    EXPECT_EQ(smoke.maxEmitters, 100u);
-    EXPECT_FLOAT_EQ(smoke.drag, 2.0f);
-    EXPECT_FLOAT_EQ(smoke.colour.a, 0.8f);
-    EXPECT_FLOAT_EQ(s.effects[1].width, 0.02f);
-    EXPECT_FLOAT_EQ(s.effects[2].size, 0.03f);
-    EXPECT_TRUE(s.effects[3].useMeshColour);
+    EXPECT_EQ(s.effects[0].name, "puff");
+    const auto* smoke = s.effects[0].as<scene::SmokeSpec>();
+    const auto* lines = s.effects[1].as<scene::SpeedLinesSpec>();
+    const auto* particles = s.effects[2].as<scene::MotionParticlesSpec>();
+    const auto* blur = s.effects[3].as<scene::MotionBlurSpec>();
+    ASSERT_TRUE(smoke && lines && particles && blur);
+    EXPECT_EQ(smoke->grid.cells, (std::array<uint32_t, 3>{32, 24, 16}));
+    EXPECT_EQ(smoke->emission, scene::Emission::Surface);
+    EXPECT_EQ(smoke->maxEmitters, 100u);
+    EXPECT_FLOAT_EQ(smoke->grid.drag, 2.0f);
+    EXPECT_FLOAT_EQ(smoke->trail.colour.a, 0.8f);
+    EXPECT_FLOAT_EQ(lines->width, 0.02f);
+    EXPECT_FLOAT_EQ(particles->size, 0.03f);
+    EXPECT_TRUE(blur->trail.useMeshColour);
     const anim::Character fighter = anim::makeFighter();
     EXPECT_TRUE(scene::checkNames(s, fighter).ok());
     // Half speed over 0.6 s of clip: 1.2 s of scene; the clip time loops.
@@ -85,9 +92,9 @@ TEST(SceneFile, EveryKeyIsRead) {
 TEST(SceneFile, DefaultSceneIsTheKickWithLinesBlurAndSmoke) {
     const scene::Scene s = scene::defaultScene();
     ASSERT_EQ(s.effects.size(), 3u);
-    EXPECT_EQ(s.effects[0].type, scene::EffectType::SpeedLines);
-    EXPECT_EQ(s.effects[1].type, scene::EffectType::MotionBlur);
-    EXPECT_EQ(s.effects[2].type, scene::EffectType::Smoke);
+    EXPECT_TRUE(s.effects[0].is<scene::SpeedLinesSpec>());
+    EXPECT_TRUE(s.effects[1].is<scene::MotionBlurSpec>());
+    EXPECT_TRUE(s.effects[2].is<scene::SmokeSpec>());
     const Result<anim::Character> c = scene::loadCharacter(s);
     ASSERT_TRUE(c.ok()) << c.error().message;
     EXPECT_EQ(scene::sceneClip(s, c.value()).name, "roundhouse_kick");

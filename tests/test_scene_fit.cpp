@@ -4,6 +4,9 @@
 // program and judge the picture itself.
 #include "core/scene/scene_fit.h"
 
+#include "core/scene/kinds/smoke_effect.h"
+#include "core/scene/kinds/trail_effects.h"
+
 #include "core/anim/bone_groups.h"
 #include "core/anim/fighter.h"
 #include "core/anim/gltf_import.h"
@@ -25,6 +28,18 @@ scene::Scene parse(const std::string& text) {
     Result<scene::Scene> s = scene::parseScene(text, "test.json");
     EXPECT_TRUE(s.ok()) << s.error().message;
     return s ? std::move(s).value() : scene::Scene{};
+}
+
+// The stride of a trajectory effect's trail, and a smoke effect's settings.
+uint32_t strideOf(const scene::EffectSpec& e) {
+    const scene::TrailSpec* trail = e.kind().queue();
+    EXPECT_TRUE(trail) << e.type() << " has no trail";
+    return trail ? trail->stride : 0;
+}
+const scene::SmokeSpec& smokeOf(const scene::EffectSpec& e) {
+    static const scene::SmokeSpec none;
+    EXPECT_TRUE(e.is<scene::SmokeSpec>()) << e.type() << " is not smoke";
+    return e.is<scene::SmokeSpec>() ? *e.as<scene::SmokeSpec>() : none;
 }
 
 float heightAtStart(const scene::Scene& s, const anim::Character& c) {
@@ -116,20 +131,22 @@ TEST(FitScene, AGiantOnPurposeGetsItsLengthDefaultsScaled) {
     std::vector<std::string> notes;
     ASSERT_TRUE(scene::fitScene(s, giant.value(), &notes).ok());
     const float unit = 10.0f / scene::kDefaultHeight;
-    EXPECT_NEAR(s.effects[0].cellSize, parsed.effects[0].cellSize * unit, 1e-5f);
-    EXPECT_NEAR(s.effects[0].radius, parsed.effects[0].radius * unit, 1e-5f);
-    EXPECT_EQ(s.effects[1].width, 0.05f); // given: kept
+    EXPECT_NEAR(smokeOf(s.effects[0]).grid.cellSize,
+                smokeOf(parsed.effects[0]).grid.cellSize * unit, 1e-5f);
+    EXPECT_NEAR(smokeOf(s.effects[0]).radius, smokeOf(parsed.effects[0]).radius * unit, 1e-5f);
+    ASSERT_TRUE(s.effects[1].is<scene::SpeedLinesSpec>());
+    EXPECT_EQ(s.effects[1].as<scene::SpeedLinesSpec>()->width, 0.05f); // given: kept
     ASSERT_FALSE(notes.empty());
     EXPECT_NE(notes.back().find("the character is 10 m tall: the effects' default"),
               std::string::npos)
         << notes.back();
     // Fitting again scales nothing twice; a human-sized character scales nothing at all.
-    const float once = s.effects[0].cellSize;
+    const float once = smokeOf(s.effects[0]).grid.cellSize;
     ASSERT_TRUE(scene::fitScene(s, giant.value()).ok());
-    EXPECT_EQ(s.effects[0].cellSize, once);
+    EXPECT_EQ(smokeOf(s.effects[0]).grid.cellSize, once);
     scene::Scene human = parse(R"({"effects": [{"type": "smoke", "bones": ["foot_r"]}]})");
     ASSERT_TRUE(scene::fitScene(human, anim::makeFighter()).ok());
-    EXPECT_EQ(human.effects[0].cellSize, scene::EffectSpec{}.cellSize);
+    EXPECT_EQ(smokeOf(human.effects[0]).grid.cellSize, scene::SmokeGridSpec{}.cellSize);
 }
 
 TEST(FitScene, AnEffectWithoutBonesTakesTheFastestLimb) {
@@ -187,7 +204,7 @@ size_t trailVertices(const anim::Character& c, const scene::EffectSpec& e) {
     selection.meshes = e.meshes;
     const Result<trajectory::Source> source = trajectory::selectSource(c, selection);
     EXPECT_TRUE(source.ok());
-    return source ? (source.value().vertices.size() + e.stride - 1) / e.stride : 0;
+    return source ? (source.value().vertices.size() + strideOf(e) - 1) / strideOf(e) : 0;
 }
 
 // The fighter with its body primitive repeated until it has at least `vertices` vertices (a
@@ -225,7 +242,7 @@ TEST(FitScene, StridesLeaveAVisibleTrailOnSmallAndLargeMeshes) {
         const size_t lines = trailVertices(*c, s.effects[0]);
         const size_t particles = trailVertices(*c, s.effects[1]);
         if (vertices < 1000) { // a limb of a few dozen vertices: every one of them
-            EXPECT_EQ(s.effects[0].stride, 1u);
+            EXPECT_EQ(strideOf(s.effects[0]), 1u);
             EXPECT_GE(lines, 20u);
         } else {
             EXPECT_GE(lines, scene::kTargetLines * 2 / 3) << vertices;
@@ -233,7 +250,7 @@ TEST(FitScene, StridesLeaveAVisibleTrailOnSmallAndLargeMeshes) {
             EXPECT_GE(particles, scene::kTargetParticles * 2 / 3) << vertices;
             EXPECT_LE(particles, scene::kTargetParticles * 3 / 2) << vertices;
         }
-        EXPECT_EQ(s.effects[2].stride, 7u); // a stride given is kept
+        EXPECT_EQ(strideOf(s.effects[2]), 7u); // a stride given is kept
     }
 }
 
@@ -283,7 +300,7 @@ TEST_P(AutomaticCamera, SeesTheWholeAnimationWithTheFloorUnderIt) {
     EXPECT_EQ(s.stage.backdropCentre, once.stage.backdropCentre);
     EXPECT_EQ(s.stage.shadowRadius, once.stage.shadowRadius);
     EXPECT_EQ(s.effects[0].bones, once.effects[0].bones);
-    EXPECT_EQ(s.effects[0].stride, once.effects[0].stride);
+    EXPECT_EQ(strideOf(s.effects[0]), strideOf(once.effects[0]));
     EXPECT_FALSE(s.effects[0].automaticBones);
     EXPECT_FALSE(s.effects[0].automaticStride);
 }

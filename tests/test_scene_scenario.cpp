@@ -1,6 +1,7 @@
 // The default scene's kick recorded as a solver scenario (sim/scene_scenario.h): the recording
 // has impulses, every field is finite and inside the domain, the mapping onto a scenario grid
 // does not depend on its size, and the CPU reference runs it to finite fields with pigment.
+#include "core/scene/kinds/smoke_effect.h"
 #include "fluid/reference/reference_solver.h"
 #include "sim/scene_scenario.h"
 #include "tests/gpu_test.h"
@@ -200,7 +201,7 @@ TEST_F(SceneScenarioTest, FollowingGridIsRecordedWhereItWasPlaced) {
                                                     "follow.json");
     ASSERT_TRUE(parsed.ok()) << parsed.error().message;
     scene::Scene still = parsed.value();
-    still.effects[0].follow = false;
+    still.effects[0].as<scene::SmokeSpec>()->grid.follow = false;
     auto following = sim::recordSceneImpulses(ctx(), parsed.value(), point);
     auto staying = sim::recordSceneImpulses(ctx(), still, point);
     ASSERT_TRUE(following.ok()) << following.error().message;
@@ -230,7 +231,7 @@ TEST_F(SceneScenarioTest, BadInputsAreErrors) {
     EXPECT_FALSE(sim::recordSceneImpulses(ctx(), kick, fighter.value(), 0).ok());
     scene::Scene noSmoke = scene::defaultScene();
     std::erase_if(noSmoke.effects,
-                  [](const scene::EffectSpec& e) { return e.type == scene::EffectType::Smoke; });
+                  [](const scene::EffectSpec& e) { return e.is<scene::SmokeSpec>(); });
     Result<anim::Character> character = scene::loadCharacter(noSmoke);
     ASSERT_TRUE(character.ok());
     Result<sim::SceneImpulses> none =

@@ -109,11 +109,11 @@ TEST_F(SceneSimulationTest, OneMovingVertexPushesTheRightCellsLikeTheReference) 
                      "colour": [0.2, 0.6, 0.9], "jacobi": 20, "steps_per_second": 30}]})");
     auto sim = simulate(ctx(), s, point);
     ASSERT_TRUE(sim);
-    const sim::SceneSimulation::SmokeGrid& grid = sim->smokeGrids()[0];
+    fluid::SmokeGrid& grid = sim->smokeGrids()[0].grid;
     sim->runFrame(0); // no extent yet: zero velocity, pigment only
-    const fluid::FieldState before = grid.solver->state();
+    const fluid::FieldState before = grid.solver().state();
     sim->runFrame(1);
-    const fluid::FieldState after = grid.solver->state();
+    const fluid::FieldState after = grid.solver().state();
 
     // The CPU reference, stepping from the same fields with the emitters the CPU twins make from
     // the CPU twin of the segment.
@@ -122,13 +122,13 @@ TEST_F(SceneSimulationTest, OneMovingVertexPushesTheRightCellsLikeTheReference) 
     ASSERT_EQ(live.size(), 2u);
     const auto segment = effect.queue->readSegment(live[0]);
     fluid::CouplingParameters coupling;
-    coupling.gridOrigin = grid.origin;
+    coupling.gridOrigin = grid.origin();
     coupling.radius = 0.08f;
     coupling.strength = 20.0f;
     coupling.samplesPerVertex = 5;
     const auto emitters = fluid::segmentEmitters(segment, coupling);
     ASSERT_EQ(emitters.size(), 5u);
-    fluid::ReferenceSolver reference(grid.solver->options());
+    fluid::ReferenceSolver reference(grid.solver().options());
     reference.setState(before);
     reference.step(emitters);
     const fluid::FieldState expected = reference.state();
@@ -145,7 +145,7 @@ TEST_F(SceneSimulationTest, OneMovingVertexPushesTheRightCellsLikeTheReference) 
     // and the strongest push lies on the vertex's path (y = 0.6, z = 0 in the world).
     EXPECT_GT(maxValue, 0.3 * 0.8 * 1.5);
     EXPECT_LE(maxValue, 0.8 * 1.5 * 1.001);
-    const fluid::GridShape& shape = grid.solver->options().grid;
+    const fluid::GridShape& shape = grid.solver().options().grid;
     const glm::uvec3 n(shape.cellsX, shape.cellsY, shape.cellsZ);
     size_t strongest = 0;
     for (size_t i = 0; i < after.velocityX.size(); ++i)
@@ -153,7 +153,7 @@ TEST_F(SceneSimulationTest, OneMovingVertexPushesTheRightCellsLikeTheReference) 
     const size_t fx = strongest % (n.x + 1), fy = (strongest / (n.x + 1)) % n.y,
                  fz = strongest / (size_t(n.x + 1) * n.y);
     const glm::vec3 world =
-        grid.origin + glm::vec3(float(fx), float(fy) + 0.5f, float(fz) + 0.5f) * shape.cellSize;
+        grid.origin() + glm::vec3(float(fx), float(fy) + 0.5f, float(fz) + 0.5f) * shape.cellSize;
     EXPECT_NEAR(world.y, 0.6f, 0.08f + shape.cellSize);
     EXPECT_NEAR(world.z, 0.0f, 0.08f + shape.cellSize);
     float sideways = 0.0f;
@@ -191,7 +191,7 @@ TEST_F(SceneSimulationTest, SurfaceEmissionFeedsTheGrid) {
     for (uint32_t f = 0; f < 4; ++f)
         emitters += sim->runFrame(f).grids[0].emitters;
     EXPECT_GT(emitters, 0u);
-    const fluid::FieldState state = sim->smokeGrids()[0].solver->state();
+    const fluid::FieldState state = sim->smokeGrids()[0].grid.solver().state();
     double pigment = 0.0;
     for (size_t c = 0; c < state.pigment.size() / 4; ++c)
         pigment += double(state.pigment[c * 4 + 3]);
@@ -259,14 +259,14 @@ TEST_F(SceneSimulationTest, GridFollowsTheCharacter) {
                      "drag": 0, "follow": true, "steps_per_second": 30, "end": 0.6}]})");
     auto sim = simulate(ctx(), s, point);
     ASSERT_TRUE(sim);
-    const glm::vec3 start = sim->smokeGrids()[0].origin;
+    const glm::vec3 start = sim->smokeGrids()[0].grid.origin();
     uint32_t shifts = 0;
     for (uint32_t f = 0; f < 31; ++f) {
         const auto stats = sim->runFrame(f);
         for (const auto& p : stats.passes)
             shifts += p.name == "smoke0/shift" ? 1 : 0;
     }
-    const glm::vec3 moved = sim->smokeGrids()[0].origin - start;
+    const glm::vec3 moved = sim->smokeGrids()[0].grid.origin() - start;
     // 1.5 m in 1 s: the grid moved with it, to the nearest cell.
     EXPECT_NEAR(moved.x, 1.5f, 0.1f);
     EXPECT_EQ(moved.y, 0.0f);
@@ -287,14 +287,14 @@ Totals runAt(const gpu::Context& ctx, float fps, float stepsPerSecond) {
                      "cell_size": 0.08, "fade": 0.5, "radius": 0.1}]})");
     s.output.fps = fps;
     s.output.frames = frames;
-    s.effects[0].stepsPerSecond = stepsPerSecond;
+    s.effects[0].as<scene::SmokeSpec>()->grid.stepsPerSecond = stepsPerSecond;
     const anim::Character fighter = anim::makeFighter();
     auto sim = simulate(ctx, s, fighter);
     Totals totals;
     if (!sim) return totals;
     for (uint32_t f = 0; f < frames; ++f)
         sim->runFrame(f);
-    const fluid::FieldState state = sim->smokeGrids()[0].solver->state();
+    const fluid::FieldState state = sim->smokeGrids()[0].grid.solver().state();
     for (size_t c = 0; c < state.pigment.size() / 4; ++c)
         totals.pigment += double(state.pigment[c * 4 + 3]);
     for (float v : state.velocityX)

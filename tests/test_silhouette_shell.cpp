@@ -263,14 +263,14 @@ TEST(SilhouetteShellScene, DefaultsAndEveryOption) {
     Result<scene::Scene> d =
         scene::parseScene(R"({"effects": [{"type": "silhouette_shell"}]})", "s");
     ASSERT_TRUE(d) << d.error().message;
-    const scene::EffectSpec& e = d.value().effects[0];
-    EXPECT_EQ(e.type, scene::EffectType::SilhouetteShell);
-    EXPECT_EQ(e.name, "silhouette_shell#0");
-    EXPECT_EQ(e.shell.subdivisions, 6u);
-    EXPECT_FALSE(e.shell.blurTime);
-    EXPECT_EQ(e.shell.initialAlpha, 0.8f);
-    EXPECT_EQ(e.shell.fadeOut, 3u);
-    EXPECT_EQ(e.shell.edgeRule, scene::ShellEdgeRule::Back);
+    EXPECT_EQ(d.value().effects[0].name, "silhouette_shell#0");
+    ASSERT_TRUE(d.value().effects[0].is<scene::SilhouetteShellSpec>());
+    const scene::SilhouetteShellSpec& e = *d.value().effects[0].as<scene::SilhouetteShellSpec>();
+    EXPECT_EQ(e.subdivisions, 6u);
+    EXPECT_FALSE(e.blurTime);
+    EXPECT_EQ(e.initialAlpha, 0.8f);
+    EXPECT_EQ(e.fadeOut, 3u);
+    EXPECT_EQ(e.edgeRule, scene::ShellEdgeRule::Back);
     EXPECT_TRUE(e.useMeshColour);
 
     Result<scene::Scene> s = scene::parseScene(
@@ -278,13 +278,14 @@ TEST(SilhouetteShellScene, DefaultsAndEveryOption) {
         "initial_alpha": 0.5, "fade_out": 0, "edge_rule": "front", "colour": [1, 0, 0]}]})",
         "s.json");
     ASSERT_TRUE(s) << s.error().message;
-    const scene::EffectSpec& o = s.value().effects[0];
-    EXPECT_EQ(o.shell.subdivisions, 10u);
-    ASSERT_TRUE(o.shell.blurTime);
-    EXPECT_EQ(*o.shell.blurTime, 0.2f);
-    EXPECT_EQ(o.shell.initialAlpha, 0.5f);
-    EXPECT_EQ(o.shell.fadeOut, 0u);
-    EXPECT_EQ(o.shell.edgeRule, scene::ShellEdgeRule::Front);
+    ASSERT_TRUE(s.value().effects[0].is<scene::SilhouetteShellSpec>());
+    const scene::SilhouetteShellSpec& o = *s.value().effects[0].as<scene::SilhouetteShellSpec>();
+    EXPECT_EQ(o.subdivisions, 10u);
+    ASSERT_TRUE(o.blurTime);
+    EXPECT_EQ(*o.blurTime, 0.2f);
+    EXPECT_EQ(o.initialAlpha, 0.5f);
+    EXPECT_EQ(o.fadeOut, 0u);
+    EXPECT_EQ(o.edgeRule, scene::ShellEdgeRule::Front);
     EXPECT_FALSE(o.useMeshColour);
 }
 

@@ -185,12 +185,12 @@ std::string sceneError(const std::string& effect) {
 TEST(SweptVolumeScene, DefaultsAndEveryOption) {
     Result<scene::Scene> d = scene::parseScene(R"({"effects": [{"type": "swept_volume"}]})", "s");
     ASSERT_TRUE(d) << d.error().message;
-    const scene::EffectSpec& e = d.value().effects[0];
-    EXPECT_EQ(e.type, scene::EffectType::SweptVolume);
-    EXPECT_EQ(e.name, "swept_volume#0");
-    EXPECT_EQ(e.swept.filter, scene::SweptFilter::Ramp);
-    EXPECT_EQ(e.swept.segments, 1u);
-    EXPECT_EQ(e.swept.alphaFloor, 0.1f);
+    EXPECT_EQ(d.value().effects[0].name, "swept_volume#0");
+    ASSERT_TRUE(d.value().effects[0].is<scene::SweptVolumeSpec>());
+    const scene::SweptVolumeSpec& e = *d.value().effects[0].as<scene::SweptVolumeSpec>();
+    EXPECT_EQ(e.filter, scene::SweptFilter::Ramp);
+    EXPECT_EQ(e.segments, 1u);
+    EXPECT_EQ(e.alphaFloor, 0.1f);
     EXPECT_EQ(e.subSamples, 4u);
     EXPECT_TRUE(e.useMeshColour);
 
@@ -199,10 +199,11 @@ TEST(SweptVolumeScene, DefaultsAndEveryOption) {
         "alpha_floor": 0.3, "sub_samples": 2, "colour": [1, 0, 0]}]})",
         "s.json");
     ASSERT_TRUE(s) << s.error().message;
-    const scene::EffectSpec& o = s.value().effects[0];
-    EXPECT_EQ(o.swept.filter, scene::SweptFilter::Gaussian);
-    EXPECT_EQ(o.swept.segments, 5u);
-    EXPECT_EQ(o.swept.alphaFloor, 0.3f);
+    ASSERT_TRUE(s.value().effects[0].is<scene::SweptVolumeSpec>());
+    const scene::SweptVolumeSpec& o = *s.value().effects[0].as<scene::SweptVolumeSpec>();
+    EXPECT_EQ(o.filter, scene::SweptFilter::Gaussian);
+    EXPECT_EQ(o.segments, 5u);
+    EXPECT_EQ(o.alphaFloor, 0.3f);
     EXPECT_EQ(o.subSamples, 2u);
     EXPECT_FALSE(o.useMeshColour);
 }

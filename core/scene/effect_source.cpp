@@ -8,8 +8,8 @@ Result<trajectory::Source> effectSource(const anim::Character& character, const 
     selection.meshes = e.meshes;
     selection.bones = e.bones;
     selection.minBoneWeight = e.minBoneWeight;
-    if (e.type == EffectType::Smoke && e.emission == Emission::Surface)
-        return trajectory::selectSurfaceSource(character, selection, e.surfaceStep, surface);
+    if (const std::optional<float> step = e.kind().surfaceSampling())
+        return trajectory::selectSurfaceSource(character, selection, *step, surface);
     return trajectory::selectSource(character, selection);
 }
 

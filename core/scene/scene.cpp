@@ -3,8 +3,10 @@
 #include "core/anim/bone_groups.h"
 #include "core/anim/fighter.h"
 #include "core/anim/gltf_import.h"
-#include "core/scene/effect_keys.h"
+#include "core/scene/effect_kinds.h"
 #include "core/scene/json_object.h"
+#include "core/scene/kinds/smoke_effect.h"
+#include "core/scene/kinds/trail_effects.h"
 #include "core/scene/scene_fit.h"
 
 #include <nlohmann/json.hpp>
@@ -115,9 +117,8 @@ Scene readScene(const json& doc, const std::string& where) {
         fail("effects", std::to_string(effects.size()) + " effects; at most 64");
     std::set<std::string> names;
     for (size_t i = 0; i < effects.size(); ++i) {
-        EffectSpec e;
         const std::string path = "effects[" + std::to_string(i) + "]";
-        readEffect(Object(effects[i], path), i, e);
+        EffectSpec e = readEffect(Object(effects[i], path), i);
         if (!names.insert(e.name).second)
             fail(path + ".name", "\"" + e.name + "\" is the name of an earlier effect");
         s.effects.push_back(e);
@@ -165,32 +166,21 @@ Scene defaultScene() {
     Scene s;
     s.file = "(built-in default scene)";
     s.camera.automatic = true;
-    EffectSpec lines;
-    lines.type = EffectType::SpeedLines;
-    lines.name = "kick lines";
-    lines.meshes = {"body"};
-    lines.bones = {"shin_r", "foot_r", "toe_r"};
-    lines.stride = 10;
-    lines.lifetime = 12;
+    SpeedLinesSpec lines;
+    lines.trail.stride = 10;
+    lines.trail.lifetime = 12;
     lines.width = 0.02f;
-    lines.colour = {1.0f, 0.85f, 0.3f, 1.0f};
-    lines.useMeshColour = false;
-    EffectSpec blur;
-    blur.type = EffectType::MotionBlur;
-    blur.name = "leg blur";
+    EffectSpec kickLines(lines, "kick lines");
+    kickLines.meshes = {"body"};
+    kickLines.bones = {"shin_r", "foot_r", "toe_r"};
+    EffectSpec blur(MotionBlurSpec{}, "leg blur"); // lifetime 6, alpha from 0.55
     blur.bones = {"thigh_r", "shin_r", "foot_r", "toe_r"};
-    blur.lifetime = 6;
-    blur.alphaStart = 0.55f;
-    EffectSpec smoke;
-    smoke.type = EffectType::Smoke;
-    smoke.name = "foot smoke";
-    smoke.bones = {"foot_r", "toe_r"};
-    smoke.colour = {0.85f, 0.35f, 0.15f, 1.0f};
-    smoke.useMeshColour = false;
-    smoke.lifetime = 2;
+    SmokeSpec smoke;
     smoke.strength = 4.0f;
     smoke.radius = 0.08f;
-    s.effects = {lines, blur, smoke};
+    EffectSpec footSmoke(smoke, "foot smoke");
+    footSmoke.bones = {"foot_r", "toe_r"};
+    s.effects = {kickLines, blur, footSmoke};
     return s;
 }
 

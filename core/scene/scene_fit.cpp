@@ -137,16 +137,15 @@ std::string bindFastestLimb(const Scene& scene, const anim::Character& character
 // The number of vertices an effect's trail is built from is its selection over the stride; the
 // automatic stride leaves about `target` of them.
 uint32_t targetCount(const EffectSpec& e) {
-    switch (e.type) {
-    case EffectType::SpeedLines:
+    switch (e.kind().strideTarget()) {
+    case StrideTarget::Lines:
         return kTargetLines;
-    case EffectType::MotionParticles:
+    case StrideTarget::Particles:
         return kTargetParticles;
-    case EffectType::AfterimageSmear:
-        return e.afterimage.variant == AfterimageVariant::SpeedLines ? kTargetLines : 0;
-    default:
-        return 0; // every vertex: blur volumes, smoke (sampled by max_emitters), mesh effects
+    case StrideTarget::EveryVertex:
+        break;
     }
+    return 0; // every vertex: blur volumes, smoke (sampled by max_emitters), mesh effects
 }
 
 // A character the scene sized outside the human range on purpose (character.height or .scale)
@@ -160,11 +159,7 @@ void scaleLengthDefaults(Scene& scene, const anim::Character& character,
     const float unit = height / kDefaultHeight;
     std::vector<std::string> scaled;
     for (EffectSpec& e : scene.effects) {
-        const std::pair<const char*, float*> lengths[] = {{"width", &e.width},
-                                                          {"size", &e.size},
-                                                          {"cell_size", &e.cellSize},
-                                                          {"radius", &e.radius}};
-        for (const auto& [key, value] : lengths) {
+        for (const auto& [key, value] : e.kind().lengths()) {
             if (e.given(key)) continue;
             *value *= unit;
             e.givenKeys.push_back(key); // once: fitting again keeps it
@@ -354,13 +349,14 @@ Status fitScene(Scene& scene, const anim::Character& character, std::vector<std:
         if (e.automaticStride) {
             e.automaticStride = false;
             const uint32_t target = targetCount(e);
-            if (target == 0) continue;
+            uint32_t* stride = e.kind().strideValue();
+            if (target == 0 || !stride) continue;
             const Result<trajectory::Source> source =
                 trajectory::selectSource(character, selectionOf(e));
             if (!source) // the simulation reports it, with the effect's path
                 continue;
             const size_t count = source.value().vertices.size();
-            e.stride = std::max<uint32_t>(1, uint32_t(std::lround(double(count) / target)));
+            *stride = std::max<uint32_t>(1, uint32_t(std::lround(double(count) / target)));
         }
     }
     scaleLengthDefaults(scene, character, notes);
@@ -377,9 +373,7 @@ std::vector<std::string> motionlessEffects(const Scene& scene, const anim::Chara
     for (const EffectSpec& e : scene.effects) {
         // Smoke paints its pigment where its vertices are even at rest, and the smear variant of
         // the afterimage draws the mesh itself: both show something without motion.
-        if (e.type == EffectType::Smoke || (e.type == EffectType::AfterimageSmear &&
-                                            e.afterimage.variant == AfterimageVariant::Smear))
-            continue;
+        if (e.kind().showsAtRest()) continue;
         const Result<trajectory::Source> selected =
             trajectory::selectSource(character, selectionOf(e));
         if (!selected) continue; // refused elsewhere, with a reason

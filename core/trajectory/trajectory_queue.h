@@ -24,6 +24,7 @@
 #include "core/gpu/resources.h"
 #include "core/gpu/timer.h"
 #include "core/trajectory/build_segment.h"
+#include "core/trajectory/trajectory_kind.h"
 #include "core/trajectory/trajectory_source.h"
 
 #include <cstdint>
@@ -33,7 +34,6 @@
 
 namespace mfx::trajectory {
 
-enum class Kind { Particles, Lines, Volumes };
 // Split: one segment per frame by the compute pass (the queue's method). StreamOutput: the same
 // segment by a geometry shader into transform feedback, as the paper did it, for measurement (needs
 // geometry shaders and VK_EXT_transform_feedback). Unsplit: the baseline.

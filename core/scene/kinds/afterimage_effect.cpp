@@ -1,0 +1,78 @@
+#include "core/scene/kinds/afterimage_effect.h"
+
+#include "core/scene/json_object.h"
+
+namespace mfx::scene {
+
+using detail::fail;
+using detail::formatNumber;
+using detail::Object;
+
+// Smith 2016, Sec. 4.3 and 5.3: the smear's settings, and how it looks.
+std::vector<std::string> AfterimageSpec::keys() {
+    return {"stride",
+            "colour",
+            "alpha_start",
+            "alpha_end",
+            "alpha_power",
+            "width",
+            "variant",
+            "strength_character",
+            "strength_animation",
+            "random_min",
+            "random_max",
+            "random_threshold",
+            "taper",
+            "min_speed",
+            "relative_speed",
+            "afterimages",
+            "influence_power"};
+}
+
+std::unique_ptr<EffectKindSpec> AfterimageSpec::parse(const Object& o) {
+    auto a = std::make_unique<AfterimageSpec>();
+    const std::string variant = o.choice("variant", "smear", {"smear", "speed_lines", "multi"});
+    a->variant = variant == "smear"         ? AfterimageVariant::Smear
+                 : variant == "speed_lines" ? AfterimageVariant::SpeedLines
+                                            : AfterimageVariant::Multi;
+    for (const char* key : {"width", "stride"})
+        if (o.has(key) && a->variant != AfterimageVariant::SpeedLines)
+            fail(o.at(key),
+                 "only for \"variant\": \"speed_lines\" (the variant is \"" + variant + "\")");
+    for (const char* key : {"afterimages", "influence_power"})
+        if (o.has(key) && a->variant != AfterimageVariant::Multi)
+            fail(o.at(key), "only for \"variant\": \"multi\" (the variant is \"" + variant + "\")");
+
+    // Per-variant defaults: the smear is the mesh itself, opaque; lines and arcs fade out behind.
+    a->alphaEnd = a->variant == AfterimageVariant::Smear ? 1.0f : 0.0f;
+    if (a->variant == AfterimageVariant::SpeedLines) {
+        a->colour = {1.0f, 0.95f, 0.8f, 1.0f};
+        a->useMeshColour = false;
+    }
+    if (o.has("colour")) {
+        a->colour = o.colour("colour", a->colour);
+        a->useMeshColour = false;
+    }
+    a->stride = o.integer("stride", a->stride, 1, 1000);
+    a->alphaStart = float(o.number("alpha_start", a->alphaStart, 0.0, 1.0));
+    a->alphaEnd = float(o.number("alpha_end", a->alphaEnd, 0.0, 1.0));
+    a->alphaPower = float(o.number("alpha_power", a->alphaPower, 0.0, 16.0, true));
+    a->width = float(o.number("width", a->width, 0.0, 1.0, true));
+
+    a->strengthCharacter = float(o.number("strength_character", a->strengthCharacter, 0.0, 1000.0));
+    a->strengthAnimation = float(o.number("strength_animation", a->strengthAnimation, 0.0, 1000.0));
+    a->randomMin = float(o.number("random_min", a->randomMin, 0.0, 1.0));
+    a->randomMax = float(o.number("random_max", a->randomMax, 0.0, 1.0));
+    if (a->randomMin > a->randomMax)
+        fail(o.at("random_min"), formatNumber(a->randomMin) + " is more than random_max (" +
+                                     formatNumber(a->randomMax) + ")");
+    a->randomThreshold = float(o.number("random_threshold", a->randomThreshold, 0.0, 1.0));
+    a->taper = float(o.number("taper", a->taper, 0.0, 64.0));
+    a->minSpeed = float(o.number("min_speed", a->minSpeed, 0.0, 1e4));
+    a->relativeSpeed = float(o.number("relative_speed", a->relativeSpeed, 0.0, 1.0));
+    a->afterimages = o.integer("afterimages", a->afterimages, 1, 16);
+    a->influencePower = float(o.number("influence_power", a->influencePower, 0.0, 64.0));
+    return a;
+}
+
+} // namespace mfx::scene

@@ -1,0 +1,48 @@
+#include "core/scene/kinds/smoke_effect.h"
+
+#include "core/scene/json_object.h"
+
+namespace mfx::scene {
+
+using detail::Object;
+
+std::vector<std::string> SmokeSpec::keys() {
+    return trailKeys({"grid", "cell_size", "jacobi", "fade", "drag", "steps_per_second", "buoyancy",
+                      "vorticity", "impulse_k", "radius", "strength", "emission", "surface_step",
+                      "max_emitters", "sleep_threshold", "follow"});
+}
+
+std::unique_ptr<EffectKindSpec> SmokeSpec::parse(const Object& o) {
+    auto e = std::make_unique<SmokeSpec>();
+    readTrail(o, e->trail);
+    SmokeGridSpec& g = e->grid;
+    if (o.has("grid")) {
+        const std::vector<double> cells = o.numbers("grid", 3, 3, 4, 256);
+        for (size_t a = 0; a < 3; ++a) {
+            if (cells[a] != std::floor(cells[a]))
+                detail::fail(o.at("grid") + "[" + std::to_string(a) + "]",
+                             "expected a whole number");
+            g.cells[a] = uint32_t(cells[a]);
+        }
+    }
+    g.cellSize = float(o.number("cell_size", g.cellSize, 0.0, 10.0, true));
+    g.jacobi = o.integer("jacobi", g.jacobi, 0, 10000);
+    g.fade = float(o.number("fade", g.fade, 0.0, 100.0));
+    g.drag = float(o.number("drag", g.drag, 0.0, 100.0));
+    g.stepsPerSecond = float(o.number("steps_per_second", g.stepsPerSecond, 1.0, 1000.0));
+    g.follow = o.boolean("follow", g.follow);
+    g.buoyancy = float(o.number("buoyancy", g.buoyancy, -100.0, 100.0));
+    g.vorticity = float(o.number("vorticity", g.vorticity, 0.0, 100.0));
+    e->impulseScale = float(o.number("impulse_k", e->impulseScale, 0.0, 100.0));
+    e->radius = float(o.number("radius", e->radius, 0.0, 10.0, true));
+    e->strength = float(o.number("strength", e->strength, 0.0, 1000.0));
+    e->emission = o.choice("emission", "vertices", {"vertices", "surface"}) == "surface"
+                      ? Emission::Surface
+                      : Emission::Vertices;
+    e->surfaceStep = float(o.number("surface_step", e->surfaceStep, 0.0, 1.0, true));
+    e->maxEmitters = o.integer("max_emitters", e->maxEmitters, 1, 4096);
+    e->sleepThreshold = float(o.number("sleep_threshold", e->sleepThreshold, 0.0, 1.0, true));
+    return e;
+}
+
+} // namespace mfx::scene

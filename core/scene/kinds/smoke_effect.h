@@ -1,0 +1,59 @@
+// The smoke effect (Xu et al., section 5): its vertices' newest trajectory segment becomes
+// velocity impulses and pigment in a 3D Navier-Stokes grid each solver step (fluid/
+// segment_emitters.h, fluid/smoke_solver.h); the grid is ray-marched into the frame
+// (render/smoke_pass.h). Smoke effects whose grid settings are equal share one grid
+// (sim/scene_simulation.h).
+#pragma once
+
+#include "core/scene/kinds/trail_effects.h"
+
+#include <array>
+
+namespace mfx::scene {
+
+enum class Emission { Vertices, Surface };
+
+// What a grid is: effects with equal grid settings share it.
+struct SmokeGridSpec {
+    std::array<uint32_t, 3> cells{48, 48, 48};
+    float cellSize = 0.05f;
+    uint32_t jacobi = 20;
+    float fade = 0.6f;            // pigment decay per second
+    float drag = 1.0f;            // velocity decay per second
+    float stepsPerSecond = 60.0f; // solver steps per second at least (whole steps per frame)
+    bool follow = false;          // the grid moves with the character's root, by whole cells
+    float buoyancy = 0.0f;
+    float vorticity = 0.0f;
+    bool operator==(const SmokeGridSpec&) const = default;
+};
+
+struct SmokeSpec : TrailEffect<SmokeSpec> {
+    static constexpr const char* kType = "smoke";
+    SmokeSpec() {
+        trail.shape = trajectory::Kind::Particles; // the newest segment only, as emitters
+        trail.colour = {0.85f, 0.35f, 0.15f, 1.0f};
+        trail.useMeshColour = false;
+        trail.lifetime = 2;
+    }
+    SmokeGridSpec grid;
+    float impulseScale = 1.0f; // k
+    float radius = 0.06f;      // splat radius (world units)
+    float strength = 1.0f;     // pigment per second at full alpha
+    Emission emission = Emission::Vertices;
+    float surfaceStep = 0.02f; // UV-space step of surface emission
+    uint32_t maxEmitters = 256;
+    float sleepThreshold = 1e-4f; // below this pigment and speed, the solver sleeps
+
+    static std::vector<std::string> keys();
+    static std::unique_ptr<EffectKindSpec> parse(const detail::Object& o);
+    std::vector<std::pair<const char*, float*>> lengths() override {
+        return {{"cell_size", &grid.cellSize}, {"radius", &radius}};
+    }
+    // Smoke paints its pigment where its vertices are, even at rest.
+    bool showsAtRest() const override { return true; }
+    std::optional<float> surfaceSampling() const override {
+        return emission == Emission::Surface ? std::optional<float>(surfaceStep) : std::nullopt;
+    }
+};
+
+} // namespace mfx::scene

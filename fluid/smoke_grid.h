@@ -1,0 +1,92 @@
+// A smoke grid standing in the world (Xu et al., section 5; docs/architecture.md, "One frame"):
+// one SmokeSolver, where the grid's low corner is, the buffer its emitters are written to, and
+// the rules a scene's grid lives by, each a method:
+//   * place: centred on the box its effects' vertices sweep, standing on the stage floor when the
+//     box allows;
+//   * follow: with "follow", it moves with the character's root along the floor (x, z) by whole
+//     cells, its fields shifted the other way while awake, so the smoke stays where it is;
+//   * step: the solver's step over the emitters written this step; a step wakes the grid;
+//   * sleep: a grid none of whose effects is live measures its largest pigment alpha and speed
+//     after each frame; once both are below the threshold (speed: threshold x cell size / dt) it
+//     sleeps: zero dispatches until an effect is live again.
+// Which effects feed the grid and when is the simulation's business (sim/scene_simulation.h).
+#pragma once
+
+#include "core/gpu/resources.h"
+#include "core/gpu/timer.h"
+#include "core/result.h"
+#include "fluid/smoke_solver.h"
+
+#include <glm/glm.hpp>
+
+#include <memory>
+#include <optional>
+#include <string>
+
+namespace mfx::fluid {
+
+struct SmokeGridSettings {
+    std::string name; // its passes' names start with it ("smoke0/advect_velocity")
+    SolverOptions options;
+    uint32_t stepsPerFrame = 1;
+    bool follow = false;
+    float sleepThreshold = 1e-4f;
+    uint32_t emitterCapacity = 1; // records one step may splat
+};
+
+class SmokeGrid {
+public:
+    static Result<SmokeGrid> create(const gpu::Context& ctx, SmokeGridSettings settings);
+
+    // Centres the grid on the box [low, high] (low > high: no box; it stands centred on
+    // `fallback`, its base there), on the floor at `floorHeight` when the box is above it; `root`
+    // is where the character's root is now, the origin of follow().
+    void place(glm::vec3 low, glm::vec3 high, glm::vec3 fallback, std::optional<float> floorHeight,
+               glm::vec3 root);
+    // With follow: keeps the grid where it was placed relative to the root, along the floor, by
+    // whole cells. Returns whether it recorded a shift of the fields (only while awake: asleep,
+    // there is nothing to carry along).
+    bool recordFollow(VkCommandBuffer cmd, glm::vec3 root);
+
+    // The frame's bookkeeping: beginFrame before its first step, finishFrame once the frame's
+    // submission finished (it reads the measure and decides whether to sleep).
+    void beginFrame();
+    // A live effect wakes the grid (it steps while awake).
+    void wake() { awake_ = true; }
+    // One step over the first `emitters` records of emitters(). The timer's passes are prefixed
+    // with the grid's name.
+    void recordStep(VkCommandBuffer cmd, uint32_t emitters, gpu::GpuTimer* timer);
+    // Awake with no effect live this frame: measures the largest pigment alpha and speed.
+    void recordMeasureActivity(VkCommandBuffer cmd);
+    struct Activity {
+        bool measured = false;
+        float largestAlpha = 0.0f;
+        float largestSpeed = 0.0f; // world units per second
+    };
+    Activity finishFrame();
+
+    const std::string& name() const { return settings_.name; }
+    const SmokeGridSettings& settings() const { return settings_; }
+    const SmokeSolver& solver() const { return *solver_; }
+    SmokeSolver& solver() { return *solver_; }
+    glm::vec3 origin() const { return origin_; }             // the world position of its low corner
+    glm::vec3 placedOrigin() const { return placedOrigin_; } // where place() put it
+    bool awake() const { return awake_; }
+    bool measured() const { return measured_; }
+    const gpu::Buffer& emitters() const { return emitters_; }
+    // Its GPU memory: the solver's fields, the emitter and activity buffers.
+    uint64_t memoryBytes() const;
+
+private:
+    SmokeGridSettings settings_;
+    std::unique_ptr<SmokeSolver> solver_;
+    gpu::Buffer emitters_;
+    gpu::Buffer activity_; // two floats as uint bits: largest pigment alpha, largest speed
+    glm::vec3 origin_{0.0f};
+    glm::vec3 placedOrigin_{0.0f};
+    glm::vec3 rootAtPlacement_{0.0f};
+    bool awake_ = false;
+    bool measured_ = false;
+};
+
+} // namespace mfx::fluid

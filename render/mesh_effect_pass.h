@@ -1,0 +1,70 @@
+// What the passes of the mesh effects share (the afterimage smear, the swept volume and the
+// silhouette shell: each keeps its own history of the bound mesh, render/effect_geometry.h): their
+// effects (one MeshEffect-derived entry per scene effect of their kind), the skinning, the frame
+// history, the scene-frame buffer, finding an effect by its index in scene.effects, reading back
+// what a build wrote, and drawing it.
+//
+// As an EffectKindPass, each pass's advance() skins the bound vertices, moves the history on and
+// builds the geometry; draw() draws what was last built (a paused frame draws the same).
+#pragma once
+
+#include "core/anim/character.h"
+#include "core/anim/skin_vertices.h"
+#include "core/gpu/resources.h"
+#include "render/effect_geometry.h"
+#include "render/effect_kind_pass.h"
+#include "shaders/shared/trajectory.h"
+#include "sim/scene_simulation.h"
+
+#include <algorithm>
+#include <cstring>
+#include <span>
+#include <vector>
+
+namespace mfx::render {
+
+template <class Effect>
+class MeshEffectPass : public EffectKindPass {
+public:
+    bool empty() const { return effects_.empty(); }
+
+protected:
+    MeshEffectPass(const gpu::Context& ctx, const anim::Character& character)
+        : ctx_(ctx), character_(character), skinning_(ctx) {}
+
+    const Effect* find(size_t effect) const { return findEffect(effects_, effect); }
+    // The counters effect `effect`'s last build wrote (after the recording finished executing);
+    // zero for an effect the pass does not have.
+    template <class Counters>
+    Counters builtCounters(size_t effect) const {
+        Counters c{};
+        if (const Effect* e = find(effect)) std::memcpy(&c, e->counters.mapped, sizeof c);
+        return c;
+    }
+    // The first `count` vertices effect `effect`'s last build wrote into its output. Reads back;
+    // waits.
+    std::vector<shared::TrajectoryVertex> builtVertices(size_t effect, size_t count) const {
+        const Effect* e = find(effect);
+        if (!e) return {};
+        auto vertices = gpu::readBufferAs<shared::TrajectoryVertex>(ctx_, e->output);
+        vertices.resize(std::min(vertices.size(), count));
+        return vertices;
+    }
+    // draw() of a pass whose builds are triangles: them, with `program` (nothing before the
+    // first advance).
+    uint32_t drawBuilt(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
+                       const SceneCamera& camera, std::span<const uint8_t> shown,
+                       gpu::Program& program) {
+        if (effects_.empty() || !history_.recorded()) return 0;
+        return drawBuiltEffects(cmd, effects_, simulation.scene(), camera, shown, frame_, program);
+    }
+
+    const gpu::Context& ctx_;
+    const anim::Character& character_;
+    anim::SkinVertices skinning_;
+    gpu::Buffer frame_;
+    std::vector<Effect> effects_;
+    FrameHistory history_;
+};
+
+} // namespace mfx::render
