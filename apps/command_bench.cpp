@@ -139,13 +139,7 @@ int runBenchSolver(std::span<const std::string> args) {
     auto steps = cli::parseUnsigned(parsed.value("steps", "10"), 1, 10000, "--steps");
     auto workgroups = parseWorkgroupList(
         parsed.value("workgroups", shapeLabel(fluid::SolverOptions{}.workgroup)));
-    for (const Error* e :
-         {grids.ok() ? nullptr : &grids.error(), jacobi.ok() ? nullptr : &jacobi.error(),
-          steps.ok() ? nullptr : &steps.error(), workgroups.ok() ? nullptr : &workgroups.error()})
-        if (e) {
-            printError(e->message);
-            return kExitUsage;
-        }
+    if (reportFirstError(grids, jacobi, steps, workgroups)) return kExitUsage;
     const auto pressure = fluid::pressureSolverFromName(parsed.value("pressure", "jacobi"));
     if (!pressure) {
         printError("--pressure: no pressure solver \"" + parsed.value("pressure") +

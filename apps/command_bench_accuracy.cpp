@@ -142,13 +142,7 @@ int runBenchAccuracy(std::span<const std::string> args) {
     auto steps = cli::parseUnsigned(parsed.value("steps", "20"), 1, 10000, "--steps");
     auto targetGrid =
         cli::parseUnsigned(parsed.value("target-grid", "64"), 0, 256, "--target-grid");
-    for (const Error* e :
-         {grid.ok() ? nullptr : &grid.error(), steps.ok() ? nullptr : &steps.error(),
-          targetGrid.ok() ? nullptr : &targetGrid.error()})
-        if (e) {
-            printError(e->message);
-            return kExitUsage;
-        }
+    if (reportFirstError(grid, steps, targetGrid)) return kExitUsage;
     std::vector<double> budgets;
     {
         std::stringstream list(parsed.value("budgets", "2,5,10,20,50,100,200"));

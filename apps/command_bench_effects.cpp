@@ -82,16 +82,9 @@ int runBenchEffects(std::span<const std::string> args) {
             "against the character alone, and their share of the frame's time.",
             parsed, exitCode))
         return exitCode;
-    auto samples = cli::parseUnsigned(parsed.value("samples", "4"), 1, 8, "--samples");
-    if (samples && (samples.value() & (samples.value() - 1)) != 0)
-        samples = Error{"--samples: expected 1, 2, 4 or 8, got " + parsed.value("samples")};
+    const Result<uint32_t> samples = parseSamples(parsed);
     auto skip = cli::parseUnsigned(parsed.value("skip", "2"), 0, 1000, "--skip");
-    for (const Error* e :
-         {samples.ok() ? nullptr : &samples.error(), skip.ok() ? nullptr : &skip.error()})
-        if (e) {
-            printError(e->message);
-            return kExitUsage;
-        }
+    if (reportFirstError(samples, skip)) return kExitUsage;
     std::vector<std::string> files = parsed.positional;
     if (files.empty())
         for (const char* f : kDefaultScenes)

@@ -54,16 +54,8 @@ int runBenchFrame(std::span<const std::string> args) {
         return exitCode;
     auto timed = cli::parseUnsigned(parsed.value("frames", "60"), 1, 100000, "--frames");
     auto warmup = cli::parseUnsigned(parsed.value("warmup", "5"), 0, 1000, "--warmup");
-    auto samples = cli::parseUnsigned(parsed.value("samples", "4"), 1, 8, "--samples");
-    if (samples && (samples.value() & (samples.value() - 1)) != 0)
-        samples = Error{"--samples: expected 1, 2, 4 or 8, got " + parsed.value("samples")};
-    for (const Error* e :
-         {timed.ok() ? nullptr : &timed.error(), warmup.ok() ? nullptr : &warmup.error(),
-          samples.ok() ? nullptr : &samples.error()})
-        if (e) {
-            printError(e->message);
-            return kExitUsage;
-        }
+    const Result<uint32_t> samples = parseSamples(parsed);
+    if (reportFirstError(timed, warmup, samples)) return kExitUsage;
     cli::ParsedArgs sceneArgs = parsed;
     sceneArgs.values.erase("frames"); // --frames counts timed frames here
     if (!sceneArgs.has("size")) sceneArgs.values["size"] = "960x540";

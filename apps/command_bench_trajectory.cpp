@@ -71,13 +71,7 @@ int runBenchTrajectory(std::span<const std::string> args) {
     auto subSamples = cli::parseUnsigned(parsed.value("sub-samples", "4"), 1,
                                          MFX_TRAJECTORY_MAX_SUBSAMPLES, "--sub-samples");
     auto frames = cli::parseUnsigned(parsed.value("frames", "20"), 1, 100000, "--frames");
-    for (const Error* e :
-         {lifetimes.ok() ? nullptr : &lifetimes.error(),
-          subSamples.ok() ? nullptr : &subSamples.error(), frames.ok() ? nullptr : &frames.error()})
-        if (e) {
-            printError(e->message);
-            return kExitUsage;
-        }
+    if (reportFirstError(lifetimes, subSamples, frames)) return kExitUsage;
     const anim::Character fighter = anim::makeFighter();
     const std::string clipName = parsed.value("clip", "roundhouse_kick");
     const anim::Clip* clip = fighter.findClip(clipName);

@@ -73,13 +73,7 @@ int runCompare(std::span<const std::string> args) {
     Result<double> tolerance = 0.0;
     if (parsed.has("tolerance"))
         tolerance = cli::parseNumber(parsed.value("tolerance"), 0.0, 1e30, "--tolerance");
-    for (const Error* e :
-         {steps.ok() ? nullptr : &steps.error(), grid.ok() ? nullptr : &grid.error(),
-          tolerance.ok() ? nullptr : &tolerance.error()})
-        if (e) {
-            printError(e->message);
-            return kExitUsage;
-        }
+    if (reportFirstError(steps, grid, tolerance)) return kExitUsage;
     std::optional<fluid::Stage> onlyStage;
     if (parsed.has("stage")) {
         onlyStage = fluid::stageFromName(parsed.value("stage"));

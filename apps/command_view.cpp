@@ -176,17 +176,10 @@ int runView(std::span<const std::string> args) {
                          std::string(kKeysHelp) + ".",
                      parsed, exitCode))
         return exitCode;
-    auto samples = cli::parseUnsigned(parsed.value("samples", "4"), 1, 8, "--samples");
-    if (samples && (samples.value() & (samples.value() - 1)) != 0)
-        samples = Error{"--samples: expected 1, 2, 4 or 8, got " + parsed.value("samples")};
+    const Result<uint32_t> samples = parseSamples(parsed);
     auto quitAfter =
         cli::parseUnsigned(parsed.value("quit-after", "0"), 0, 100000000, "--quit-after");
-    for (const Error* e :
-         {samples.ok() ? nullptr : &samples.error(), quitAfter.ok() ? nullptr : &quitAfter.error()})
-        if (e) {
-            printError(e->message);
-            return kExitUsage;
-        }
+    if (reportFirstError(samples, quitAfter)) return kExitUsage;
     cli::ParsedArgs sceneArgs = parsed;
     if (!sceneArgs.has("size")) sceneArgs.values["size"] = "960x540";
     SceneArgument argument;

@@ -226,6 +226,13 @@ bool parseOrExit(std::span<const std::string> args, std::span<const cli::OptionS
     return true;
 }
 
+Result<uint32_t> parseSamples(const cli::ParsedArgs& parsed) {
+    Result<uint32_t> samples = cli::parseUnsigned(parsed.value("samples", "4"), 1, 8, "--samples");
+    if (samples && (samples.value() & (samples.value() - 1)) != 0)
+        return Error{"--samples: expected 1, 2, 4 or 8, got " + parsed.value("samples")};
+    return samples;
+}
+
 int finishValidation(const gpu::Context& ctx, int exitCode) {
     if (!ctx.validationEnabled()) return exitCode;
     const size_t errors = ctx.validationErrorCount();

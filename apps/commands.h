@@ -88,6 +88,17 @@ double median(std::vector<double> values);
 // Prints "motionfx: error: <message>" to stderr.
 void printError(const std::string& message);
 
+// --samples (MSAA samples per pixel): 1, 2, 4 or 8, default 4.
+Result<uint32_t> parseSamples(const cli::ParsedArgs& parsed);
+// Prints the first error among `results` (option values as parsed); true if there was one.
+template <class... Results>
+bool reportFirstError(const Results&... results) {
+    const Error* first = nullptr;
+    ((first = first ? first : (results.ok() ? nullptr : &results.error())), ...);
+    if (first) printError(first->message);
+    return first != nullptr;
+}
+
 // Parses `args`; on --help prints `help` + options and returns kExitOk in `exitCode`; on a bad
 // argument prints one line and returns kExitUsage in `exitCode`. Returns true to go on.
 bool parseOrExit(std::span<const std::string> args, std::span<const cli::OptionSpec> options,

@@ -29,10 +29,8 @@ struct SmokeGridSpec {
 
 struct SmokeSpec : TrailEffect<SmokeSpec> {
     static constexpr const char* kType = "smoke";
-    SmokeSpec() {
-        trail.shape = trajectory::Kind::Particles; // the newest segment only, as emitters
-        trail.colour = {0.85f, 0.35f, 0.15f, 1.0f};
-        trail.useMeshColour = false;
+    // The newest segment only, as emitters.
+    SmokeSpec() : TrailEffect(trajectory::Kind::Particles, 1, {0.85f, 0.35f, 0.15f, 1.0f}) {
         trail.lifetime = 2;
     }
     SmokeGridSpec grid;

@@ -38,26 +38,14 @@ void readTrail(const Object& o, TrailSpec& t) {
     t.alphaPower = float(o.number("alpha_power", t.alphaPower, 0.0, 16.0, true));
 }
 
-std::vector<std::string> SpeedLinesSpec::keys() {
-    return trailKeys({"width"});
-}
-
 std::unique_ptr<EffectKindSpec> SpeedLinesSpec::parse(const Object& o) {
     auto e = readTrailKind<SpeedLinesSpec>(o);
     e->width = float(o.number("width", e->width, 0.0, 1.0, true));
     return e;
 }
 
-std::vector<std::string> MotionBlurSpec::keys() {
-    return trailKeys();
-}
-
 std::unique_ptr<EffectKindSpec> MotionBlurSpec::parse(const Object& o) {
     return readTrailKind<MotionBlurSpec>(o);
-}
-
-std::vector<std::string> MotionParticlesSpec::keys() {
-    return trailKeys({"size"});
 }
 
 std::unique_ptr<EffectKindSpec> MotionParticlesSpec::parse(const Object& o) {

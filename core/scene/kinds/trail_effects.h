@@ -12,9 +12,22 @@ namespace detail {
 class Object;
 }
 
+// The trail keys every trajectory effect (and smoke) has, with `extra` keys of its own after
+// them; reading them into `t` over its kind's defaults.
+std::vector<std::string> trailKeys(std::initializer_list<const char*> extra = {});
+void readTrail(const detail::Object& o, TrailSpec& t);
+
 // A kind with a trail: the simulation keeps a trajectory queue for it.
 template <class Kind>
 struct TrailEffect : EffectKind<Kind> {
+    TrailEffect() = default;
+    // A trail of `shape` over every stride-th vertex in one colour.
+    TrailEffect(trajectory::Kind shape, uint32_t stride, glm::vec4 colour) {
+        trail.shape = shape;
+        trail.stride = stride;
+        trail.colour = colour;
+        trail.useMeshColour = false;
+    }
     TrailSpec trail;
     const TrailSpec* queue() const override { return &trail; }
     uint32_t* strideValue() override { return &trail.stride; }
@@ -22,14 +35,10 @@ struct TrailEffect : EffectKind<Kind> {
 
 struct SpeedLinesSpec : TrailEffect<SpeedLinesSpec> {
     static constexpr const char* kType = "speed_lines";
-    SpeedLinesSpec() {
-        trail.stride = 6;
-        trail.colour = {1.0f, 0.85f, 0.3f, 1.0f};
-        trail.useMeshColour = false;
-    }
+    SpeedLinesSpec() : TrailEffect(trajectory::Kind::Lines, 6, {1.0f, 0.85f, 0.3f, 1.0f}) {}
     float width = 0.012f; // ribbon width (world units)
 
-    static std::vector<std::string> keys();
+    static std::vector<std::string> keys() { return trailKeys({"width"}); }
     static std::unique_ptr<EffectKindSpec> parse(const detail::Object& o);
     StrideTarget strideTarget() const override { return StrideTarget::Lines; }
     std::vector<std::pair<const char*, float*>> lengths() override { return {{"width", &width}}; }
@@ -42,29 +51,19 @@ struct MotionBlurSpec : TrailEffect<MotionBlurSpec> {
         trail.lifetime = 6;
         trail.alphaStart = 0.55f;
     }
-    static std::vector<std::string> keys();
+    static std::vector<std::string> keys() { return trailKeys(); }
     static std::unique_ptr<EffectKindSpec> parse(const detail::Object& o);
 };
 
 struct MotionParticlesSpec : TrailEffect<MotionParticlesSpec> {
     static constexpr const char* kType = "motion_particles";
-    MotionParticlesSpec() {
-        trail.shape = trajectory::Kind::Particles;
-        trail.stride = 3;
-        trail.colour = {0.6f, 0.9f, 1.0f, 1.0f};
-        trail.useMeshColour = false;
-    }
+    MotionParticlesSpec() : TrailEffect(trajectory::Kind::Particles, 3, {0.6f, 0.9f, 1.0f, 1.0f}) {}
     float size = 0.02f; // particle size (world units)
 
-    static std::vector<std::string> keys();
+    static std::vector<std::string> keys() { return trailKeys({"size"}); }
     static std::unique_ptr<EffectKindSpec> parse(const detail::Object& o);
     StrideTarget strideTarget() const override { return StrideTarget::Particles; }
     std::vector<std::pair<const char*, float*>> lengths() override { return {{"size", &size}}; }
 };
-
-// The trail keys every trajectory effect (and smoke) has, with `extra` keys of its own after
-// them; reading them into `t` over its kind's defaults.
-std::vector<std::string> trailKeys(std::initializer_list<const char*> extra = {});
-void readTrail(const detail::Object& o, TrailSpec& t);
 
 } // namespace mfx::scene
