@@ -20,9 +20,13 @@ EffectKindEntry entry() {
 
 std::span<const EffectKindEntry> effectKinds() {
     static const std::vector<EffectKindEntry> kinds = {
-        entry<SpeedLinesSpec>(),      entry<MotionBlurSpec>(), entry<MotionParticlesSpec>(),
-        entry<SmokeSpec>(),           entry<AfterimageSpec>(), entry<SweptVolumeSpec>(),
-        entry<SilhouetteShellSpec>(),
+        entry<SpeedLinesSpec>(),      // Xu et al., Sec. 4.2
+        entry<MotionBlurSpec>(),      // Xu et al., Sec. 4.4
+        entry<MotionParticlesSpec>(), // Xu et al., Sec. 4.3
+        entry<SmokeSpec>(),           // Xu et al., Sec. 5
+        entry<AfterimageSpec>(),      // Smith 2016
+        entry<SweptVolumeSpec>(),     // Wloka and Zeleznik 1996
+        entry<SilhouetteShellSpec>(), // Jones 2004
     };
     return kinds;
 }
