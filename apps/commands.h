@@ -27,19 +27,10 @@ struct Command {
 
 std::span<const Command> commands();
 
-int runInfo(std::span<const std::string> args);
-int runRender(std::span<const std::string> args);
-int runCompare(std::span<const std::string> args);
-int runBench(std::span<const std::string> args);
-int runBenchTrajectory(std::span<const std::string> args);
-int runBenchFrame(std::span<const std::string> args);
-int runBenchEffects(std::span<const std::string> args);
-int runBenchAccuracy(std::span<const std::string> args);
-int runInspect(std::span<const std::string> args);
-int runExportFighter(std::span<const std::string> args);
-int runScene(std::span<const std::string> args);
-int runSimulate(std::span<const std::string> args);
-int runView(std::span<const std::string> args);
+// Each subcommand's entry point (command_<name>.cpp), with the signature of Command::run.
+using CommandMain = int(std::span<const std::string> args);
+CommandMain runInfo, runRender, runCompare, runBench, runBenchTrajectory, runBenchFrame,
+    runBenchEffects, runBenchAccuracy, runInspect, runExportFighter, runScene, runSimulate, runView;
 
 // Options every GPU subcommand takes.
 std::vector<cli::OptionSpec> deviceOptions();

@@ -1,5 +1,7 @@
 #include "fluid/solver_options.h"
 
+#include "core/enum_names.h"
+
 #include <cmath>
 
 namespace mfx::fluid {
@@ -60,54 +62,55 @@ Status validateOptions(const SolverOptions& o, uint32_t maxDimension, uint32_t m
     return Ok{};
 }
 
+namespace {
+
+constexpr NamedValue<PressureSolver> kPressureSolverNames[] = {
+    {PressureSolver::Jacobi, "jacobi"},
+    {PressureSolver::RedBlackGaussSeidel, "rbgs"},
+    {PressureSolver::Multigrid, "multigrid"},
+    {PressureSolver::MultigridPcg, "mgpcg"}};
+constexpr NamedValue<AdvectionScheme> kAdvectionNames[] = {
+    {AdvectionScheme::SemiLagrangian, "semi-lagrangian"},
+    {AdvectionScheme::MacCormack, "maccormack"},
+    {AdvectionScheme::Bfecc, "bfecc"}};
+constexpr NamedValue<Storage> kStorageNames[] = {{Storage::Float32, "fp32"},
+                                                 {Storage::Float16, "fp16"}};
+// Each stage's name is its shader's file name without the extension.
+constexpr NamedValue<Stage> kStageNames[] = {{Stage::SplatImpulses, "splat_impulses"},
+                                             {Stage::AdvectVelocity, "advect_velocity"},
+                                             {Stage::AdvectPigment, "advect_pigment"},
+                                             {Stage::ApplyBuoyancy, "apply_buoyancy"},
+                                             {Stage::VorticityConfinement, "vorticity_confinement"},
+                                             {Stage::DiffuseViscosity, "diffuse_viscosity"},
+                                             {Stage::ApplyBoundaries, "apply_boundaries"},
+                                             {Stage::ComputeDivergence, "compute_divergence"},
+                                             {Stage::SolvePressure, "solve_pressure"},
+                                             {Stage::Project, "project"}};
+
+} // namespace
+
 const char* pressureSolverName(PressureSolver solver) {
-    switch (solver) {
-    case PressureSolver::Jacobi:
-        return "jacobi";
-    case PressureSolver::RedBlackGaussSeidel:
-        return "rbgs";
-    case PressureSolver::Multigrid:
-        return "multigrid";
-    case PressureSolver::MultigridPcg:
-        return "mgpcg";
-    }
-    return "?";
+    return nameOf(solver, kPressureSolverNames);
 }
 
 std::optional<PressureSolver> pressureSolverFromName(std::string_view name) {
-    for (PressureSolver s : {PressureSolver::Jacobi, PressureSolver::RedBlackGaussSeidel,
-                             PressureSolver::Multigrid, PressureSolver::MultigridPcg})
-        if (name == pressureSolverName(s)) return s;
-    return std::nullopt;
+    return valueOf(name, kPressureSolverNames);
 }
 
 const char* advectionName(AdvectionScheme scheme) {
-    switch (scheme) {
-    case AdvectionScheme::SemiLagrangian:
-        return "semi-lagrangian";
-    case AdvectionScheme::MacCormack:
-        return "maccormack";
-    case AdvectionScheme::Bfecc:
-        return "bfecc";
-    }
-    return "?";
+    return nameOf(scheme, kAdvectionNames);
 }
 
 std::optional<AdvectionScheme> advectionFromName(std::string_view name) {
-    for (AdvectionScheme s :
-         {AdvectionScheme::SemiLagrangian, AdvectionScheme::MacCormack, AdvectionScheme::Bfecc})
-        if (name == advectionName(s)) return s;
-    return std::nullopt;
+    return valueOf(name, kAdvectionNames);
 }
 
 const char* storageName(Storage storage) {
-    return storage == Storage::Float16 ? "fp16" : "fp32";
+    return nameOf(storage, kStorageNames, "fp32");
 }
 
 std::optional<Storage> storageFromName(std::string_view name) {
-    if (name == "fp32") return Storage::Float32;
-    if (name == "fp16") return Storage::Float16;
-    return std::nullopt;
+    return valueOf(name, kStorageNames);
 }
 
 Status validateEmitters(std::span<const shared::FluidEmitter> emitters) {
@@ -144,35 +147,11 @@ shared::FluidParameters makeParameters(const SolverOptions& o, uint32_t emitterC
 }
 
 const char* stageName(Stage stage) {
-    switch (stage) {
-    case Stage::SplatImpulses:
-        return "splat_impulses";
-    case Stage::AdvectVelocity:
-        return "advect_velocity";
-    case Stage::AdvectPigment:
-        return "advect_pigment";
-    case Stage::ApplyBuoyancy:
-        return "apply_buoyancy";
-    case Stage::VorticityConfinement:
-        return "vorticity_confinement";
-    case Stage::DiffuseViscosity:
-        return "diffuse_viscosity";
-    case Stage::ApplyBoundaries:
-        return "apply_boundaries";
-    case Stage::ComputeDivergence:
-        return "compute_divergence";
-    case Stage::SolvePressure:
-        return "solve_pressure";
-    case Stage::Project:
-        return "project";
-    }
-    return "unknown";
+    return nameOf(stage, kStageNames, "unknown");
 }
 
 std::optional<Stage> stageFromName(std::string_view name) {
-    for (Stage stage : kAllStages)
-        if (name == stageName(stage)) return stage;
-    return std::nullopt;
+    return valueOf(name, kStageNames);
 }
 
 glm::uvec3 faceExtent(const GridShape& grid, int component) {

@@ -32,23 +32,25 @@ gpu::Program trajectoryDrawProgram(const gpu::Context& ctx, const char* name, Tr
     desc.attributes = {{0, VK_FORMAT_R32G32B32A32_SFLOAT, 0},
                        {1, VK_FORMAT_R32G32B32A32_SFLOAT, 16},
                        {2, VK_FORMAT_R32G32B32A32_SFLOAT, 32}};
+    auto stages = [&](VkPrimitiveTopology topology, std::span<const uint32_t> vertex,
+                      std::span<const uint32_t> geometry, std::span<const uint32_t> fragment) {
+        desc.topology = topology;
+        desc.vertex = vertex;
+        desc.geometry = geometry;
+        desc.fragment = fragment;
+    };
     switch (shape) {
-    case TrajectoryShape::Triangles:
-        desc.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-        desc.vertex = shaders::effect_volume_vert;
-        desc.fragment = shaders::effect_volume_frag;
+    case TrajectoryShape::Triangles: // the volume's triangles as they are
+        stages(VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, shaders::effect_volume_vert, {},
+               shaders::effect_volume_frag);
         break;
-    case TrajectoryShape::Ribbons:
-        desc.topology = VK_PRIMITIVE_TOPOLOGY_LINE_LIST;
-        desc.vertex = shaders::effect_lines_vert;
-        desc.geometry = shaders::effect_lines_geom;
-        desc.fragment = shaders::effect_lines_frag;
+    case TrajectoryShape::Ribbons: // lines widened into ribbons by the geometry stage
+        stages(VK_PRIMITIVE_TOPOLOGY_LINE_LIST, shaders::effect_lines_vert,
+               shaders::effect_lines_geom, shaders::effect_lines_frag);
         break;
-    case TrajectoryShape::Sprites:
-        desc.topology = VK_PRIMITIVE_TOPOLOGY_POINT_LIST;
-        desc.vertex = shaders::effect_particles_vert;
-        desc.geometry = shaders::effect_particles_geom;
-        desc.fragment = shaders::effect_particles_frag;
+    case TrajectoryShape::Sprites: // points expanded into camera-facing sprites
+        stages(VK_PRIMITIVE_TOPOLOGY_POINT_LIST, shaders::effect_particles_vert,
+               shaders::effect_particles_geom, shaders::effect_particles_frag);
         break;
     }
     desc.colorFormats = {kColorFormat};

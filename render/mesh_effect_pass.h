@@ -28,6 +28,15 @@ class MeshEffectPass : public EffectKindPass {
 public:
     bool empty() const { return effects_.empty(); }
 
+    // The triangles the last advance() built, with draw_ (nothing before the first advance). The
+    // afterimage, which draws lines and arcs as well, draws its own.
+    uint32_t draw(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
+                  const SceneCamera& camera, float /*time*/,
+                  std::span<const uint8_t> shown = {}) override {
+        if (effects_.empty() || !history_.recorded()) return 0;
+        return drawBuiltEffects(cmd, effects_, simulation.scene(), camera, shown, frame_, draw_);
+    }
+
 protected:
     MeshEffectPass(const gpu::Context& ctx, const anim::Character& character)
         : ctx_(ctx), character_(character), skinning_(ctx) {}
@@ -50,18 +59,11 @@ protected:
         vertices.resize(std::min(vertices.size(), count));
         return vertices;
     }
-    // draw() of a pass whose builds are triangles: them, with `program` (nothing before the
-    // first advance).
-    uint32_t drawBuilt(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
-                       const SceneCamera& camera, std::span<const uint8_t> shown,
-                       gpu::Program& program) {
-        if (effects_.empty() || !history_.recorded()) return 0;
-        return drawBuiltEffects(cmd, effects_, simulation.scene(), camera, shown, frame_, program);
-    }
 
     const gpu::Context& ctx_;
     const anim::Character& character_;
     anim::SkinVertices skinning_;
+    gpu::Program draw_; // the built triangles' pipeline
     gpu::Buffer frame_;
     std::vector<Effect> effects_;
     FrameHistory history_;

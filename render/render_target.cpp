@@ -14,6 +14,22 @@ VkSampleCountFlagBits supportedSamples(const gpu::Context& ctx, VkSampleCountFla
     return VK_SAMPLE_COUNT_1_BIT;
 }
 
+namespace {
+
+// A width x height attachment image of `format`.
+gpu::Image attachment(const gpu::Context& ctx, uint32_t width, uint32_t height, VkFormat format,
+                      VkImageUsageFlags usage, VkSampleCountFlagBits samples, const char* name) {
+    gpu::ImageDesc desc;
+    desc.extent = {width, height, 1};
+    desc.format = format;
+    desc.usage = usage;
+    desc.samples = samples;
+    desc.debugName = name;
+    return gpu::createImage(ctx, desc);
+}
+
+} // namespace
+
 RenderTarget createRenderTarget(const gpu::Context& ctx, uint32_t width, uint32_t height,
                                 VkSampleCountFlagBits samples) {
     RenderTarget target;
@@ -21,33 +37,21 @@ RenderTarget createRenderTarget(const gpu::Context& ctx, uint32_t width, uint32_
     target.height = height;
     target.samples = samples;
     if (samples != VK_SAMPLE_COUNT_1_BIT) {
-        gpu::ImageDesc color;
-        color.extent = {width, height, 1};
-        color.format = kColorFormat;
-        color.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
-        color.samples = samples;
-        color.debugName = "render target colour (MSAA)";
-        target.msaaColor = gpu::createImage(ctx, color);
-        gpu::ImageDesc depth = color;
-        depth.format = kDepthFormat;
-        depth.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
-        depth.debugName = "render target depth (MSAA)";
-        target.msaaDepth = gpu::createImage(ctx, depth);
+        target.msaaColor =
+            attachment(ctx, width, height, kColorFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT,
+                       samples, "render target colour (MSAA)");
+        target.msaaDepth = attachment(ctx, width, height, kDepthFormat,
+                                      VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, samples,
+                                      "render target depth (MSAA)");
     }
-    gpu::ImageDesc color;
-    color.extent = {width, height, 1};
-    color.format = kColorFormat;
-    color.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
-                  VK_IMAGE_USAGE_SAMPLED_BIT;
-    color.debugName = "render target colour";
-    target.color = gpu::createImage(ctx, color);
-    gpu::ImageDesc depth;
-    depth.extent = {width, height, 1};
-    depth.format = kDepthFormat;
-    depth.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
-                  VK_IMAGE_USAGE_SAMPLED_BIT;
-    depth.debugName = "render target depth";
-    target.depth = gpu::createImage(ctx, depth);
+    // The resolved (or only) images, read back and sampled by the passes after the scene.
+    const VkImageUsageFlags readable = VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+    target.color =
+        attachment(ctx, width, height, kColorFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | readable,
+                   VK_SAMPLE_COUNT_1_BIT, "render target colour");
+    target.depth = attachment(ctx, width, height, kDepthFormat,
+                              VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | readable,
+                              VK_SAMPLE_COUNT_1_BIT, "render target depth");
     return target;
 }
 

@@ -146,7 +146,7 @@ SilhouetteShellPass::SilhouetteShellPass(const gpu::Context& ctx, const scene::S
     }
 
     // Translucent and unsorted, like the swept volume: the strips do not write depth.
-    shellDraw_ =
+    draw_ =
         trajectoryDrawProgram(ctx, "silhouette_shell", TrajectoryShape::Triangles, samples, false);
     frame_ = sceneFrameBuffer(ctx, "shell frame");
 }
@@ -229,12 +229,6 @@ void SilhouetteShellPass::advance(VkCommandBuffer cmd, const sim::SceneSimulatio
         vkCmdDispatch(cmd, gpu::groupCount(effect.triangleCount, MFX_SHELL_GROUP_SIZE), 1, 1);
     }
     computeToDrawBarrier(cmd);
-}
-
-uint32_t SilhouetteShellPass::draw(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
-                                   const SceneCamera& camera, float,
-                                   std::span<const uint8_t> shown) {
-    return drawBuilt(cmd, simulation, camera, shown, shellDraw_);
 }
 
 SilhouetteShellPass::Counts SilhouetteShellPass::counts(size_t effect) const {

@@ -74,9 +74,6 @@ public:
     // EffectKindPass (render/mesh_effect_pass.h).
     void advance(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
                  uint32_t frame) override;
-    uint32_t draw(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
-                  const SceneCamera& camera, float time,
-                  std::span<const uint8_t> shown = {}) override;
 
     // After the recording has finished executing, what effect `effect` (its index in
     // scene.effects) built: all zero for an effect that is not a silhouette_shell.
@@ -102,7 +99,7 @@ public:
 
 private:
     using Effect = SilhouetteShellEffect;
-    gpu::Program normals_, update_, build_, shellDraw_;
+    gpu::Program normals_, update_, build_;
 };
 
 // The polygons around each vertex as silhouette_shell_normals.comp reads them: vertexCount + 1

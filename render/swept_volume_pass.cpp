@@ -118,8 +118,7 @@ SweptVolumePass::SweptVolumePass(const gpu::Context& ctx, const scene::Scene& sc
 
     // Translucent and unsorted, as the paper draws it (Sec. 5.1: few of its polygons overlap), so
     // it does not write depth.
-    volumeDraw_ =
-        trajectoryDrawProgram(ctx, "swept_volume", TrajectoryShape::Triangles, samples, false);
+    draw_ = trajectoryDrawProgram(ctx, "swept_volume", TrajectoryShape::Triangles, samples, false);
     frame_ = sceneFrameBuffer(ctx, "swept frame");
 }
 
@@ -178,11 +177,6 @@ void SweptVolumePass::advance(VkCommandBuffer cmd, const sim::SceneSimulation& s
             1);
     }
     computeToDrawBarrier(cmd);
-}
-
-uint32_t SweptVolumePass::draw(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
-                               const SceneCamera& camera, float, std::span<const uint8_t> shown) {
-    return drawBuilt(cmd, simulation, camera, shown, volumeDraw_);
 }
 
 SweptVolumePass::Counts SweptVolumePass::counts(size_t effect) const {

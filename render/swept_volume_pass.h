@@ -63,9 +63,6 @@ public:
     // EffectKindPass (render/mesh_effect_pass.h).
     void advance(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
                  uint32_t frame) override;
-    uint32_t draw(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
-                  const SceneCamera& camera, float time,
-                  std::span<const uint8_t> shown = {}) override;
 
     // After the recording has finished executing, what effect `effect` (its index in
     // scene.effects) built: all zero for an effect that is not a swept_volume.
@@ -87,7 +84,7 @@ public:
 
 private:
     using Effect = SweptVolumeEffect;
-    gpu::Program record_, motion_, build_, volumeDraw_;
+    gpu::Program record_, motion_, build_;
 };
 
 // The interior edges of a triangle list as swept_volume_build.comp reads them, 6 words an edge:

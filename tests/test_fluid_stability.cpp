@@ -17,6 +17,8 @@
 // <case>_<Emit|Free>_<boundaries>. Non-finite emitter fields are refused at the API
 // (test_fluid_stability_emitters.cpp).
 #include "fluid/reference/reference_solver.h"
+
+#include "core/enum_names.h"
 #include "fluid/smoke_solver.h"
 #include "tests/fluid_stability_util.h"
 #include "tests/fluid_test_util.h"
@@ -77,15 +79,11 @@ constexpr double kConfinementEnergyFactor = 100.0;
 
 // The boundary sets (Boundaries, tests/fluid_stability_util.h) as the test names spell them.
 const char* boundariesName(Boundaries b) {
-    switch (b) {
-    case Boundaries::Closed:
-        return "Closed";
-    case Boundaries::Mixed:
-        return "Mixed";
-    case Boundaries::PeriodicNoSlip:
-        return "PeriodicNoSlip";
-    }
-    return "?";
+    static constexpr NamedValue<Boundaries> kNames[] = {
+        {Boundaries::Closed, "Closed"},
+        {Boundaries::Mixed, "Mixed"},
+        {Boundaries::PeriodicNoSlip, "PeriodicNoSlip"}};
+    return nameOf(b, kNames);
 }
 
 // What must hold besides the bounds.

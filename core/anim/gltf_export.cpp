@@ -1,5 +1,7 @@
 #include "core/anim/gltf_export.h"
 
+#include "core/enum_names.h"
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -192,27 +194,17 @@ json primitiveJson(Writer& w, const Character& character, const Primitive& p,
 }
 
 const char* pathName(Path path) {
-    switch (path) {
-    case Path::Translation:
-        return "translation";
-    case Path::Rotation:
-        return "rotation";
-    case Path::Scale:
-        return "scale";
-    }
-    return "translation";
+    static constexpr NamedValue<Path> kNames[] = {
+        {Path::Translation, "translation"}, {Path::Rotation, "rotation"}, {Path::Scale, "scale"}};
+    return nameOf(path, kNames, "translation");
 }
 
 const char* interpolationName(Interpolation interpolation) {
-    switch (interpolation) {
-    case Interpolation::Linear:
-        return "LINEAR";
-    case Interpolation::Step:
-        return "STEP";
-    case Interpolation::CubicSpline:
-        return "CUBICSPLINE";
-    }
-    return "LINEAR";
+    static constexpr NamedValue<Interpolation> kNames[] = {
+        {Interpolation::Linear, "LINEAR"},
+        {Interpolation::Step, "STEP"},
+        {Interpolation::CubicSpline, "CUBICSPLINE"}};
+    return nameOf(interpolation, kNames, "LINEAR");
 }
 
 json animationJson(Writer& w, const Clip& clip) {

@@ -6,6 +6,8 @@
 // Errors are built as "element: what is wrong" and prefixed with the file's name once, at the top.
 #include "core/anim/gltf_import.h"
 
+#include "core/enum_names.h"
+
 #include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
@@ -494,22 +496,14 @@ size_t componentBytes(int componentType) {
 }
 
 const char* componentName(int componentType) {
-    switch (componentType) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE:
-        return "byte";
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-        return "unsigned byte";
-    case TINYGLTF_COMPONENT_TYPE_SHORT:
-        return "short";
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
-        return "unsigned short";
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-        return "unsigned int";
-    case TINYGLTF_COMPONENT_TYPE_FLOAT:
-        return "float";
-    default:
-        return "an invalid component type";
-    }
+    static constexpr NamedValue<int> kNames[] = {
+        {TINYGLTF_COMPONENT_TYPE_BYTE, "byte"},
+        {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, "unsigned byte"},
+        {TINYGLTF_COMPONENT_TYPE_SHORT, "short"},
+        {TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, "unsigned short"},
+        {TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, "unsigned int"},
+        {TINYGLTF_COMPONENT_TYPE_FLOAT, "float"}};
+    return nameOf(componentType, kNames, "an invalid component type");
 }
 
 int componentsOf(int type) {
@@ -530,24 +524,12 @@ int componentsOf(int type) {
 }
 
 const char* typeName(int type) {
-    switch (type) {
-    case TINYGLTF_TYPE_SCALAR:
-        return "SCALAR";
-    case TINYGLTF_TYPE_VEC2:
-        return "VEC2";
-    case TINYGLTF_TYPE_VEC3:
-        return "VEC3";
-    case TINYGLTF_TYPE_VEC4:
-        return "VEC4";
-    case TINYGLTF_TYPE_MAT2:
-        return "MAT2";
-    case TINYGLTF_TYPE_MAT3:
-        return "MAT3";
-    case TINYGLTF_TYPE_MAT4:
-        return "MAT4";
-    default:
-        return "an invalid type";
-    }
+    static constexpr NamedValue<int> kNames[] = {
+        {TINYGLTF_TYPE_SCALAR, "SCALAR"}, {TINYGLTF_TYPE_VEC2, "VEC2"},
+        {TINYGLTF_TYPE_VEC3, "VEC3"},     {TINYGLTF_TYPE_VEC4, "VEC4"},
+        {TINYGLTF_TYPE_MAT2, "MAT2"},     {TINYGLTF_TYPE_MAT3, "MAT3"},
+        {TINYGLTF_TYPE_MAT4, "MAT4"}};
+    return nameOf(type, kNames, "an invalid type");
 }
 
 // The formats one use of an accessor accepts (glTF 2.0, 3.7.2.1 and 3.11 list them).

@@ -105,30 +105,30 @@ VkPipelineColorBlendAttachmentState blendState(BlendMode mode) {
                            VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
     state.colorBlendOp = VK_BLEND_OP_ADD;
     state.alphaBlendOp = VK_BLEND_OP_ADD;
+    // Colour and alpha: source and destination factors.
+    auto blend = [&](VkBlendFactor src, VkBlendFactor dst, VkBlendFactor srcAlpha,
+                     VkBlendFactor dstAlpha) {
+        state.blendEnable = VK_TRUE;
+        state.srcColorBlendFactor = src;
+        state.dstColorBlendFactor = dst;
+        state.srcAlphaBlendFactor = srcAlpha;
+        state.dstAlphaBlendFactor = dstAlpha;
+    };
+    constexpr VkBlendFactor one = VK_BLEND_FACTOR_ONE, zero = VK_BLEND_FACTOR_ZERO;
+    constexpr VkBlendFactor srcA = VK_BLEND_FACTOR_SRC_ALPHA,
+                            oneMinusSrcA = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
     switch (mode) {
     case BlendMode::Opaque:
         state.blendEnable = VK_FALSE;
         break;
     case BlendMode::Alpha:
-        state.blendEnable = VK_TRUE;
-        state.srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
-        state.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
-        state.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
-        state.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+        blend(srcA, oneMinusSrcA, one, oneMinusSrcA);
         break;
     case BlendMode::PremultipliedAlpha:
-        state.blendEnable = VK_TRUE;
-        state.srcColorBlendFactor = VK_BLEND_FACTOR_ONE;
-        state.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
-        state.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
-        state.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+        blend(one, oneMinusSrcA, one, oneMinusSrcA);
         break;
     case BlendMode::Additive:
-        state.blendEnable = VK_TRUE;
-        state.srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
-        state.dstColorBlendFactor = VK_BLEND_FACTOR_ONE;
-        state.srcAlphaBlendFactor = VK_BLEND_FACTOR_ZERO;
-        state.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+        blend(srcA, one, zero, one);
         break;
     }
     return state;

@@ -1,5 +1,7 @@
 #include "core/trajectory/trajectory_queue.h"
 
+#include "core/enum_names.h"
+
 #include "core/anim/skin_vertices.h"
 #include "core/gpu/context.h"
 #include "shaders/embedded.h"
@@ -48,27 +50,16 @@ std::vector<uint32_t> segmentIndices(Kind kind, const Source& source, uint32_t s
 } // namespace
 
 const char* kindName(Kind kind) {
-    switch (kind) {
-    case Kind::Particles:
-        return "particles";
-    case Kind::Lines:
-        return "lines";
-    case Kind::Volumes:
-        return "volumes";
-    }
-    return "lines";
+    static constexpr NamedValue<Kind> kNames[] = {
+        {Kind::Particles, "particles"}, {Kind::Lines, "lines"}, {Kind::Volumes, "volumes"}};
+    return nameOf(kind, kNames, "lines");
 }
 
 const char* methodName(Method method) {
-    switch (method) {
-    case Method::Split:
-        return "split";
-    case Method::StreamOutput:
-        return "split-xfb";
-    case Method::Unsplit:
-        return "unsplit";
-    }
-    return "split";
+    static constexpr NamedValue<Method> kNames[] = {{Method::Split, "split"},
+                                                    {Method::StreamOutput, "split-xfb"},
+                                                    {Method::Unsplit, "unsplit"}};
+    return nameOf(method, kNames, "split");
 }
 
 Result<std::unique_ptr<Queue>> Queue::create(const gpu::Context& ctx, Source source,
