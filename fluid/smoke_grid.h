@@ -72,7 +72,6 @@ public:
     glm::vec3 origin() const { return origin_; }             // the world position of its low corner
     glm::vec3 placedOrigin() const { return placedOrigin_; } // where place() put it
     bool awake() const { return awake_; }
-    bool measured() const { return measured_; }
     const gpu::Buffer& emitters() const { return emitters_; }
     // Its GPU memory: the solver's fields, the emitter and activity buffers.
     uint64_t memoryBytes() const;

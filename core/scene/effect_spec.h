@@ -82,25 +82,8 @@ public:
     template <class Kind>
     requires std::is_base_of_v<EffectKindSpec, Kind>
     explicit EffectSpec(Kind kind, std::string effectName = {})
-        : name(std::move(effectName)), kind_(std::make_unique<Kind>(std::move(kind))) {}
-    explicit EffectSpec(std::unique_ptr<EffectKindSpec> kind) : kind_(std::move(kind)) {}
-    EffectSpec(const EffectSpec& o) { *this = o; }
-    EffectSpec& operator=(const EffectSpec& o) {
-        if (this == &o) return *this;
-        name = o.name;
-        bones = o.bones;
-        meshes = o.meshes;
-        minBoneWeight = o.minBoneWeight;
-        automaticBones = o.automaticBones;
-        automaticStride = o.automaticStride;
-        givenKeys = o.givenKeys;
-        start = o.start;
-        end = o.end;
-        kind_ = o.kind_->clone();
-        return *this;
-    }
-    EffectSpec(EffectSpec&&) = default;
-    EffectSpec& operator=(EffectSpec&&) = default;
+        : name(std::move(effectName)), kind_{std::make_unique<Kind>(std::move(kind))} {}
+    explicit EffectSpec(std::unique_ptr<EffectKindSpec> kind) : kind_{std::move(kind)} {}
 
     std::string name;                // default: type and index, e.g. "speed_lines#0"
     std::vector<std::string> bones;  // empty: the whole character
@@ -120,24 +103,36 @@ public:
     std::optional<float> end; // default: the end of the scene
 
     // The kind: its name, and its settings when it is `Kind` (else null).
-    const char* type() const { return kind_->type(); }
+    const char* type() const { return kind_.value->type(); }
     template <class Kind>
     bool is() const {
-        return dynamic_cast<const Kind*>(kind_.get());
+        return dynamic_cast<const Kind*>(kind_.value.get());
     }
     template <class Kind>
     const Kind* as() const {
-        return dynamic_cast<const Kind*>(kind_.get());
+        return dynamic_cast<const Kind*>(kind_.value.get());
     }
     template <class Kind>
     Kind* as() {
-        return dynamic_cast<Kind*>(kind_.get());
+        return dynamic_cast<Kind*>(kind_.value.get());
     }
-    const EffectKindSpec& kind() const { return *kind_; }
-    EffectKindSpec& kind() { return *kind_; }
+    const EffectKindSpec& kind() const { return *kind_.value; }
+    EffectKindSpec& kind() { return *kind_.value; }
 
 private:
-    std::unique_ptr<EffectKindSpec> kind_; // never null
+    // The kind, copied by cloning, so EffectSpec's copies are the defaulted member-wise ones.
+    struct Owned {
+        std::unique_ptr<EffectKindSpec> value; // never null
+        Owned(std::unique_ptr<EffectKindSpec> v) : value(std::move(v)) {}
+        Owned(const Owned& o) : value(o.value->clone()) {}
+        Owned& operator=(const Owned& o) {
+            if (this != &o) value = o.value->clone();
+            return *this;
+        }
+        Owned(Owned&&) = default;
+        Owned& operator=(Owned&&) = default;
+    };
+    Owned kind_;
 };
 
 } // namespace mfx::scene
