@@ -43,13 +43,25 @@ public:
 // for a simulation's scene and character, drawing into targets of `samples` samples.
 struct EffectPassKind {
     const char* name;
+    int drawOrder;
     std::vector<std::string> types;
     std::unique_ptr<EffectKindPass> (*make)(const gpu::Context& ctx,
                                             const sim::SceneSimulation& simulation,
                                             VkSampleCountFlagBits samples);
 };
 
-// Every kind, in draw order (render/effect_kinds.cpp: one line each).
+// The registered passes are the files render/kinds/<name>_pass.h, found by the build
+// (render/CMakeLists.txt lists them as EffectPassList<...>). Each declares the class
+// mfx::render::<Name>Pass, deriving from EffectKindPass, with
+//   static constexpr const char* kPassName;  // for tables and errors
+//   static constexpr int kDrawOrder;         // passes draw in increasing order
+//   static std::vector<std::string> drawnTypes(); // the scene effect types it draws
+// and a constructor (ctx, scene, character, samples) or, for a pass that needs neither the scene
+// nor the character, (ctx, samples).
+template <class... Passes>
+struct EffectPassList {};
+
+// Every kind, in draw order (render/effect_kinds.cpp).
 std::span<const EffectPassKind> effectPassKinds();
 
 // The passes the simulation's scene calls for (a kind none of whose types the scene has is not

@@ -1,52 +1,48 @@
-// The registry of effect passes (render/effect_kind_pass.h). Adding a kind of effect pass means
-// one line here; the order of the lines is the order they draw in.
-#include "core/scene/kinds/afterimage_effect.h"
-#include "core/scene/kinds/silhouette_shell_effect.h"
-#include "core/scene/kinds/swept_volume_effect.h"
-#include "core/scene/kinds/trail_effects.h"
-#include "core/scene/scene.h"
-#include "render/afterimage_pass.h"
+// The registry of effect passes (render/effect_kind_pass.h): every pass of render/kinds, which the
+// build lists (render/effect_pass_list.h, generated), in the draw order each declares.
 #include "render/effect_kind_pass.h"
-#include "render/effect_pass.h"
-#include "render/silhouette_shell_pass.h"
-#include "render/swept_volume_pass.h"
+#include "render/effect_pass_list.h" // generated: every pass of render/kinds
 #include "sim/scene_simulation.h"
 
 #include <algorithm>
+#include <type_traits>
 
 namespace mfx::render {
 
 namespace {
 
-// A pass made from the simulation's scene and character.
+// A pass made from the simulation's scene and character, or from nothing of the simulation where
+// its constructor takes neither.
 template <class Pass>
 std::unique_ptr<EffectKindPass> make(const gpu::Context& ctx,
                                      const sim::SceneSimulation& simulation,
                                      VkSampleCountFlagBits samples) {
-    return std::make_unique<Pass>(ctx, simulation.scene(), simulation.character(), samples);
+    if constexpr (std::is_constructible_v<Pass, const gpu::Context&, VkSampleCountFlagBits>)
+        return std::make_unique<Pass>(ctx, samples);
+    else
+        return std::make_unique<Pass>(ctx, simulation.scene(), simulation.character(), samples);
 }
-// The trajectory effects' pass draws the simulation's queues: it needs nothing of the scene.
-template <>
-std::unique_ptr<EffectKindPass> make<EffectPass>(const gpu::Context& ctx,
-                                                 const sim::SceneSimulation&,
-                                                 VkSampleCountFlagBits samples) {
-    return std::make_unique<EffectPass>(ctx, samples);
+
+template <class Pass>
+EffectPassKind entry() {
+    static_assert(std::is_base_of_v<EffectKindPass, Pass>);
+    return {Pass::kPassName, Pass::kDrawOrder, Pass::drawnTypes(), make<Pass>};
+}
+
+template <class... Passes>
+std::vector<EffectPassKind> sortedKinds(EffectPassList<Passes...>) {
+    std::vector<EffectPassKind> kinds = {entry<Passes>()...};
+    std::stable_sort(kinds.begin(), kinds.end(),
+                     [](const EffectPassKind& a, const EffectPassKind& b) {
+                         return a.drawOrder < b.drawOrder;
+                     });
+    return kinds;
 }
 
 } // namespace
 
 std::span<const EffectPassKind> effectPassKinds() {
-    static const EffectPassKind kinds[] = {
-        // The smear first: by default an opaque copy of the mesh, it writes depth.
-        {"afterimage", {scene::AfterimageSpec::kType}, make<AfterimagePass>},
-        {"swept_volume", {scene::SweptVolumeSpec::kType}, make<SweptVolumePass>},
-        {"silhouette_shell", {scene::SilhouetteShellSpec::kType}, make<SilhouetteShellPass>},
-        // Blur volumes, then speed-lines, then particles: the thin effects stay on top.
-        {"trajectory",
-         {scene::MotionBlurSpec::kType, scene::SpeedLinesSpec::kType,
-          scene::MotionParticlesSpec::kType},
-         make<EffectPass>},
-    };
+    static const std::vector<EffectPassKind> kinds = sortedKinds(EffectPassTypes{});
     return kinds;
 }
 

@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <cstring>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace mfx::render {
@@ -26,6 +27,9 @@ namespace mfx::render {
 template <class Effect>
 class MeshEffectPass : public EffectKindPass {
 public:
+    // The registry's (render/effect_kind_pass.h): the one type of the pass's effects.
+    static std::vector<std::string> drawnTypes() { return {decltype(Effect::kind)::kType}; }
+
     bool empty() const { return effects_.empty(); }
 
     // The triangles the last advance() built, with draw_ (nothing before the first advance). The

@@ -1,11 +1,7 @@
 #include "core/scene/effect_kinds.h"
 
+#include "core/scene/effect_kind_headers.h" // generated: every header of core/scene/kinds
 #include "core/scene/json_object.h"
-#include "core/scene/kinds/afterimage_effect.h"
-#include "core/scene/kinds/silhouette_shell_effect.h"
-#include "core/scene/kinds/smoke_effect.h"
-#include "core/scene/kinds/swept_volume_effect.h"
-#include "core/scene/kinds/trail_effects.h"
 
 namespace mfx::scene {
 

@@ -1,6 +1,6 @@
 // The vertices an effect binds: the one selection every consumer of an effect uses (the
 // simulation's trajectory queues, sim/scene_simulation.cpp, and the mesh-effect passes,
-// render/afterimage_pass.h and its siblings), so they cannot disagree.
+// render/kinds/afterimage_pass.h and its siblings), so they cannot disagree.
 #pragma once
 
 #include "core/anim/character.h"

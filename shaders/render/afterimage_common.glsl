@@ -1,4 +1,4 @@
-// What the afterimage passes share (render/afterimage_pass.h): one descriptor layout for the
+// What the afterimage passes share (render/kinds/afterimage_pass.h): one descriptor layout for the
 // four stages, the ring of recorded positions, and the per-vertex random value.
 // Smith 2016, "Afterimage Toon Blur": chapter 4 (single afterimage), chapter 5 (multi-afterimage).
 #ifndef MFX_AFTERIMAGE_COMMON_GLSL

@@ -1,4 +1,4 @@
-// What the silhouette-shell stages share (render/silhouette_shell_pass.h): one descriptor layout
+// What the silhouette-shell stages share (render/kinds/silhouette_shell_pass.h): one descriptor layout
 // for the three stages and the ring of each polygon's past silhouette edges.
 // Jones 2004, "Geometric Motion Blur for Deforming Polygonal Models", Sec. 3.2.
 #ifndef MFX_SILHOUETTE_SHELL_COMMON_GLSL

@@ -1,4 +1,4 @@
-// What the swept-volume passes share (render/swept_volume_pass.h): one descriptor layout for the
+// What the swept-volume passes share (render/kinds/swept_volume_pass.h): one descriptor layout for the
 // three stages, the ring of recorded positions and the alpha along the sweep.
 // Wloka and Zeleznik 1996, "Interactive Real-Time Motion Blur", Sec. 3-4.
 #ifndef MFX_SWEPT_VOLUME_COMMON_GLSL

@@ -1,4 +1,4 @@
-// Structures of the afterimage toon blur (render/afterimage_pass.h; shaders/afterimage_*.comp),
+// Structures of the afterimage toon blur (render/kinds/afterimage_pass.h; shaders/afterimage_*.comp),
 // shared by GLSL and C++. Smith 2016, "Afterimage Toon Blur", chapters 4 (single afterimage) and 5
 // (multi-afterimage).
 #ifndef MFX_SHARED_AFTERIMAGE_H

@@ -1,4 +1,4 @@
-// Push constants of the effect passes (render/effect_pass.h; shaders/effect_*.vert/.geom/.frag):
+// Push constants of the effect passes (render/kinds/effect_pass.h; shaders/effect_*.vert/.geom/.frag):
 // how trajectory vertices are drawn.
 #ifndef MFX_SHARED_EFFECT_DRAW_H
 #define MFX_SHARED_EFFECT_DRAW_H

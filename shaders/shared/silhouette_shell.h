@@ -1,4 +1,4 @@
-// Structures of the silhouette-of-motion blur shell (render/silhouette_shell_pass.h;
+// Structures of the silhouette-of-motion blur shell (render/kinds/silhouette_shell_pass.h;
 // shaders/silhouette_shell_*.comp), shared by GLSL and C++. Jones 2004, "Geometric Motion Blur for
 // Deforming Polygonal Models": Sec. 3.2.3 (per-polygon data), 3.2.4 (finding the silhouette of
 // motion), 3.2.5 (the polygon strips), 3.3 (holes and popping).

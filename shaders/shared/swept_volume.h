@@ -1,4 +1,4 @@
-// Structures of the swept-volume motion blur (render/swept_volume_pass.h;
+// Structures of the swept-volume motion blur (render/kinds/swept_volume_pass.h;
 // shaders/swept_volume_*.comp), shared by GLSL and C++. Wloka and Zeleznik 1996, "Interactive
 // Real-Time Motion Blur": Sec. 3 (one segment), 3.4 (transparency), 4.2 (n segments), 4.3
 // (rotation).

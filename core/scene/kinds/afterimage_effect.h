@@ -1,5 +1,5 @@
 // The afterimage toon blur (Smith 2016, chapters 4 and 5): the rear-facing vertices of the bound
-// mesh pushed back along their motion (render/afterimage_pass.h).
+// mesh pushed back along their motion (render/kinds/afterimage_pass.h).
 #pragma once
 
 #include "core/scene/effect_spec.h"

@@ -1,5 +1,5 @@
 // The silhouette shell (Jones 2004): strips between the silhouettes of motion a polygon had over
-// the last updates, fading out behind (render/silhouette_shell_pass.h).
+// the last updates, fading out behind (render/kinds/silhouette_shell_pass.h).
 #pragma once
 
 #include "core/scene/effect_spec.h"

@@ -1,7 +1,7 @@
 // The effects drawn from a trajectory queue (Xu et al., section 4): speed-lines (motion lines,
 // Sec. 4.2), blur volumes (motion volumes, Sec. 4.4) and motion particles (Sec. 4.3). Each frame
 // the queue gets one segment per vertex the effect binds; the pass draws its live segments
-// (render/effect_pass.h).
+// (render/kinds/effect_pass.h).
 #pragma once
 
 #include "core/scene/effect_spec.h"

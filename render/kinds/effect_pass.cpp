@@ -1,4 +1,4 @@
-#include "render/effect_pass.h"
+#include "render/kinds/effect_pass.h"
 
 #include "core/gpu/context.h"
 #include "render/effect_geometry.h"

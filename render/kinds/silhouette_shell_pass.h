@@ -65,6 +65,9 @@ struct SilhouetteShellEffect : MeshEffect {
 
 class SilhouetteShellPass : public MeshEffectPass<SilhouetteShellEffect> {
 public:
+    static constexpr const char* kPassName = "silhouette_shell";
+    static constexpr int kDrawOrder = 30;
+
     // The scene's silhouette_shell effects on `character` (which must outlive the pass), drawn
     // into targets of `samples` samples. Effects whose selection leaves no triangle are left out.
     SilhouetteShellPass(const gpu::Context& ctx, const scene::Scene& scene,

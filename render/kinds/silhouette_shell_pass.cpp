@@ -1,4 +1,4 @@
-#include "render/silhouette_shell_pass.h"
+#include "render/kinds/silhouette_shell_pass.h"
 
 #include "core/gpu/check.h"
 #include "core/gpu/context.h"

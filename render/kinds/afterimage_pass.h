@@ -57,6 +57,10 @@ struct AfterimageEffect : MeshEffect {
 
 class AfterimagePass : public MeshEffectPass<AfterimageEffect> {
 public:
+    static constexpr const char* kPassName = "afterimage";
+    // First: by default an opaque copy of the mesh, the smear writes depth.
+    static constexpr int kDrawOrder = 10;
+
     // The scene's afterimage_smear effects on `character` (which must outlive the pass), drawn
     // into targets of `samples` samples. Effects whose selection leaves no vertex are left out
     // (the simulation refuses such scenes first).

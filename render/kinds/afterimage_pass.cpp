@@ -1,4 +1,4 @@
-#include "render/afterimage_pass.h"
+#include "render/kinds/afterimage_pass.h"
 
 #include "core/gpu/check.h"
 #include "core/gpu/context.h"

@@ -1,4 +1,4 @@
-#include "render/swept_volume_pass.h"
+#include "render/kinds/swept_volume_pass.h"
 
 #include "core/gpu/check.h"
 #include "core/gpu/context.h"

@@ -53,6 +53,9 @@ struct SweptVolumeEffect : MeshEffect {
 
 class SweptVolumePass : public MeshEffectPass<SweptVolumeEffect> {
 public:
+    static constexpr const char* kPassName = "swept_volume";
+    static constexpr int kDrawOrder = 20;
+
     // The scene's swept_volume effects on `character` (which must outlive the pass), drawn into
     // targets of `samples` samples. Effects whose selection leaves no vertex are left out (the
     // simulation refuses such scenes first).

@@ -9,16 +9,28 @@
 
 #include "core/gpu/program.h"
 #include "core/gpu/resources.h"
+#include "core/scene/kinds/trail_effects.h"
 #include "render/effect_kind_pass.h"
 #include "render/scene_camera.h"
 #include "sim/scene_simulation.h"
 
 #include <span>
+#include <string>
+#include <vector>
 
 namespace mfx::render {
 
 class EffectPass : public EffectKindPass {
 public:
+    // Registry (render/effect_kind_pass.h): after the mesh effects; within the pass, blur volumes,
+    // then speed-lines, then particles, so the thin effects stay on top.
+    static constexpr const char* kPassName = "trajectory";
+    static constexpr int kDrawOrder = 40;
+    static std::vector<std::string> drawnTypes() {
+        return {scene::MotionBlurSpec::kType, scene::SpeedLinesSpec::kType,
+                scene::MotionParticlesSpec::kType};
+    }
+
     explicit EffectPass(const gpu::Context& ctx,
                         VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT);
 
