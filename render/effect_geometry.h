@@ -1,8 +1,9 @@
 // What the passes that build effect geometry on the GPU and draw it by indirect draws share
-// (render/kinds/afterimage_pass.h, render/kinds/swept_volume_pass.h, render/kinds/silhouette_shell_pass.h): the
-// skinning of an effect's bound vertices, compute programs over storage buffers, the pipelines that
-// draw trajectory vertices and the unsorted draw of built triangles, the barriers between building
-// and drawing, and the rule that decides when a per-frame history starts again.
+// (render/kinds/afterimage_pass.h, render/kinds/swept_volume_pass.h,
+// render/kinds/silhouette_shell_pass.h): the skinning of an effect's bound vertices, compute
+// programs over storage buffers, the pipelines that draw trajectory vertices and the unsorted draw
+// of built triangles, the barriers between building and drawing, and the rule that decides when a
+// per-frame history starts again.
 #pragma once
 
 #include "core/anim/skin_vertices.h"
@@ -44,9 +45,9 @@ gpu::Program storageComputeProgram(const gpu::Context& ctx, const char* name,
 // pieces widened into camera-facing ribbons, or points as round sprites.
 enum class TrajectoryShape { Triangles, Ribbons, Sprites };
 
-// A pipeline drawing shared::TrajectoryVertex as the effect pass does (render/kinds/effect_pass.cpp):
-// the scene frame at binding 0, shared::EffectDraw as push constants, premultiplied alpha, depth
-// tested, the effect shaders of `shape`.
+// A pipeline drawing shared::TrajectoryVertex as the effect pass does
+// (render/kinds/effect_pass.cpp): the scene frame at binding 0, shared::EffectDraw as push
+// constants, premultiplied alpha, depth tested, the effect shaders of `shape`.
 gpu::Program trajectoryDrawProgram(const gpu::Context& ctx, const char* name, TrajectoryShape shape,
                                    VkSampleCountFlagBits samples, bool depthWrite);
 

@@ -32,10 +32,9 @@ EffectPassKind entry() {
 template <class... Passes>
 std::vector<EffectPassKind> sortedKinds(EffectPassList<Passes...>) {
     std::vector<EffectPassKind> kinds = {entry<Passes>()...};
-    std::stable_sort(kinds.begin(), kinds.end(),
-                     [](const EffectPassKind& a, const EffectPassKind& b) {
-                         return a.drawOrder < b.drawOrder;
-                     });
+    std::stable_sort(
+        kinds.begin(), kinds.end(),
+        [](const EffectPassKind& a, const EffectPassKind& b) { return a.drawOrder < b.drawOrder; });
     return kinds;
 }
 

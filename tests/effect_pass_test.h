@@ -1,6 +1,6 @@
 // Fixture for the tests of the mesh-effect passes (render/kinds/afterimage_pass.h,
-// render/kinds/swept_volume_pass.h, render/kinds/silhouette_shell_pass.h): a scene's simulation and one pass,
-// recorded frame by frame as FrameRenderer does, and the small scenes they run.
+// render/kinds/swept_volume_pass.h, render/kinds/silhouette_shell_pass.h): a scene's simulation and
+// one pass, recorded frame by frame as FrameRenderer does, and the small scenes they run.
 #pragma once
 
 #include "core/gpu/commands.h"

@@ -1,11 +1,11 @@
-// The afterimage toon blur (render/kinds/afterimage_pass.h; Smith 2016): geometry only while the bound
-// part moves, alpha falling along each trail, a per-vertex random value that is the same in every
-// run and while paused, speed thresholds that leave slow vertices alone, and the scene file's
+// The afterimage toon blur (render/kinds/afterimage_pass.h; Smith 2016): geometry only while the
+// bound part moves, alpha falling along each trail, a per-vertex random value that is the same in
+// every run and while paused, speed thresholds that leave slow vertices alone, and the scene file's
 // refusals. The scenes are small (the fighter's sword) and run a few frames.
 #include "core/gpu/commands.h"
 #include "core/scene/scene.h"
-#include "render/kinds/afterimage_pass.h"
 #include "render/frame_renderer.h"
+#include "render/kinds/afterimage_pass.h"
 #include "render/render_target.h"
 #include "sim/scene_simulation.h"
 #include "tests/effect_pass_test.h"

@@ -2,8 +2,8 @@
 // is, and writes the picture for a look.
 #include "core/gpu/commands.h"
 #include "render/character_pass.h"
-#include "render/kinds/effect_pass.h"
 #include "render/image_output.h"
+#include "render/kinds/effect_pass.h"
 #include "render/render_target.h"
 #include "sim/scene_simulation.h"
 #include "tests/gpu_test.h"

@@ -1,8 +1,8 @@
-// The silhouette-of-motion blur shell (render/kinds/silhouette_shell_pass.h; Jones 2004): geometry only
-// while the bound part moves, each strip attached to the live mesh, alpha falling linearly along
-// it, strips fading out when their polygon leaves the silhouette, several updates a frame or one
-// every few frames, normals averaged across seams, and the scene file's refusals. The scenes are
-// small (the fighter's kicking leg) and run a few frames.
+// The silhouette-of-motion blur shell (render/kinds/silhouette_shell_pass.h; Jones 2004): geometry
+// only while the bound part moves, each strip attached to the live mesh, alpha falling linearly
+// along it, strips fading out when their polygon leaves the silhouette, several updates a frame or
+// one every few frames, normals averaged across seams, and the scene file's refusals. The scenes
+// are small (the fighter's kicking leg) and run a few frames.
 #include "core/gpu/commands.h"
 #include "core/scene/scene.h"
 #include "render/kinds/silhouette_shell_pass.h"

@@ -1,6 +1,6 @@
-// The swept-volume motion blur (render/kinds/swept_volume_pass.h; Wloka and Zeleznik 1996): geometry
-// only while the bound part moves, alpha falling along each joining strip from opaque to the
-// trailing value for every temporal filter, the n-segment sweep following the curved path, the
+// The swept-volume motion blur (render/kinds/swept_volume_pass.h; Wloka and Zeleznik 1996):
+// geometry only while the bound part moves, alpha falling along each joining strip from opaque to
+// the trailing value for every temporal filter, the n-segment sweep following the curved path, the
 // contour edges of a mesh split at its seams, and the scene file's refusals. The scenes are small
 // (the fighter's sword) and run a few frames.
 #include "core/gpu/commands.h"

@@ -1,6 +1,6 @@
-// Structures of the afterimage toon blur (render/kinds/afterimage_pass.h; shaders/afterimage_*.comp),
-// shared by GLSL and C++. Smith 2016, "Afterimage Toon Blur", chapters 4 (single afterimage) and 5
-// (multi-afterimage).
+// Structures of the afterimage toon blur (render/kinds/afterimage_pass.h;
+// shaders/afterimage_*.comp), shared by GLSL and C++. Smith 2016, "Afterimage Toon Blur", chapters
+// 4 (single afterimage) and 5 (multi-afterimage).
 #ifndef MFX_SHARED_AFTERIMAGE_H
 #define MFX_SHARED_AFTERIMAGE_H
 

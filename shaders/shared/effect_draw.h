@@ -1,5 +1,5 @@
-// Push constants of the effect passes (render/kinds/effect_pass.h; shaders/effect_*.vert/.geom/.frag):
-// how trajectory vertices are drawn.
+// Push constants of the effect passes (render/kinds/effect_pass.h;
+// shaders/effect_*.vert/.geom/.frag): how trajectory vertices are drawn.
 #ifndef MFX_SHARED_EFFECT_DRAW_H
 #define MFX_SHARED_EFFECT_DRAW_H
 

@@ -1,5 +1,6 @@
 // The swept volume (Wloka and Zeleznik 1996): the surface the bound mesh's silhouette edges sweep
-// between recorded frames, its alpha shaped by a temporal filter (render/kinds/swept_volume_pass.h).
+// between recorded frames, its alpha shaped by a temporal filter
+// (render/kinds/swept_volume_pass.h).
 #pragma once
 
 #include "core/scene/effect_spec.h"
