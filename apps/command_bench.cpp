@@ -112,28 +112,25 @@ Result<GridResult> benchGrid(const gpu::Context& ctx, const std::string& scenari
 }
 
 int runBenchSolver(std::span<const std::string> args) {
-    std::vector<cli::OptionSpec> options = deviceOptions();
-    options.push_back(
-        {"grids", "LIST", "comma-separated grids, N or NXxNYxNZ (default 32,64,96,128)"});
-    options.push_back({"jacobi", "N", "Jacobi (or red-black) sweeps per step (default 20)"});
-    options.push_back({"pressure", "NAME",
-                       "pressure solver: jacobi, rbgs, multigrid or mgpcg (default jacobi; "
-                       "multigrid and mgpcg with their default options)"});
-    options.push_back({"steps", "K", "timed steps per grid after 3 warm-up steps (default 10)"});
-    options.push_back({"scenario", "NAME", "scenario whose stages are timed (default puff)"});
-    options.push_back({"workgroups", "LIST",
-                       "comma-separated compute workgroup shapes XxYxZ to compare (default: the "
-                       "solver's, " +
-                           shapeLabel(fluid::SolverOptions{}.workgroup) + ")"});
-    options.push_back({"json", "FILE", "also write the results as JSON"});
-    cli::ParsedArgs parsed;
-    int exitCode = kExitOk;
-    if (!parseOrExit(args, options, 0,
-                     "usage: motionfx bench solver [options]\n\nTimes the GPU smoke solver with "
-                     "timestamp queries: the median milliseconds of each stage and of a whole "
-                     "step, per grid size. Pipelines are compiled and warmed up before timing.",
-                     parsed, exitCode))
-        return exitCode;
+    CommandLine command("usage: motionfx bench solver [options]\n\nTimes the GPU smoke solver "
+                        "with timestamp queries: the median milliseconds of each stage and of a "
+                        "whole step, per grid size. Pipelines are compiled and warmed up before "
+                        "timing.",
+                        0, CommandLine::kDevice);
+    command.option("grids", "LIST", "comma-separated grids, N or NXxNYxNZ (default 32,64,96,128)")
+        .option("jacobi", "N", "Jacobi (or red-black) sweeps per step (default 20)")
+        .option("pressure", "NAME",
+                "pressure solver: jacobi, rbgs, multigrid or mgpcg (default jacobi; multigrid "
+                "and mgpcg with their default options)")
+        .option("steps", "K", "timed steps per grid after 3 warm-up steps (default 10)")
+        .option("scenario", "NAME", "scenario whose stages are timed (default puff)")
+        .option("workgroups", "LIST",
+                "comma-separated compute workgroup shapes XxYxZ to compare (default: the "
+                "solver's, " +
+                    shapeLabel(fluid::SolverOptions{}.workgroup) + ")")
+        .json();
+    if (!command.parse(args)) return command.exitCode();
+    const cli::ParsedArgs& parsed = command.parsed();
     auto grids = parseGridList(parsed.value("grids", "32,64,96,128"));
     auto jacobi = cli::parseUnsigned(parsed.value("jacobi", "20"), 0, 100000, "--jacobi");
     auto steps = cli::parseUnsigned(parsed.value("steps", "10"), 1, 10000, "--steps");
@@ -155,13 +152,9 @@ int runBenchSolver(std::span<const std::string> args) {
     std::ofstream jsonFile;
     if (!openOutputFile(jsonPath, jsonFile)) return kExitFailure;
 
-    const std::unique_ptr<gpu::Context> context = createContext(parsed);
+    const std::unique_ptr<gpu::Context> context = createTimingContext(parsed, "the solver");
     if (!context) return kExitFailure;
     const gpu::Context& ctx = *context;
-    if (!ctx.features().timestamps) {
-        printError(ctx.info().name + " has no timestamp queries; the solver cannot be timed");
-        return kExitFailure;
-    }
     std::printf("smoke solver benchmark on %s (%s)\nscenario %s, pressure solver %s, %u Jacobi "
                 "sweeps, median of %u steps after 3 warm-up steps; GPU milliseconds from "
                 "timestamp queries\n\n",

@@ -63,25 +63,22 @@ bool measure(const gpu::Context& ctx, const SceneArgument& argument, VkSampleCou
 } // namespace
 
 int runBenchEffects(std::span<const std::string> args) {
-    std::vector<cli::OptionSpec> options = deviceOptions();
-    options.push_back({"size", "WxH", "image size (default 960x540)"});
-    options.push_back({"samples", "N",
-                       "MSAA samples per pixel: 1, 2, 4 or 8 (default 4; fewer where the device "
-                       "has fewer)"});
-    options.push_back({"skip", "N", "first frames of each run not timed (default 2)"});
-    options.push_back({"json", "FILE", "also write the results as JSON"});
-    cli::ParsedArgs parsed;
+    CommandLine command(
+        "usage: motionfx bench effects [SCENE...] [options]\n\nFor each scene "
+        "(default: the demo scene of every technique, docs/scenes/{lines,blur,"
+        "particles,smoke,afterimage,swept,shell}.json, from the project root), runs "
+        "it simulated and drawn as `motionfx render` does, and again with its "
+        "effects removed, and reports the extra GPU milliseconds and triangles per "
+        "frame its effects cost against the character alone, and their share of the "
+        "frame's time.",
+        64, CommandLine::kDevice);
+    command.option("size", "WxH", "image size (default 960x540)")
+        .samples()
+        .option("skip", "N", "first frames of each run not timed (default 2)")
+        .json();
+    if (!command.parse(args)) return command.exitCode();
+    const cli::ParsedArgs& parsed = command.parsed();
     int exitCode = kExitOk;
-    if (!parseOrExit(
-            args, options, 64,
-            "usage: motionfx bench effects [SCENE...] [options]\n\nFor each scene (default: "
-            "the demo scene of every technique, docs/scenes/{lines,blur,particles,smoke,"
-            "afterimage,swept,shell}.json, from the project root), runs it simulated and "
-            "drawn as `motionfx render` does, and again with its effects removed, and "
-            "reports the extra GPU milliseconds and triangles per frame its effects cost "
-            "against the character alone, and their share of the frame's time.",
-            parsed, exitCode))
-        return exitCode;
     const Result<uint32_t> samples = parseSamples(parsed);
     auto skip = cli::parseUnsigned(parsed.value("skip", "2"), 0, 1000, "--skip");
     if (reportFirstError(samples, skip)) return kExitUsage;
@@ -110,13 +107,9 @@ int runBenchEffects(std::span<const std::string> args) {
         }
     }
 
-    const std::unique_ptr<gpu::Context> context = createContext(parsed);
+    const std::unique_ptr<gpu::Context> context = createTimingContext(parsed, "the frames");
     if (!context) return kExitFailure;
     const gpu::Context& ctx = *context;
-    if (!ctx.features().timestamps) {
-        printError(ctx.info().name + " has no timestamp queries; the frames cannot be timed");
-        return kExitFailure;
-    }
     const gpu::PrimitiveCounter primitives(ctx);
     if (!primitives.valid()) {
         printError(ctx.info().name + " has no pipeline-statistics queries; triangles cannot be "

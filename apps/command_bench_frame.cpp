@@ -34,24 +34,19 @@ std::string simulationRow(const std::string& pass) {
 } // namespace
 
 int runBenchFrame(std::span<const std::string> args) {
-    std::vector<cli::OptionSpec> options = deviceOptions();
-    options.push_back({"size", "WxH", "image size (default 960x540)"});
-    options.push_back({"frames", "N", "timed frames (default 60)"});
-    options.push_back({"warmup", "N", "frames run first and not timed (default 5)"});
-    options.push_back({"samples", "N",
-                       "MSAA samples per pixel: 1, 2, 4 or 8 (default 4; fewer "
-                       "where the device has fewer)"});
-    options.push_back({"json", "FILE", "also write the results as JSON"});
-    cli::ParsedArgs parsed;
-    int exitCode = kExitOk;
-    if (!parseOrExit(args, options, 1,
-                     "usage: motionfx bench frame [SCENE] [options]\n\nRuns a scene (default: "
-                     "the built-in one) frame by frame with its clip looping, simulating and "
-                     "drawing every frame as `motionfx render` does (without writing images), "
-                     "and reports the median GPU milliseconds of each pass (timestamp queries) "
-                     "and the median wall time of a whole frame.",
-                     parsed, exitCode))
-        return exitCode;
+    CommandLine command("usage: motionfx bench frame [SCENE] [options]\n\nRuns a scene (default: "
+                        "the built-in one) frame by frame with its clip looping, simulating and "
+                        "drawing every frame as `motionfx render` does (without writing images), "
+                        "and reports the median GPU milliseconds of each pass (timestamp queries) "
+                        "and the median wall time of a whole frame.",
+                        1, CommandLine::kDevice);
+    command.option("size", "WxH", "image size (default 960x540)")
+        .option("frames", "N", "timed frames (default 60)")
+        .option("warmup", "N", "frames run first and not timed (default 5)")
+        .samples()
+        .json();
+    if (!command.parse(args)) return command.exitCode();
+    const cli::ParsedArgs& parsed = command.parsed();
     auto timed = cli::parseUnsigned(parsed.value("frames", "60"), 1, 100000, "--frames");
     auto warmup = cli::parseUnsigned(parsed.value("warmup", "5"), 0, 1000, "--warmup");
     const Result<uint32_t> samples = parseSamples(parsed);
@@ -60,6 +55,7 @@ int runBenchFrame(std::span<const std::string> args) {
     sceneArgs.values.erase("frames"); // --frames counts timed frames here
     if (!sceneArgs.has("size")) sceneArgs.values["size"] = "960x540";
     SceneArgument argument;
+    int exitCode = kExitOk;
     if (!loadSceneArgument(sceneArgs, argument, exitCode)) return exitCode;
     scene::Scene& s = argument.scene;
     s.character.loop = true;
@@ -67,13 +63,9 @@ int runBenchFrame(std::span<const std::string> args) {
     std::ofstream jsonFile;
     if (!openOutputFile(parsed.value("json"), jsonFile)) return kExitFailure;
 
-    const std::unique_ptr<gpu::Context> context = createContext(parsed);
+    const std::unique_ptr<gpu::Context> context = createTimingContext(parsed, "the passes");
     if (!context) return kExitFailure;
     const gpu::Context& ctx = *context;
-    if (!ctx.features().timestamps) {
-        printError(ctx.info().name + " has no timestamp queries; the passes cannot be timed");
-        return kExitFailure;
-    }
     const std::unique_ptr<sim::SceneSimulation> created =
         createSceneSimulation(ctx, argument, exitCode);
     if (!created) return exitCode;

@@ -46,27 +46,22 @@ struct Row {
 } // namespace
 
 int runBenchTrajectory(std::span<const std::string> args) {
-    std::vector<cli::OptionSpec> options = deviceOptions();
-    options.push_back(
-        {"lifetimes", "LIST", "comma-separated lifetimes L (default 1,2,4,8,16,32,64)"});
-    options.push_back({"sub-samples", "S", "sub-samples per segment, 1-16 (default 4)"});
-    options.push_back(
-        {"frames", "N", "timed frames per row after the trail has filled (default 20)"});
-    options.push_back({"clip", "NAME", "the fighter's clip (default roundhouse_kick)"});
-    options.push_back({"plot", "FILE", "the SVG plot (default out/bench_trajectory.svg)"});
-    options.push_back({"json", "FILE", "also write the table as JSON"});
-    options.push_back({"stats", "FILE", "also write every timed frame's statistics as JSON"});
-    cli::ParsedArgs parsed;
-    int exitCode = kExitOk;
-    if (!parseOrExit(
-            args, options, 0,
-            "usage: motionfx bench trajectory [options]\n\nBuilds the built-in "
-            "fighter's trail (every vertex, motion lines) with the split method (one new "
-            "segment per frame into a ring) and with the unsplit baseline (the whole trail "
-            "rebuilt every frame), for each lifetime L, and reports skinning evaluations, "
-            "vertices and GPU milliseconds per frame.",
-            parsed, exitCode))
-        return exitCode;
+    CommandLine command(
+        "usage: motionfx bench trajectory [options]\n\nBuilds the built-in "
+        "fighter's trail (every vertex, motion lines) with the split method (one new "
+        "segment per frame into a ring) and with the unsplit baseline (the whole "
+        "trail rebuilt every frame), for each lifetime L, and reports skinning "
+        "evaluations, vertices and GPU milliseconds per frame.",
+        0, CommandLine::kDevice);
+    command.option("lifetimes", "LIST", "comma-separated lifetimes L (default 1,2,4,8,16,32,64)")
+        .option("sub-samples", "S", "sub-samples per segment, 1-16 (default 4)")
+        .option("frames", "N", "timed frames per row after the trail has filled (default 20)")
+        .option("clip", "NAME", "the fighter's clip (default roundhouse_kick)")
+        .option("plot", "FILE", "the SVG plot (default out/bench_trajectory.svg)")
+        .json("the table")
+        .option("stats", "FILE", "also write every timed frame's statistics as JSON");
+    if (!command.parse(args)) return command.exitCode();
+    const cli::ParsedArgs& parsed = command.parsed();
     auto lifetimes = parseLifetimes(parsed.value("lifetimes", "1,2,4,8,16,32,64"));
     auto subSamples = cli::parseUnsigned(parsed.value("sub-samples", "4"), 1,
                                          MFX_TRAJECTORY_MAX_SUBSAMPLES, "--sub-samples");
@@ -87,14 +82,10 @@ int runBenchTrajectory(std::span<const std::string> args) {
     if (!openOutputFile(parsed.value("json"), jsonFile)) return kExitFailure;
     if (!openOutputFile(parsed.value("stats"), statsFile)) return kExitFailure;
 
-    const std::unique_ptr<gpu::Context> context = createContext(parsed);
+    const std::unique_ptr<gpu::Context> context =
+        createTimingContext(parsed, "the trajectory pass");
     if (!context) return kExitFailure;
     const gpu::Context& ctx = *context;
-    if (!ctx.features().timestamps) {
-        printError(ctx.info().name +
-                   " has no timestamp queries; the trajectory pass cannot be timed");
-        return kExitFailure;
-    }
     const trajectory::Source source = trajectory::selectSource(fighter, {}).value();
     const uint32_t maxLifetime =
         *std::max_element(lifetimes.value().begin(), lifetimes.value().end());

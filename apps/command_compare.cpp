@@ -36,33 +36,29 @@ void printRecord(const StageRecord& r) {
 } // namespace
 
 int runCompare(std::span<const std::string> args) {
-    std::vector<cli::OptionSpec> options = deviceOptions();
-    options.push_back({"steps", "K", "number of steps (default 20)"});
-    options.push_back({"grid", "NXxNYxNZ", "grid cells (default 32x32x32)"});
-    options.push_back({"stage", "NAME", "compare this stage alone, from the same input each step"});
-    options.push_back({"pressure", "NAME",
-                       "pressure solver of both sides: jacobi, rbgs, multigrid or mgpcg (default: "
-                       "the scenario's)"});
-    options.push_back({"json", "FILE", "also write the comparison as JSON"});
-    options.push_back(
-        {"tolerance", "X", "exit with status 1 if any relative L2 difference exceeds X"});
     std::string scenarioList;
     for (const char* name : fluid::scenarioNames())
         scenarioList += (scenarioList.empty() ? "" : ", ") + std::string(name);
     std::string stageList;
     for (fluid::Stage stage : fluid::kAllStages)
         stageList += (stageList.empty() ? "" : ", ") + std::string(fluid::stageName(stage));
-    cli::ParsedArgs parsed;
-    int exitCode = kExitOk;
-    if (!parseOrExit(args, options, 1,
-                     "usage: motionfx compare SCENARIO [options]\n\nRuns SCENARIO (" +
-                         scenarioList +
-                         ") on the GPU solver and on the CPU reference from the same input and "
-                         "prints, after every stage of every step, the largest absolute and the "
-                         "relative L2 difference of velocity, pressure and pigment.\nStages: " +
-                         stageList + ".",
-                     parsed, exitCode))
-        return exitCode;
+    CommandLine command("usage: motionfx compare SCENARIO [options]\n\nRuns SCENARIO (" +
+                            scenarioList +
+                            ") on the GPU solver and on the CPU reference from the same input and "
+                            "prints, after every stage of every step, the largest absolute and the "
+                            "relative L2 difference of velocity, pressure and pigment.\nStages: " +
+                            stageList + ".",
+                        1, CommandLine::kDevice);
+    command.option("steps", "K", "number of steps (default 20)")
+        .option("grid", "NXxNYxNZ", "grid cells (default 32x32x32)")
+        .option("stage", "NAME", "compare this stage alone, from the same input each step")
+        .option("pressure", "NAME",
+                "pressure solver of both sides: jacobi, rbgs, multigrid or mgpcg (default: the "
+                "scenario's)")
+        .json("the comparison")
+        .option("tolerance", "X", "exit with status 1 if any relative L2 difference exceeds X");
+    if (!command.parse(args)) return command.exitCode();
+    const cli::ParsedArgs& parsed = command.parsed();
     if (parsed.positional.empty()) {
         printError("compare needs a scenario: one of " + scenarioList + " (see --help)");
         return kExitUsage;

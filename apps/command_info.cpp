@@ -6,15 +6,12 @@
 namespace mfx::app {
 
 int runInfo(std::span<const std::string> args) {
-    std::vector<cli::OptionSpec> options = deviceOptions();
-    options.push_back({"list", "", "also list every Vulkan device found"});
-    cli::ParsedArgs parsed;
-    int exitCode = kExitOk;
-    if (!parseOrExit(args, options, 0,
-                     "usage: motionfx info [options]\n\nPrints the Vulkan device motionfx would "
-                     "use, its driver, and the features and limits the project relies on.",
-                     parsed, exitCode))
-        return exitCode;
+    CommandLine command("usage: motionfx info [options]\n\nPrints the Vulkan device motionfx "
+                        "would use, its driver, and the features and limits the project relies on.",
+                        0, CommandLine::kDevice);
+    command.option("list", "", "also list every Vulkan device found");
+    if (!command.parse(args)) return command.exitCode();
+    const cli::ParsedArgs& parsed = command.parsed();
 
     const std::unique_ptr<gpu::Context> context = createContext(parsed);
     if (!context) return kExitFailure;

@@ -33,23 +33,18 @@ nlohmann::json statsJson(const sim::SimulationFrameStats& s) {
 }
 
 int runSimulate(std::span<const std::string> args) {
-    std::vector<cli::OptionSpec> options = deviceOptions();
-    options.push_back({"frames", "N", "simulate N frames (default: the scene's)"});
-    options.push_back({"stats", "FILE", "write per-frame statistics as JSON"});
-    for (const cli::OptionSpec& o : characterOptions())
-        options.push_back(o);
-    cli::ParsedArgs parsed;
-    int exitCode = kExitOk;
-    if (!parseOrExit(
-            args, options, 1,
-            "usage: motionfx simulate [SCENE | CHARACTER.glb] [options]\n\nRuns the scene's "
-            "trajectories and smoke on the GPU, frame by frame, without drawing, and "
-            "prints what ran. Without SCENE, the built-in default scene; a .gltf/.glb "
-            "character file in its place gets the default effects on its fastest limb.",
-            parsed, exitCode))
-        return exitCode;
+    CommandLine command(
+        "usage: motionfx simulate [SCENE | CHARACTER.glb] [options]\n\nRuns the "
+        "scene's trajectories and smoke on the GPU, frame by frame, without drawing, "
+        "and prints what ran. Without SCENE, the built-in default scene; a "
+        ".gltf/.glb character file in its place gets the default effects on its "
+        "fastest limb.",
+        1, CommandLine::kDevice | CommandLine::kScene);
+    command.option("frames", "N", "simulate N frames (default: the scene's)")
+        .option("stats", "FILE", "write per-frame statistics as JSON");
     SceneArgument argument;
-    if (!loadSceneArgument(parsed, argument, exitCode)) return exitCode;
+    if (!command.parseScene(args, argument)) return command.exitCode();
+    const cli::ParsedArgs& parsed = command.parsed();
     const scene::Scene& s = argument.scene;
     std::ofstream statsFile;
     if (!openOutputFile(parsed.value("stats"), statsFile)) return kExitFailure;

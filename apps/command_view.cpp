@@ -155,35 +155,27 @@ std::string formatMs(double ms) {
 } // namespace
 
 int runView(std::span<const std::string> args) {
-    std::vector<cli::OptionSpec> options = deviceOptions();
-    options.push_back({"size", "WxH",
-                       "the picture's size in pixels (default 960x540); the "
-                       "window starts at this size and may be resized"});
-    options.push_back({"samples", "N", "MSAA samples per pixel: 1, 2, 4 or 8 (default 4)"});
-    options.push_back({"paused", "", "start paused on the first frame"});
-    options.push_back({"quit-after", "N", "close by itself after presenting N frames"});
-    options.push_back({"screenshot", "FILE", "on closing, write the window's last picture as PNG"});
-    for (const cli::OptionSpec& o : characterOptions())
-        options.push_back(o);
-    cli::ParsedArgs parsed;
-    int exitCode = kExitOk;
-    if (!parseOrExit(args, options, 1,
-                     "usage: motionfx view [SCENE | CHARACTER.glb] [options]\n\nPlays a scene "
-                     "file (default: the built-in scene; a .gltf/.glb character file gets the "
-                     "default effects on its fastest limb) in a window in real time, looping, with "
-                     "the frame "
-                     "number, frame time and state drawn in the corner.\n" +
-                         std::string(kKeysHelp) + ".",
-                     parsed, exitCode))
-        return exitCode;
+    CommandLine command("usage: motionfx view [SCENE | CHARACTER.glb] [options]\n\nPlays a scene "
+                        "file (default: the built-in scene; a .gltf/.glb character file gets the "
+                        "default effects on its fastest limb) in a window in real time, looping, "
+                        "with the frame number, frame time and state drawn in the corner.\n" +
+                            std::string(kKeysHelp) + ".",
+                        1, CommandLine::kDevice | CommandLine::kScene);
+    command
+        .option("size", "WxH",
+                "the picture's size in pixels (default 960x540); the window starts at this size "
+                "and may be resized")
+        .samples()
+        .option("paused", "", "start paused on the first frame")
+        .option("quit-after", "N", "close by itself after presenting N frames")
+        .option("screenshot", "FILE", "on closing, write the window's last picture as PNG");
+    SceneArgument argument;
+    if (!command.parseScene(args, argument, "960x540")) return command.exitCode();
+    const cli::ParsedArgs& parsed = command.parsed();
     const Result<uint32_t> samples = parseSamples(parsed);
     auto quitAfter =
         cli::parseUnsigned(parsed.value("quit-after", "0"), 0, 100000000, "--quit-after");
     if (reportFirstError(samples, quitAfter)) return kExitUsage;
-    cli::ParsedArgs sceneArgs = parsed;
-    if (!sceneArgs.has("size")) sceneArgs.values["size"] = "960x540";
-    SceneArgument argument;
-    if (!loadSceneArgument(sceneArgs, argument, exitCode)) return exitCode;
     const std::string screenshot = parsed.value("screenshot");
     if (!screenshot.empty()) {
         std::ofstream probe;

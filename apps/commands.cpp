@@ -208,22 +208,62 @@ void printError(const std::string& message) {
     std::fprintf(stderr, "motionfx: error: %s\n", message.c_str());
 }
 
-bool parseOrExit(std::span<const std::string> args, std::span<const cli::OptionSpec> options,
-                 size_t maxPositional, const std::string& help, cli::ParsedArgs& parsed,
-                 int& exitCode) {
-    Result<cli::ParsedArgs> result = cli::parseArgs(args, options, maxPositional);
+CommandLine::CommandLine(std::string help, size_t maxPositional, unsigned takes)
+    : help_(std::move(help)), maxPositional_(maxPositional), takes_(takes) {
+    if (takes_ & kDevice) options_ = deviceOptions();
+}
+
+CommandLine& CommandLine::option(std::string name, std::string valueName, std::string help) {
+    options_.push_back({std::move(name), std::move(valueName), std::move(help)});
+    return *this;
+}
+
+CommandLine& CommandLine::json(const std::string& what) {
+    return option("json", "FILE", "also write " + what + " as JSON");
+}
+
+CommandLine& CommandLine::samples() {
+    return option("samples", "N",
+                  "MSAA samples per pixel: 1, 2, 4 or 8 (default 4; fewer where the device has "
+                  "fewer)");
+}
+
+bool CommandLine::parse(std::span<const std::string> args) {
+    std::vector<cli::OptionSpec> options = options_;
+    if (takes_ & kScene)
+        for (const cli::OptionSpec& o : characterOptions())
+            options.push_back(o);
+    Result<cli::ParsedArgs> result = cli::parseArgs(args, options, maxPositional_);
     if (!result) {
         printError(result.error().message + " (see --help)");
-        exitCode = kExitUsage;
+        exitCode_ = kExitUsage;
         return false;
     }
-    parsed = std::move(result).value();
-    if (parsed.has("help")) {
-        std::printf("%s\n%s", help.c_str(), cli::describeOptions(options).c_str());
-        exitCode = kExitOk;
+    parsed_ = std::move(result).value();
+    if (parsed_.has("help")) {
+        std::printf("%s\n%s", help_.c_str(), cli::describeOptions(options).c_str());
+        exitCode_ = kExitOk;
         return false;
     }
     return true;
+}
+
+bool CommandLine::parseScene(std::span<const std::string> args, SceneArgument& out,
+                             const char* defaultSize) {
+    if (!parse(args)) return false;
+    cli::ParsedArgs sceneArgs = parsed_;
+    if (defaultSize && !sceneArgs.has("size")) sceneArgs.values["size"] = defaultSize;
+    return loadSceneArgument(sceneArgs, out, exitCode_);
+}
+
+std::unique_ptr<gpu::Context> createTimingContext(const cli::ParsedArgs& args, const char* what) {
+    std::unique_ptr<gpu::Context> context = createContext(args);
+    if (context && !context->features().timestamps) {
+        printError(context->info().name + " has no timestamp queries; " + what +
+                   " cannot be timed");
+        return nullptr;
+    }
+    return context;
 }
 
 Result<uint32_t> parseSamples(const cli::ParsedArgs& parsed) {

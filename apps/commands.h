@@ -90,11 +90,45 @@ bool reportFirstError(const Results&... results) {
     return first != nullptr;
 }
 
-// Parses `args`; on --help prints `help` + options and returns kExitOk in `exitCode`; on a bad
-// argument prints one line and returns kExitUsage in `exitCode`. Returns true to go on.
-bool parseOrExit(std::span<const std::string> args, std::span<const cli::OptionSpec> options,
-                 size_t maxPositional, const std::string& help, cli::ParsedArgs& parsed,
-                 int& exitCode);
+// A subcommand's command line: its help (the usage line, a blank line, what it does), its options
+// and how many positionals it takes. A command that uses the GPU has the device options
+// (--device, --validate) first; one that takes a scene or character file has the character
+// options (--character, --clip) last.
+class CommandLine {
+public:
+    enum Takes : unsigned { kPlain = 0, kDevice = 1u << 0, kScene = 1u << 1 };
+    CommandLine(std::string help, size_t maxPositional, unsigned takes);
+
+    // One more option (before the character options); returns *this.
+    CommandLine& option(std::string name, std::string valueName, std::string help);
+    // --json FILE, "also write <what> as JSON".
+    CommandLine& json(const std::string& what = "the results");
+    // --samples N (MSAA samples per pixel, read by parseSamples).
+    CommandLine& samples();
+
+    // Parses `args`. False when the command ends here: after --help (printed; exitCode() 0) or a
+    // bad argument (printed as one line; exitCode() 2).
+    bool parse(std::span<const std::string> args);
+    // parse(), then the scene argument (loadSceneArgument), --size defaulting to `defaultSize`
+    // where one is given. False (exitCode() set) when the command ends here.
+    bool parseScene(std::span<const std::string> args, SceneArgument& out,
+                    const char* defaultSize = nullptr);
+
+    const cli::ParsedArgs& parsed() const { return parsed_; }
+    int exitCode() const { return exitCode_; }
+
+private:
+    std::string help_;
+    size_t maxPositional_;
+    unsigned takes_;
+    std::vector<cli::OptionSpec> options_;
+    cli::ParsedArgs parsed_;
+    int exitCode_ = kExitOk;
+};
+
+// createContext, for a command that times the GPU: nullptr (after printing why) on a device
+// without timestamp queries, `what` naming what cannot be timed ("the solver").
+std::unique_ptr<gpu::Context> createTimingContext(const cli::ParsedArgs& args, const char* what);
 
 // After a run with --validate: reports recorded validation errors; returns kExitFailure if any.
 int finishValidation(const gpu::Context& ctx, int exitCode);
