@@ -111,26 +111,9 @@ Result<GridResult> benchGrid(const gpu::Context& ctx, const std::string& scenari
     return r;
 }
 
-int runBenchSolver(std::span<const std::string> args) {
-    CommandLine command("usage: motionfx bench solver [options]\n\nTimes the GPU smoke solver "
-                        "with timestamp queries: the median milliseconds of each stage and of a "
-                        "whole step, per grid size. Pipelines are compiled and warmed up before "
-                        "timing.",
-                        0, CommandLine::kDevice);
-    command.option("grids", "LIST", "comma-separated grids, N or NXxNYxNZ (default 32,64,96,128)")
-        .option("jacobi", "N", "Jacobi (or red-black) sweeps per step (default 20)")
-        .option("pressure", "NAME",
-                "pressure solver: jacobi, rbgs, multigrid or mgpcg (default jacobi; multigrid "
-                "and mgpcg with their default options)")
-        .option("steps", "K", "timed steps per grid after 3 warm-up steps (default 10)")
-        .option("scenario", "NAME", "scenario whose stages are timed (default puff)")
-        .option("workgroups", "LIST",
-                "comma-separated compute workgroup shapes XxYxZ to compare (default: the "
-                "solver's, " +
-                    shapeLabel(fluid::SolverOptions{}.workgroup) + ")")
-        .json();
-    if (!command.parse(args)) return command.exitCode();
-    const cli::ParsedArgs& parsed = command.parsed();
+} // namespace
+
+int runBenchSolver(const cli::ParsedArgs& parsed) {
     auto grids = parseGridList(parsed.value("grids", "32,64,96,128"));
     auto jacobi = cli::parseUnsigned(parsed.value("jacobi", "20"), 0, 100000, "--jacobi");
     auto steps = cli::parseUnsigned(parsed.value("steps", "10"), 1, 10000, "--steps");
@@ -220,33 +203,6 @@ int runBenchSolver(std::span<const std::string> args) {
                  << "\n";
     }
     return finishValidation(ctx, kExitOk);
-}
-
-} // namespace
-
-int runBench(std::span<const std::string> args) {
-    const std::string usage =
-        "usage: motionfx bench solver|trajectory|frame|accuracy|effects [options]   (see --help of "
-        "each)";
-    if (args.empty() || args[0] == "--help") {
-        std::printf(
-            "%s\n\nbenchmarks:\n  solver       GPU milliseconds per solver stage and per "
-            "step, by grid size\n  trajectory   split trajectory against the unsplit "
-            "baseline: skinning, vertices and GPU ms per frame, by lifetime\n  frame        GPU "
-            "ms per pass and whole-frame time of a scene, simulated and drawn\n  accuracy     "
-            "error against GPU ms of the solver's accuracy options; time to 1e-3\n  effects      "
-            "extra GPU ms and triangles per frame of each effect technique\n",
-            usage.c_str());
-        return args.empty() ? kExitUsage : kExitOk;
-    }
-    if (args[0] == "solver") return runBenchSolver(args.subspan(1));
-    if (args[0] == "trajectory") return runBenchTrajectory(args.subspan(1));
-    if (args[0] == "frame") return runBenchFrame(args.subspan(1));
-    if (args[0] == "accuracy") return runBenchAccuracy(args.subspan(1));
-    if (args[0] == "effects") return runBenchEffects(args.subspan(1));
-    printError("unknown benchmark '" + args[0] +
-               "'; benchmarks are: solver, trajectory, frame, accuracy, effects");
-    return kExitUsage;
 }
 
 } // namespace mfx::app

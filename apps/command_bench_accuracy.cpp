@@ -105,34 +105,7 @@ struct TimeToTarget {
 
 } // namespace
 
-int runBenchAccuracy(std::span<const std::string> args) {
-    CommandLine command(
-        "usage: motionfx bench accuracy [options]\n\nRuns every configuration of the solver's "
-        "accuracy options (pressure solver and effort, advection, storage) for K steps of each "
-        "scenario on the GPU, times it, and measures the divergence it leaves and its velocity "
-        "and pigment error against the CPU reference with the exact pressure solve on the same "
-        "grid and against a grid twice as fine; then each pressure solver's time to a relative "
-        "residual of 1e-3 at 64^3. A configuration the device cannot run (fp16 needs 16-bit "
-        "float storage images) is measured on the CPU reference only (no time).\n\nScenarios: "
-        "puff, jet, swirl and random-impulses as in motionfx compare, and kick: the impulses the "
-        "built-in default scene's roundhouse kick splats into its smoke grid, recorded on the GPU "
-        "step by step and mapped onto the benchmark's grid.",
-        0, CommandLine::kDevice);
-    command.option("grid", "N", "cells per axis of the accuracy runs (default 32)")
-        .option("steps", "K", "steps per run (default 20)")
-        .option("scenarios", "LIST",
-                "comma-separated scenarios: puff, jet, swirl, random-impulses, kick (default "
-                "puff,jet,kick)")
-        .option("target-grid", "N",
-                "cells per axis of the time-to-1e-3 runs (default 64; 0 skips them)")
-        .option("budgets", "LIST",
-                "comma-separated GPU ms per step for the best-per-budget table (default "
-                "2,5,10,20,50,100,200)")
-        .option("csv", "FILE", "the table as CSV (default out/bench_accuracy.csv)")
-        .option("plot", "FILE", "the SVG plot (default out/bench_accuracy.svg)")
-        .json();
-    if (!command.parse(args)) return command.exitCode();
-    const cli::ParsedArgs& parsed = command.parsed();
+int runBenchAccuracy(const cli::ParsedArgs& parsed) {
     auto grid = cli::parseUnsigned(parsed.value("grid", "32"), 4, 128, "--grid");
     auto steps = cli::parseUnsigned(parsed.value("steps", "20"), 1, 10000, "--steps");
     auto targetGrid =

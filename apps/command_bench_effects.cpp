@@ -62,22 +62,7 @@ bool measure(const gpu::Context& ctx, const SceneArgument& argument, VkSampleCou
 
 } // namespace
 
-int runBenchEffects(std::span<const std::string> args) {
-    CommandLine command(
-        "usage: motionfx bench effects [SCENE...] [options]\n\nFor each scene "
-        "(default: the demo scene of every technique, docs/scenes/{lines,blur,"
-        "particles,smoke,afterimage,swept,shell}.json, from the project root), runs "
-        "it simulated and drawn as `motionfx render` does, and again with its "
-        "effects removed, and reports the extra GPU milliseconds and triangles per "
-        "frame its effects cost against the character alone, and their share of the "
-        "frame's time.",
-        64, CommandLine::kDevice);
-    command.option("size", "WxH", "image size (default 960x540)")
-        .samples()
-        .option("skip", "N", "first frames of each run not timed (default 2)")
-        .json();
-    if (!command.parse(args)) return command.exitCode();
-    const cli::ParsedArgs& parsed = command.parsed();
+int runBenchEffects(const cli::ParsedArgs& parsed) {
     int exitCode = kExitOk;
     const Result<uint32_t> samples = parseSamples(parsed);
     auto skip = cli::parseUnsigned(parsed.value("skip", "2"), 0, 1000, "--skip");

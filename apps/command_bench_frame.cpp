@@ -33,20 +33,7 @@ std::string simulationRow(const std::string& pass) {
 
 } // namespace
 
-int runBenchFrame(std::span<const std::string> args) {
-    CommandLine command("usage: motionfx bench frame [SCENE] [options]\n\nRuns a scene (default: "
-                        "the built-in one) frame by frame with its clip looping, simulating and "
-                        "drawing every frame as `motionfx render` does (without writing images), "
-                        "and reports the median GPU milliseconds of each pass (timestamp queries) "
-                        "and the median wall time of a whole frame.",
-                        1, CommandLine::kDevice);
-    command.option("size", "WxH", "image size (default 960x540)")
-        .option("frames", "N", "timed frames (default 60)")
-        .option("warmup", "N", "frames run first and not timed (default 5)")
-        .samples()
-        .json();
-    if (!command.parse(args)) return command.exitCode();
-    const cli::ParsedArgs& parsed = command.parsed();
+int runBenchFrame(const cli::ParsedArgs& parsed) {
     auto timed = cli::parseUnsigned(parsed.value("frames", "60"), 1, 100000, "--frames");
     auto warmup = cli::parseUnsigned(parsed.value("warmup", "5"), 0, 1000, "--warmup");
     const Result<uint32_t> samples = parseSamples(parsed);

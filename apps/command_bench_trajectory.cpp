@@ -45,23 +45,7 @@ struct Row {
 
 } // namespace
 
-int runBenchTrajectory(std::span<const std::string> args) {
-    CommandLine command(
-        "usage: motionfx bench trajectory [options]\n\nBuilds the built-in "
-        "fighter's trail (every vertex, motion lines) with the split method (one new "
-        "segment per frame into a ring) and with the unsplit baseline (the whole "
-        "trail rebuilt every frame), for each lifetime L, and reports skinning "
-        "evaluations, vertices and GPU milliseconds per frame.",
-        0, CommandLine::kDevice);
-    command.option("lifetimes", "LIST", "comma-separated lifetimes L (default 1,2,4,8,16,32,64)")
-        .option("sub-samples", "S", "sub-samples per segment, 1-16 (default 4)")
-        .option("frames", "N", "timed frames per row after the trail has filled (default 20)")
-        .option("clip", "NAME", "the fighter's clip (default roundhouse_kick)")
-        .option("plot", "FILE", "the SVG plot (default out/bench_trajectory.svg)")
-        .json("the table")
-        .option("stats", "FILE", "also write every timed frame's statistics as JSON");
-    if (!command.parse(args)) return command.exitCode();
-    const cli::ParsedArgs& parsed = command.parsed();
+int runBenchTrajectory(const cli::ParsedArgs& parsed) {
     auto lifetimes = parseLifetimes(parsed.value("lifetimes", "1,2,4,8,16,32,64"));
     auto subSamples = cli::parseUnsigned(parsed.value("sub-samples", "4"), 1,
                                          MFX_TRAJECTORY_MAX_SUBSAMPLES, "--sub-samples");

@@ -35,32 +35,9 @@ void printRecord(const StageRecord& r) {
 
 } // namespace
 
-int runCompare(std::span<const std::string> args) {
-    std::string scenarioList;
-    for (const char* name : fluid::scenarioNames())
-        scenarioList += (scenarioList.empty() ? "" : ", ") + std::string(name);
-    std::string stageList;
-    for (fluid::Stage stage : fluid::kAllStages)
-        stageList += (stageList.empty() ? "" : ", ") + std::string(fluid::stageName(stage));
-    CommandLine command("usage: motionfx compare SCENARIO [options]\n\nRuns SCENARIO (" +
-                            scenarioList +
-                            ") on the GPU solver and on the CPU reference from the same input and "
-                            "prints, after every stage of every step, the largest absolute and the "
-                            "relative L2 difference of velocity, pressure and pigment.\nStages: " +
-                            stageList + ".",
-                        1, CommandLine::kDevice);
-    command.option("steps", "K", "number of steps (default 20)")
-        .option("grid", "NXxNYxNZ", "grid cells (default 32x32x32)")
-        .option("stage", "NAME", "compare this stage alone, from the same input each step")
-        .option("pressure", "NAME",
-                "pressure solver of both sides: jacobi, rbgs, multigrid or mgpcg (default: the "
-                "scenario's)")
-        .json("the comparison")
-        .option("tolerance", "X", "exit with status 1 if any relative L2 difference exceeds X");
-    if (!command.parse(args)) return command.exitCode();
-    const cli::ParsedArgs& parsed = command.parsed();
+int runCompare(const cli::ParsedArgs& parsed) {
     if (parsed.positional.empty()) {
-        printError("compare needs a scenario: one of " + scenarioList + " (see --help)");
+        printError("compare needs a scenario: one of " + scenarioNameList() + " (see --help)");
         return kExitUsage;
     }
 
@@ -74,7 +51,8 @@ int runCompare(std::span<const std::string> args) {
     if (parsed.has("stage")) {
         onlyStage = fluid::stageFromName(parsed.value("stage"));
         if (!onlyStage) {
-            printError("no stage \"" + parsed.value("stage") + "\"; stages are: " + stageList);
+            printError("no stage \"" + parsed.value("stage") +
+                       "\"; stages are: " + stageNameList());
             return kExitUsage;
         }
     }

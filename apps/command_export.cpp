@@ -10,13 +10,7 @@
 
 namespace mfx::app {
 
-int runExportFighter(std::span<const std::string> args) {
-    CommandLine command("usage: motionfx export-fighter OUT.glb\n\nWrites the built-in fighter "
-                        "(body and sword meshes, its 21-joint skin and its clips) as glTF 2.0: a "
-                        "binary .glb, or a .gltf with the buffer embedded when OUT ends in .gltf.",
-                        1, CommandLine::kPlain);
-    if (!command.parse(args)) return command.exitCode();
-    const cli::ParsedArgs& parsed = command.parsed();
+int runExportFighter(const cli::ParsedArgs& parsed) {
     if (parsed.positional.empty()) {
         printError("export-fighter needs an output file, e.g. fighter.glb (see --help)");
         return kExitUsage;

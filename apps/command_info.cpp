@@ -5,13 +5,7 @@
 
 namespace mfx::app {
 
-int runInfo(std::span<const std::string> args) {
-    CommandLine command("usage: motionfx info [options]\n\nPrints the Vulkan device motionfx "
-                        "would use, its driver, and the features and limits the project relies on.",
-                        0, CommandLine::kDevice);
-    command.option("list", "", "also list every Vulkan device found");
-    if (!command.parse(args)) return command.exitCode();
-    const cli::ParsedArgs& parsed = command.parsed();
+int runInfo(const cli::ParsedArgs& parsed) {
 
     const std::unique_ptr<gpu::Context> context = createContext(parsed);
     if (!context) return kExitFailure;

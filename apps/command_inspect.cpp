@@ -116,15 +116,7 @@ void printBoneGroups(const anim::Character& character) {
 
 } // namespace
 
-int runInspect(std::span<const std::string> args) {
-    CommandLine command(
-        "usage: motionfx inspect FILE\n\nLoads a glTF 2.0 character (.gltf or "
-        ".glb) and prints its meshes, joints, clips, rest-pose bounds and the bones "
-        "each bone group (right_leg, head, ...) resolves to, or the reason the file "
-        "is refused.",
-        1, CommandLine::kPlain);
-    if (!command.parse(args)) return command.exitCode();
-    const cli::ParsedArgs& parsed = command.parsed();
+int runInspect(const cli::ParsedArgs& parsed) {
     if (parsed.positional.empty()) {
         printError("inspect needs a .gltf or .glb file (see --help)");
         return kExitUsage;

@@ -28,21 +28,10 @@ std::string frameName(uint32_t frame) {
 
 } // namespace
 
-int runRender(std::span<const std::string> args) {
-    CommandLine command(
-        "usage: motionfx render [SCENE | CHARACTER.glb] [options]\n\nRenders a "
-        "scene file (JSON; README.md \"Scene files\"), or a .gltf/.glb character "
-        "with the default effects on its fastest limb, framed, or without either the "
-        "built-in default scene headless into DIR/frame_0000.png, frame_0001.png, ... "
-        "and, when ffmpeg is installed, DIR/scene.mp4.",
-        1, CommandLine::kDevice | CommandLine::kScene);
-    command.option("out", "DIR", "write the frames into DIR (default: out)")
-        .option("frames", "N", "render the first N frames (default: the scene's)")
-        .option("size", "WxH", "image size in pixels (default: the scene's, 1280x720)")
-        .option("stats", "FILE", "write per-frame statistics as JSON");
+int runRender(const cli::ParsedArgs& parsed) {
     SceneArgument argument;
-    if (!command.parseScene(args, argument)) return command.exitCode();
-    const cli::ParsedArgs& parsed = command.parsed();
+    int exitCode = kExitOk;
+    if (!loadSceneArgument(parsed, argument, exitCode)) return exitCode;
     const scene::Scene& s = argument.scene;
     const std::string outDir = parsed.value("out", "out");
     // Check the outputs before the (slower) GPU work, so a typo fails at once.
@@ -55,7 +44,6 @@ int runRender(std::span<const std::string> args) {
     const std::unique_ptr<gpu::Context> context = createContext(parsed);
     if (!context) return kExitFailure;
     const gpu::Context& ctx = *context;
-    int exitCode = kExitOk;
     const std::unique_ptr<sim::SceneSimulation> created =
         createSceneSimulation(ctx, argument, exitCode);
     if (!created) return exitCode;
@@ -92,7 +80,7 @@ int runRender(std::span<const std::string> args) {
             "ffmpeg -y -loglevel error -framerate " + std::to_string(s.output.fps) + " -i \"" +
             outDir + "/frame_%04d.png\" -pix_fmt yuv420p \"" + outDir + "/scene.mp4\"";
         video = std::system(ffmpeg.c_str()) == 0 ? ", and " + outDir + "/scene.mp4"
-                                                  : " (ffmpeg failed: no MP4)";
+                                                 : " (ffmpeg failed: no MP4)";
     } else {
         video = " (ffmpeg is not installed: no MP4)";
     }

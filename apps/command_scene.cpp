@@ -11,18 +11,10 @@
 
 namespace mfx::app {
 
-int runScene(std::span<const std::string> args) {
-    CommandLine command(
-        "usage: motionfx scene [FILE | CHARACTER.glb]\n\nChecks a scene file "
-        "(JSON; see README.md \"Scene files\") and prints what it asks for: the "
-        "character and clip, the frames, and each effect with its window, its bones "
-        "(bone groups and patterns resolved; the limb chosen for an effect that "
-        "names none) and the vertices they select. Without FILE, the built-in "
-        "default scene; a .gltf/.glb character file gets the default effects on its "
-        "fastest limb.",
-        1, CommandLine::kScene);
+int runScene(const cli::ParsedArgs& parsed) {
     SceneArgument argument;
-    if (!command.parseScene(args, argument)) return command.exitCode();
+    int exitCode = kExitOk;
+    if (!loadSceneArgument(parsed, argument, exitCode)) return exitCode;
     const scene::Scene& s = argument.scene;
     const anim::Character& c = argument.character;
     const anim::Clip& clip = scene::sceneClip(s, c);

@@ -32,19 +32,10 @@ nlohmann::json statsJson(const sim::SimulationFrameStats& s) {
             {"grids", grids}};
 }
 
-int runSimulate(std::span<const std::string> args) {
-    CommandLine command(
-        "usage: motionfx simulate [SCENE | CHARACTER.glb] [options]\n\nRuns the "
-        "scene's trajectories and smoke on the GPU, frame by frame, without drawing, "
-        "and prints what ran. Without SCENE, the built-in default scene; a "
-        ".gltf/.glb character file in its place gets the default effects on its "
-        "fastest limb.",
-        1, CommandLine::kDevice | CommandLine::kScene);
-    command.option("frames", "N", "simulate N frames (default: the scene's)")
-        .option("stats", "FILE", "write per-frame statistics as JSON");
+int runSimulate(const cli::ParsedArgs& parsed) {
     SceneArgument argument;
-    if (!command.parseScene(args, argument)) return command.exitCode();
-    const cli::ParsedArgs& parsed = command.parsed();
+    int exitCode = kExitOk;
+    if (!loadSceneArgument(parsed, argument, exitCode)) return exitCode;
     const scene::Scene& s = argument.scene;
     std::ofstream statsFile;
     if (!openOutputFile(parsed.value("stats"), statsFile)) return kExitFailure;

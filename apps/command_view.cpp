@@ -29,12 +29,6 @@ namespace mfx::app {
 
 namespace {
 
-constexpr const char* kKeysHelp =
-    "keys: space play/pause; right/left (or . and ,) one frame forward/back; page down/up ten "
-    "frames forward/back; home or r restart; 1-9 show/hide the scene's effects by their order; "
-    "escape or q "
-    "quit";
-
 std::string glfwProblem;
 
 void onGlfwError(int, const char* description) {
@@ -154,24 +148,10 @@ std::string formatMs(double ms) {
 
 } // namespace
 
-int runView(std::span<const std::string> args) {
-    CommandLine command("usage: motionfx view [SCENE | CHARACTER.glb] [options]\n\nPlays a scene "
-                        "file (default: the built-in scene; a .gltf/.glb character file gets the "
-                        "default effects on its fastest limb) in a window in real time, looping, "
-                        "with the frame number, frame time and state drawn in the corner.\n" +
-                            std::string(kKeysHelp) + ".",
-                        1, CommandLine::kDevice | CommandLine::kScene);
-    command
-        .option("size", "WxH",
-                "the picture's size in pixels (default 960x540); the window starts at this size "
-                "and may be resized")
-        .samples()
-        .option("paused", "", "start paused on the first frame")
-        .option("quit-after", "N", "close by itself after presenting N frames")
-        .option("screenshot", "FILE", "on closing, write the window's last picture as PNG");
+int runView(const cli::ParsedArgs& parsed) {
     SceneArgument argument;
-    if (!command.parseScene(args, argument, "960x540")) return command.exitCode();
-    const cli::ParsedArgs& parsed = command.parsed();
+    int exitCode = kExitOk;
+    if (!loadSceneArgument(parsed, argument, exitCode, "960x540")) return exitCode;
     const Result<uint32_t> samples = parseSamples(parsed);
     auto quitAfter =
         cli::parseUnsigned(parsed.value("quit-after", "0"), 0, 100000000, "--quit-after");
@@ -248,7 +228,7 @@ int runView(std::span<const std::string> args) {
     }
     std::printf("viewing %s on %s at %ux%u, %u frames at %g fps\n%s\n", s.file.c_str(),
                 ctx.info().name.c_str(), s.output.width, s.output.height, viewer.frameCount(),
-                double(s.output.fps), kKeysHelp);
+                double(s.output.fps), kViewKeysHelp);
     std::fflush(stdout);
 
     gpu::CommandBuffer commands = gpu::CommandBuffer::create(ctx, ctx.graphicsQueue());

@@ -8,33 +8,6 @@
 
 namespace mfx::app {
 
-std::span<const Command> commands() {
-    static const Command table[] = {
-        {"info", "print the chosen Vulkan device and its capabilities", &runInfo},
-        {"render", "render a scene (default: the built-in one) into PNG frames (and MP4)",
-         &runRender},
-        {"compare", "run a solver scenario on GPU and CPU reference, print the differences",
-         &runCompare},
-        {"bench",
-         "benchmarks (bench solver: GPU ms per stage and step; bench trajectory: split vs "
-         "unsplit trail by lifetime; bench frame: a scene's passes and frame time; bench "
-         "effects: each effect's extra GPU ms and triangles per frame)",
-         &runBench},
-        {"inspect", "load a glTF character and summarise it (meshes, joints, clips, bounds)",
-         &runInspect},
-        {"scene", "check a scene file and print what it asks for (effects, bones, vertices)",
-         &runScene},
-        {"simulate",
-         "run a scene's trajectories and smoke on the GPU without drawing; per-frame --stats",
-         &runSimulate},
-        {"view", "play a scene in a window in real time (pause, step, scrub, effect toggles)",
-         &runView},
-        {"export-fighter", "write the built-in fighter as glTF 2.0 (.glb or .gltf)",
-         &runExportFighter},
-    };
-    return table;
-}
-
 std::vector<cli::OptionSpec> deviceOptions() {
     return {
         {"device", "NAME",
@@ -68,7 +41,10 @@ bool openOutputFile(const std::string& path, std::ofstream& file) {
     return false;
 }
 
-bool loadSceneArgument(const cli::ParsedArgs& parsed, SceneArgument& out, int& exitCode) {
+bool loadSceneArgument(const cli::ParsedArgs& given, SceneArgument& out, int& exitCode,
+                       const char* defaultSize) {
+    cli::ParsedArgs parsed = given;
+    if (defaultSize && !parsed.has("size")) parsed.values["size"] = defaultSize;
     const bool preview = !parsed.positional.empty() && scene::isCharacterFile(parsed.positional[0]);
     Result<scene::Scene> loaded =
         parsed.positional.empty() ? Result<scene::Scene>(scene::defaultScene())
@@ -248,12 +224,30 @@ bool CommandLine::parse(std::span<const std::string> args) {
     return true;
 }
 
-bool CommandLine::parseScene(std::span<const std::string> args, SceneArgument& out,
-                             const char* defaultSize) {
-    if (!parse(args)) return false;
-    cli::ParsedArgs sceneArgs = parsed_;
-    if (defaultSize && !sceneArgs.has("size")) sceneArgs.values["size"] = defaultSize;
-    return loadSceneArgument(sceneArgs, out, exitCode_);
+int runCommand(const Command& command, std::span<const std::string> args) {
+    if (!command.group) {
+        CommandLine line = command.line();
+        if (!line.parse(args)) return line.exitCode();
+        return command.run(line.parsed());
+    }
+    std::string names, list;
+    for (const Command& member : command.group()) {
+        names += (names.empty() ? "" : "|") + std::string(member.name);
+        list += (list.empty() ? "" : ", ") + std::string(member.name);
+    }
+    if (args.empty() || args[0] == "--help") {
+        std::printf("usage: motionfx %s %s [options]   (see --help of each)\n\n%s:\n", command.name,
+                    names.c_str(), command.members);
+        for (const Command& member : command.group())
+            std::printf("  %-12s %s\n", member.name, member.summary);
+        return args.empty() ? kExitUsage : kExitOk;
+    }
+    for (const Command& member : command.group())
+        if (args[0] == member.name) return runCommand(member, args.subspan(1));
+    std::string one = command.members;
+    one.pop_back(); // "benchmarks" -> "benchmark"
+    printError("unknown " + one + " '" + args[0] + "'; " + command.members + " are: " + list);
+    return kExitUsage;
 }
 
 std::unique_ptr<gpu::Context> createTimingContext(const cli::ParsedArgs& args, const char* what) {

@@ -19,19 +19,6 @@ inline constexpr int kExitOk = 0;
 inline constexpr int kExitFailure = 1;
 inline constexpr int kExitUsage = 2;
 
-struct Command {
-    const char* name;
-    const char* summary;
-    int (*run)(std::span<const std::string> args);
-};
-
-std::span<const Command> commands();
-
-// Each subcommand's entry point (command_<name>.cpp), with the signature of Command::run.
-using CommandMain = int(std::span<const std::string> args);
-CommandMain runInfo, runRender, runCompare, runBench, runBenchTrajectory, runBenchFrame,
-    runBenchEffects, runBenchAccuracy, runInspect, runExportFighter, runScene, runSimulate, runView;
-
 // Options every GPU subcommand takes.
 std::vector<cli::OptionSpec> deviceOptions();
 gpu::ContextOptions contextOptions(const cli::ParsedArgs& args);
@@ -43,16 +30,18 @@ std::unique_ptr<gpu::Context> createContext(const cli::ParsedArgs& args);
 bool openOutputFile(const std::string& path, std::ofstream& file);
 
 // The scene a command was given as its first word, or the built-in default without one, with
-// --size and --frames applied where the command has them, and its character loaded. On failure
-// prints the one-line reason, sets `exitCode` (1, or 2 for a bad option value) and returns false.
-// A .gltf/.glb file in place of a scene previews that character (scene::previewScene); --clip,
-// where the command has it, picks the clip. The scene is fitted to its character
-// (scene::fitScene), and what was chosen for the user (a scale, a limb) is printed on stdout.
+// --size (else `defaultSize`, where given) and --frames applied where the command has them, and its
+// character loaded. On failure prints the one-line reason, sets `exitCode` (1, or 2 for a bad
+// option value) and returns false. A .gltf/.glb file in place of a scene previews that character
+// (scene::previewScene); --clip, where the command has it, picks the clip. The scene is fitted to
+// its character (scene::fitScene), and what was chosen for the user (a scale, a limb) is printed on
+// stdout.
 struct SceneArgument {
     scene::Scene scene;
     anim::Character character;
 };
-bool loadSceneArgument(const cli::ParsedArgs& parsed, SceneArgument& out, int& exitCode);
+bool loadSceneArgument(const cli::ParsedArgs& parsed, SceneArgument& out, int& exitCode,
+                       const char* defaultSize = nullptr);
 
 // The --character and --clip options of the commands that take a scene or a character file.
 std::vector<cli::OptionSpec> characterOptions();
@@ -109,11 +98,6 @@ public:
     // Parses `args`. False when the command ends here: after --help (printed; exitCode() 0) or a
     // bad argument (printed as one line; exitCode() 2).
     bool parse(std::span<const std::string> args);
-    // parse(), then the scene argument (loadSceneArgument), --size defaulting to `defaultSize`
-    // where one is given. False (exitCode() set) when the command ends here.
-    bool parseScene(std::span<const std::string> args, SceneArgument& out,
-                    const char* defaultSize = nullptr);
-
     const cli::ParsedArgs& parsed() const { return parsed_; }
     int exitCode() const { return exitCode_; }
 
@@ -125,6 +109,36 @@ private:
     cli::ParsedArgs parsed_;
     int exitCode_ = kExitOk;
 };
+
+// One subcommand: its name and one-line summary (motionfx --help), its command line (its help and
+// options) and its entry point (command_<name>.cpp), which gets the words after its name parsed.
+// A group ("bench") has a table of sub-commands instead, `members` naming them in its help.
+struct Command {
+    const char* name;
+    const char* summary;
+    CommandLine (*line)() = nullptr;
+    int (*run)(const cli::ParsedArgs& args) = nullptr;
+    std::span<const Command> (*group)() = nullptr;
+    const char* members = nullptr;
+};
+
+// The subcommands (apps/command_lines.cpp: the program's whole command-line surface).
+std::span<const Command> commands();
+
+// Runs `command` on `args`, the words after its name: --help and a bad argument are answered here
+// (exit status 0, and 2 after one line), a group passes the rest on to the sub-command named.
+int runCommand(const Command& command, std::span<const std::string> args);
+
+// Each subcommand's entry point (command_<name>.cpp), with the signature of Command::run.
+using CommandMain = int(const cli::ParsedArgs& args);
+CommandMain runInfo, runRender, runCompare, runBenchSolver, runBenchTrajectory, runBenchFrame,
+    runBenchEffects, runBenchAccuracy, runInspect, runExportFighter, runScene, runSimulate, runView;
+
+// The solver scenarios' and stages' names, comma-separated (for help and errors).
+std::string scenarioNameList();
+std::string stageNameList();
+// The viewer's keys, for its help and its start-up line.
+extern const char* const kViewKeysHelp;
 
 // createContext, for a command that times the GPU: nullptr (after printing why) on a device
 // without timestamp queries, `what` naming what cannot be timed ("the solver").

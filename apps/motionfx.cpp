@@ -32,7 +32,7 @@ int main(int argc, char** argv) {
     for (const Command& command : commands()) {
         if (args[0] != command.name) continue;
         try {
-            return command.run(std::span<const std::string>(args).subspan(1));
+            return runCommand(command, std::span<const std::string>(args).subspan(1));
         } catch (const mfx::gpu::VulkanError& e) {
             printError(std::string("Vulkan call failed: ") + e.what());
         } catch (const std::exception& e) {

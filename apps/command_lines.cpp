@@ -1,0 +1,292 @@
+// The program's whole command-line surface in one place: each subcommand's help (its usage line
+// and what it does) and its options. The subcommands (command_<name>.cpp) parse their words with
+// these; README.md "Commands" describes the same.
+#include "apps/commands.h"
+#include "fluid/scenarios.h"
+#include "fluid/solver_options.h"
+
+#include <string>
+
+namespace mfx::app {
+
+namespace {
+
+std::string workgroupLabel(const std::array<uint32_t, 3>& s) {
+    return std::to_string(s[0]) + "x" + std::to_string(s[1]) + "x" + std::to_string(s[2]);
+}
+
+} // namespace
+
+std::string scenarioNameList() {
+    std::string list;
+    for (const char* name : fluid::scenarioNames())
+        list += (list.empty() ? "" : ", ") + std::string(name);
+    return list;
+}
+
+std::string stageNameList() {
+    std::string list;
+    for (fluid::Stage stage : fluid::kAllStages)
+        list += (list.empty() ? "" : ", ") + std::string(fluid::stageName(stage));
+    return list;
+}
+
+const char* const kViewKeysHelp =
+    "keys: space play/pause; right/left (or . and ,) one frame forward/back; page down/up ten "
+    "frames forward/back; home or r restart; 1-9 show/hide the scene's effects by their order; "
+    "escape or q quit";
+
+namespace {
+
+CommandLine infoCommandLine() {
+    CommandLine command("usage: motionfx info [options]\n\nPrints the Vulkan device motionfx "
+                        "would use, its driver, and the features and limits the project relies on.",
+                        0, CommandLine::kDevice);
+    command.option("list", "", "also list every Vulkan device found");
+    return command;
+}
+
+CommandLine renderCommandLine() {
+    CommandLine command(
+        "usage: motionfx render [SCENE | CHARACTER.glb] [options]\n\nRenders a "
+        "scene file (JSON; README.md \"Scene files\"), or a .gltf/.glb character "
+        "with the default effects on its fastest limb, framed, or without either the "
+        "built-in default scene headless into DIR/frame_0000.png, frame_0001.png, ... "
+        "and, when ffmpeg is installed, DIR/scene.mp4.",
+        1, CommandLine::kDevice | CommandLine::kScene);
+    command.option("out", "DIR", "write the frames into DIR (default: out)")
+        .option("frames", "N", "render the first N frames (default: the scene's)")
+        .option("size", "WxH", "image size in pixels (default: the scene's, 1280x720)")
+        .option("stats", "FILE", "write per-frame statistics as JSON");
+    return command;
+}
+
+CommandLine compareCommandLine() {
+    CommandLine command("usage: motionfx compare SCENARIO [options]\n\nRuns SCENARIO (" +
+                            scenarioNameList() +
+                            ") on the GPU solver and on the CPU reference from the same input and "
+                            "prints, after every stage of every step, the largest absolute and the "
+                            "relative L2 difference of velocity, pressure and pigment.\nStages: " +
+                            stageNameList() + ".",
+                        1, CommandLine::kDevice);
+    command.option("steps", "K", "number of steps (default 20)")
+        .option("grid", "NXxNYxNZ", "grid cells (default 32x32x32)")
+        .option("stage", "NAME", "compare this stage alone, from the same input each step")
+        .option("pressure", "NAME",
+                "pressure solver of both sides: jacobi, rbgs, multigrid or mgpcg (default: the "
+                "scenario's)")
+        .json("the comparison")
+        .option("tolerance", "X", "exit with status 1 if any relative L2 difference exceeds X");
+    return command;
+}
+
+CommandLine benchSolverCommandLine() {
+    CommandLine command("usage: motionfx bench solver [options]\n\nTimes the GPU smoke solver "
+                        "with timestamp queries: the median milliseconds of each stage and of a "
+                        "whole step, per grid size. Pipelines are compiled and warmed up before "
+                        "timing.",
+                        0, CommandLine::kDevice);
+    command.option("grids", "LIST", "comma-separated grids, N or NXxNYxNZ (default 32,64,96,128)")
+        .option("jacobi", "N", "Jacobi (or red-black) sweeps per step (default 20)")
+        .option("pressure", "NAME",
+                "pressure solver: jacobi, rbgs, multigrid or mgpcg (default jacobi; multigrid "
+                "and mgpcg with their default options)")
+        .option("steps", "K", "timed steps per grid after 3 warm-up steps (default 10)")
+        .option("scenario", "NAME", "scenario whose stages are timed (default puff)")
+        .option("workgroups", "LIST",
+                "comma-separated compute workgroup shapes XxYxZ to compare (default: the "
+                "solver's, " +
+                    workgroupLabel(fluid::SolverOptions{}.workgroup) + ")")
+        .json();
+    return command;
+}
+
+CommandLine benchTrajectoryCommandLine() {
+    CommandLine command(
+        "usage: motionfx bench trajectory [options]\n\nBuilds the built-in "
+        "fighter's trail (every vertex, motion lines) with the split method (one new "
+        "segment per frame into a ring) and with the unsplit baseline (the whole "
+        "trail rebuilt every frame), for each lifetime L, and reports skinning "
+        "evaluations, vertices and GPU milliseconds per frame.",
+        0, CommandLine::kDevice);
+    command.option("lifetimes", "LIST", "comma-separated lifetimes L (default 1,2,4,8,16,32,64)")
+        .option("sub-samples", "S", "sub-samples per segment, 1-16 (default 4)")
+        .option("frames", "N", "timed frames per row after the trail has filled (default 20)")
+        .option("clip", "NAME", "the fighter's clip (default roundhouse_kick)")
+        .option("plot", "FILE", "the SVG plot (default out/bench_trajectory.svg)")
+        .json("the table")
+        .option("stats", "FILE", "also write every timed frame's statistics as JSON");
+    return command;
+}
+
+CommandLine benchFrameCommandLine() {
+    CommandLine command("usage: motionfx bench frame [SCENE] [options]\n\nRuns a scene (default: "
+                        "the built-in one) frame by frame with its clip looping, simulating and "
+                        "drawing every frame as `motionfx render` does (without writing images), "
+                        "and reports the median GPU milliseconds of each pass (timestamp queries) "
+                        "and the median wall time of a whole frame.",
+                        1, CommandLine::kDevice);
+    command.option("size", "WxH", "image size (default 960x540)")
+        .option("frames", "N", "timed frames (default 60)")
+        .option("warmup", "N", "frames run first and not timed (default 5)")
+        .samples()
+        .json();
+    return command;
+}
+
+CommandLine benchAccuracyCommandLine() {
+    CommandLine command(
+        "usage: motionfx bench accuracy [options]\n\nRuns every configuration of the solver's "
+        "accuracy options (pressure solver and effort, advection, storage) for K steps of each "
+        "scenario on the GPU, times it, and measures the divergence it leaves and its velocity "
+        "and pigment error against the CPU reference with the exact pressure solve on the same "
+        "grid and against a grid twice as fine; then each pressure solver's time to a relative "
+        "residual of 1e-3 at 64^3. A configuration the device cannot run (fp16 needs 16-bit "
+        "float storage images) is measured on the CPU reference only (no time).\n\nScenarios: "
+        "puff, jet, swirl and random-impulses as in motionfx compare, and kick: the impulses the "
+        "built-in default scene's roundhouse kick splats into its smoke grid, recorded on the GPU "
+        "step by step and mapped onto the benchmark's grid.",
+        0, CommandLine::kDevice);
+    command.option("grid", "N", "cells per axis of the accuracy runs (default 32)")
+        .option("steps", "K", "steps per run (default 20)")
+        .option("scenarios", "LIST",
+                "comma-separated scenarios: puff, jet, swirl, random-impulses, kick (default "
+                "puff,jet,kick)")
+        .option("target-grid", "N",
+                "cells per axis of the time-to-1e-3 runs (default 64; 0 skips them)")
+        .option("budgets", "LIST",
+                "comma-separated GPU ms per step for the best-per-budget table (default "
+                "2,5,10,20,50,100,200)")
+        .option("csv", "FILE", "the table as CSV (default out/bench_accuracy.csv)")
+        .option("plot", "FILE", "the SVG plot (default out/bench_accuracy.svg)")
+        .json();
+    return command;
+}
+
+CommandLine benchEffectsCommandLine() {
+    CommandLine command(
+        "usage: motionfx bench effects [SCENE...] [options]\n\nFor each scene "
+        "(default: the demo scene of every technique, docs/scenes/{lines,blur,"
+        "particles,smoke,afterimage,swept,shell}.json, from the project root), runs "
+        "it simulated and drawn as `motionfx render` does, and again with its "
+        "effects removed, and reports the extra GPU milliseconds and triangles per "
+        "frame its effects cost against the character alone, and their share of the "
+        "frame's time.",
+        64, CommandLine::kDevice);
+    command.option("size", "WxH", "image size (default 960x540)")
+        .samples()
+        .option("skip", "N", "first frames of each run not timed (default 2)")
+        .json();
+    return command;
+}
+
+CommandLine inspectCommandLine() {
+    CommandLine command(
+        "usage: motionfx inspect FILE\n\nLoads a glTF 2.0 character (.gltf or "
+        ".glb) and prints its meshes, joints, clips, rest-pose bounds and the bones "
+        "each bone group (right_leg, head, ...) resolves to, or the reason the file "
+        "is refused.",
+        1, CommandLine::kPlain);
+    return command;
+}
+
+CommandLine exportFighterCommandLine() {
+    CommandLine command("usage: motionfx export-fighter OUT.glb\n\nWrites the built-in fighter "
+                        "(body and sword meshes, its 21-joint skin and its clips) as glTF 2.0: a "
+                        "binary .glb, or a .gltf with the buffer embedded when OUT ends in .gltf.",
+                        1, CommandLine::kPlain);
+    return command;
+}
+
+CommandLine sceneCommandLine() {
+    CommandLine command(
+        "usage: motionfx scene [FILE | CHARACTER.glb]\n\nChecks a scene file "
+        "(JSON; see README.md \"Scene files\") and prints what it asks for: the "
+        "character and clip, the frames, and each effect with its window, its bones "
+        "(bone groups and patterns resolved; the limb chosen for an effect that "
+        "names none) and the vertices they select. Without FILE, the built-in "
+        "default scene; a .gltf/.glb character file gets the default effects on its "
+        "fastest limb.",
+        1, CommandLine::kScene);
+    return command;
+}
+
+CommandLine simulateCommandLine() {
+    CommandLine command(
+        "usage: motionfx simulate [SCENE | CHARACTER.glb] [options]\n\nRuns the "
+        "scene's trajectories and smoke on the GPU, frame by frame, without drawing, "
+        "and prints what ran. Without SCENE, the built-in default scene; a "
+        ".gltf/.glb character file in its place gets the default effects on its "
+        "fastest limb.",
+        1, CommandLine::kDevice | CommandLine::kScene);
+    command.option("frames", "N", "simulate N frames (default: the scene's)")
+        .option("stats", "FILE", "write per-frame statistics as JSON");
+    return command;
+}
+
+CommandLine viewCommandLine() {
+    CommandLine command("usage: motionfx view [SCENE | CHARACTER.glb] [options]\n\nPlays a scene "
+                        "file (default: the built-in scene; a .gltf/.glb character file gets the "
+                        "default effects on its fastest limb) in a window in real time, looping, "
+                        "with the frame number, frame time and state drawn in the corner.\n" +
+                            std::string(kViewKeysHelp) + ".",
+                        1, CommandLine::kDevice | CommandLine::kScene);
+    command
+        .option("size", "WxH",
+                "the picture's size in pixels (default 960x540); the window starts at this size "
+                "and may be resized")
+        .samples()
+        .option("paused", "", "start paused on the first frame")
+        .option("quit-after", "N", "close by itself after presenting N frames")
+        .option("screenshot", "FILE", "on closing, write the window's last picture as PNG");
+    return command;
+}
+
+std::span<const Command> benchCommands() {
+    static const Command table[] = {
+        {"solver", "GPU milliseconds per solver stage and per step, by grid size",
+         &benchSolverCommandLine, &runBenchSolver},
+        {"trajectory",
+         "split trajectory against the unsplit baseline: skinning, vertices and GPU ms per "
+         "frame, by lifetime",
+         &benchTrajectoryCommandLine, &runBenchTrajectory},
+        {"frame", "GPU ms per pass and whole-frame time of a scene, simulated and drawn",
+         &benchFrameCommandLine, &runBenchFrame},
+        {"accuracy", "error against GPU ms of the solver's accuracy options; time to 1e-3",
+         &benchAccuracyCommandLine, &runBenchAccuracy},
+        {"effects", "extra GPU ms and triangles per frame of each effect technique",
+         &benchEffectsCommandLine, &runBenchEffects},
+    };
+    return table;
+}
+
+} // namespace
+
+std::span<const Command> commands() {
+    static const Command table[] = {
+        {"info", "print the chosen Vulkan device and its capabilities", &infoCommandLine, &runInfo},
+        {"render", "render a scene (default: the built-in one) into PNG frames (and MP4)",
+         &renderCommandLine, &runRender},
+        {"compare", "run a solver scenario on GPU and CPU reference, print the differences",
+         &compareCommandLine, &runCompare},
+        {"bench",
+         "benchmarks (bench solver: GPU ms per stage and step; bench trajectory: split vs "
+         "unsplit trail by lifetime; bench frame: a scene's passes and frame time; bench "
+         "effects: each effect's extra GPU ms and triangles per frame)",
+         nullptr, nullptr, &benchCommands, "benchmarks"},
+        {"inspect", "load a glTF character and summarise it (meshes, joints, clips, bounds)",
+         &inspectCommandLine, &runInspect},
+        {"scene", "check a scene file and print what it asks for (effects, bones, vertices)",
+         &sceneCommandLine, &runScene},
+        {"simulate",
+         "run a scene's trajectories and smoke on the GPU without drawing; per-frame --stats",
+         &simulateCommandLine, &runSimulate},
+        {"view", "play a scene in a window in real time (pause, step, scrub, effect toggles)",
+         &viewCommandLine, &runView},
+        {"export-fighter", "write the built-in fighter as glTF 2.0 (.glb or .gltf)",
+         &exportFighterCommandLine, &runExportFighter},
+    };
+    return table;
+}
+
+} // namespace mfx::app
