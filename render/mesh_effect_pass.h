@@ -24,13 +24,32 @@
 
 namespace mfx::render {
 
-template <class Effect>
+template <class EffectT>
 class MeshEffectPass : public EffectKindPass {
 public:
+    using Effect = EffectT;
+    using Kind = decltype(Effect::kind);
     // The registry's (render/effect_kind_pass.h): the one type of the pass's effects.
-    static std::vector<std::string> drawnTypes() { return {decltype(Effect::kind)::kType}; }
+    static std::vector<std::string> drawnTypes() { return {Kind::kType}; }
 
     bool empty() const { return effects_.empty(); }
+
+    // Once a new frame (not the frame recorded last): beginFrame(), then each effect's bound
+    // vertices skinned in the frame's pose and its recordEffect(); the built geometry is then
+    // made visible to the draws.
+    void advance(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
+                 uint32_t frame) final {
+        if (effects_.empty()) return;
+        const FrameHistory::Step step = history_.step(simulation.serial(), frame);
+        if (step == FrameHistory::Step::Same) return; // the same frame again: the history stays
+        const bool reset = step == FrameHistory::Step::Restart;
+        beginFrame(simulation, reset);
+        for (Effect& effect : effects_) {
+            effect.skin(cmd, skinning_, character_, simulation.framePose(), simulation.placement());
+            recordEffect(cmd, simulation, frame, effect, reset);
+        }
+        computeToDrawBarrier(cmd);
+    }
 
     // The triangles the last advance() built, with draw_ (nothing before the first advance). The
     // afterimage, which draws lines and arcs as well, draws its own.
@@ -44,6 +63,34 @@ public:
 protected:
     MeshEffectPass(const gpu::Context& ctx, const anim::Character& character)
         : ctx_(ctx), character_(character), skinning_(ctx) {}
+
+    // The scene's effects of the pass's kind whose selection of the character's vertices
+    // (scene::effectSource) is not empty: their index in scene.effects, settings and selection.
+    // Each pass's constructor makes its effects from these (the simulation refuses a scene with
+    // an empty selection first), and a scene without the kind makes none and pays for nothing.
+    struct Selected {
+        size_t index;
+        const Kind* kind;
+        trajectory::Source source;
+    };
+    std::vector<Selected> selectedEffects(const scene::Scene& scene) const {
+        std::vector<Selected> out;
+        for (size_t i = 0; i < scene.effects.size(); ++i) {
+            const Kind* kind = scene.effects[i].template as<Kind>();
+            if (!kind) continue;
+            Result<trajectory::Source> selected = scene::effectSource(character_, scene.effects[i]);
+            if (selected && !selected.value().vertices.empty())
+                out.push_back({i, kind, std::move(selected).value()});
+        }
+        return out;
+    }
+
+    // What a new frame does before its effects (nothing, unless the pass says otherwise).
+    virtual void beginFrame(const sim::SceneSimulation& /*simulation*/, bool /*reset*/) {}
+    // One effect's work of frame `frame`, its bound vertices skinned; `reset`: its history starts
+    // again (the first frame, a jump, a new simulation).
+    virtual void recordEffect(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
+                              uint32_t frame, Effect& effect, bool reset) = 0;
 
     const Effect* find(size_t effect) const { return findEffect(effects_, effect); }
     // The counters effect `effect`'s last build wrote (after the recording finished executing);

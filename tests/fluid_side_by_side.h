@@ -11,6 +11,7 @@
 
 #include <functional>
 #include <gtest/gtest.h>
+#include <span>
 
 namespace mfx::test {
 
@@ -46,6 +47,39 @@ inline void runSideBySide(const gpu::Context& ctx, const char* name, glm::uvec3 
     out.gpu = gpu.state();
     out.cpu = cpu.state();
     out.difference = fluid::difference(out.gpu, out.cpu);
+}
+
+// One stage alone from the same state `input` and `emitters`, on the GPU solver and on the CPU
+// reference: their states after it (and the pressure solvers' iteration counts). A solver that
+// cannot be made, or refuses the emitters, fails the test and leaves `ok` false.
+struct StageSideBySide {
+    bool ok = false;
+    fluid::FieldState gpu, cpu;
+    uint32_t gpuIterations = 0, cpuIterations = 0;
+};
+inline StageSideBySide runStageSideBySide(const gpu::Context& ctx,
+                                          const fluid::SolverOptions& options,
+                                          const fluid::FieldState& input, fluid::Stage stage,
+                                          std::span<const shared::FluidEmitter> emitters = {}) {
+    StageSideBySide out;
+    auto created = fluid::SmokeSolver::create(ctx, options);
+    EXPECT_TRUE(created.ok()) << created.error().message;
+    if (!created.ok()) return out;
+    fluid::SmokeSolver& gpu = *created.value();
+    gpu.setState(input);
+    const Status set = gpu.setEmitters(emitters);
+    EXPECT_TRUE(set.ok()) << set.error().message;
+    if (!set.ok()) return out;
+    gpu.runStage(stage);
+    fluid::ReferenceSolver cpu(options);
+    cpu.setState(input);
+    cpu.runStage(stage, emitters);
+    out.gpu = gpu.state();
+    out.cpu = cpu.state();
+    out.gpuIterations = gpu.lastPressureIterations();
+    out.cpuIterations = cpu.pressureIterations();
+    out.ok = true;
+    return out;
 }
 
 } // namespace mfx::test

@@ -56,18 +56,10 @@ TEST_P(GpuHalfStageTest, GpuMatchesReference) {
     const FieldState input = randomState(options.grid, 777);
     const auto emitters = twoEmitters(options.grid);
 
-    auto created = fluid::SmokeSolver::create(ctx(), options);
-    ASSERT_TRUE(created.ok()) << created.error().message;
-    fluid::SmokeSolver& gpu = *created.value();
-    gpu.setState(input);
-    ASSERT_TRUE(gpu.setEmitters(emitters).ok());
-    gpu.runStage(c.stage);
-    fluid::ReferenceSolver cpu(options);
-    cpu.setState(input);
-    cpu.runStage(c.stage, emitters);
-
-    const FieldState cpuState = cpu.state();
-    const fluid::StateDifference d = fluid::difference(gpu.state(), cpuState);
+    const StageSideBySide run = runStageSideBySide(ctx(), options, input, c.stage, emitters);
+    if (!run.ok) return;
+    const FieldState& cpuState = run.cpu;
+    const fluid::StateDifference d = fluid::difference(run.gpu, cpuState);
     std::printf("  velocity %.3g, pressure %.3g, pigment %.3g, divergence %.3g\n", d.velocity.relL2,
                 d.pressure.relL2, d.pigment.relL2, d.divergence.relL2);
     EXPECT_LE(d.velocity.relL2, kHalfStep) << "velocity (max abs " << d.velocity.maxAbs << ")";
@@ -77,7 +69,7 @@ TEST_P(GpuHalfStageTest, GpuMatchesReference) {
     // stage bound.
     EXPECT_LE(d.divergence.relL2, 1e-5) << "divergence (max abs " << d.divergence.maxAbs << ")";
     // The GPU's fields really are binary16 values.
-    const FieldState gpuState = gpu.state();
+    const FieldState& gpuState = run.gpu;
     size_t notHalf = 0;
     for (const std::vector<float>* field :
          {&gpuState.velocityX, &gpuState.velocityY, &gpuState.velocityZ, &gpuState.pressure,

@@ -55,23 +55,15 @@ public:
     double solveBoth(const SolverOptions& options, const FieldState& input,
                      uint32_t* gpuIterations = nullptr, uint32_t* cpuIterations = nullptr,
                      FieldState* gpuState = nullptr) {
-        auto created = fluid::SmokeSolver::create(ctx(), options);
-        EXPECT_TRUE(created.ok()) << created.error().message;
-        if (!created.ok()) return 1.0;
-        fluid::SmokeSolver& gpu = *created.value();
-        gpu.setState(input);
-        gpu.runStage(fluid::Stage::SolvePressure);
-        fluid::ReferenceSolver cpu(options);
-        cpu.setState(input);
-        cpu.solvePressure();
-        if (gpuIterations) *gpuIterations = gpu.lastPressureIterations();
-        if (cpuIterations) *cpuIterations = cpu.pressureIterations();
-        const FieldState cpuState = cpu.state();
-        EXPECT_GT(fluid::difference(cpuState, input).pressure.relL2, 1e-3)
+        const StageSideBySide run =
+            runStageSideBySide(ctx(), options, input, fluid::Stage::SolvePressure);
+        if (!run.ok) return 1.0;
+        if (gpuIterations) *gpuIterations = run.gpuIterations;
+        if (cpuIterations) *cpuIterations = run.cpuIterations;
+        EXPECT_GT(fluid::difference(run.cpu, input).pressure.relL2, 1e-3)
             << "the solve left the pressure as it was";
-        const FieldState solved = gpu.state();
-        if (gpuState) *gpuState = solved;
-        return pressureDifference(options, solved, cpuState);
+        if (gpuState) *gpuState = run.gpu;
+        return pressureDifference(options, run.gpu, run.cpu);
     }
 
     // The relative L2 difference of two pressures. Without an open face the pressure is defined

@@ -3,6 +3,7 @@
 #include "fluid/field_compare.h"
 #include "fluid/reference/reference_solver.h"
 #include "fluid/smoke_solver.h"
+#include "tests/fluid_side_by_side.h"
 #include "tests/fluid_test_util.h"
 #include "tests/gpu_test.h"
 
@@ -38,19 +39,10 @@ TEST_P(FluidStageTest, GpuMatchesReference) {
     const fluid::FieldState input = randomState(options.grid, 1234);
     const auto emitters = twoEmitters(options.grid);
 
-    auto created = fluid::SmokeSolver::create(ctx(), options);
-    ASSERT_TRUE(created.ok()) << created.error().message;
-    fluid::SmokeSolver& gpu = *created.value();
-    gpu.setState(input);
-    ASSERT_TRUE(gpu.setEmitters(emitters).ok());
-    gpu.runStage(c.stage);
-
-    fluid::ReferenceSolver cpu(options);
-    cpu.setState(input);
-    cpu.runStage(c.stage, emitters);
-
-    const fluid::FieldState gpuState = gpu.state();
-    const fluid::FieldState cpuState = cpu.state();
+    const StageSideBySide run = runStageSideBySide(ctx(), options, input, c.stage, emitters);
+    if (!run.ok) return;
+    const fluid::FieldState& gpuState = run.gpu;
+    const fluid::FieldState& cpuState = run.cpu;
     const fluid::StateDifference d = fluid::difference(gpuState, cpuState);
     expectClose(d, 1e-5, fluid::stageName(c.stage));
     // The stage must have done something comparable: the input itself differs from the output
@@ -125,15 +117,10 @@ TEST_F(FluidPressureTest, OddGridsWithEveryBoundaryKindMatchReference) {
                 options.jacobiIterations = sweeps;
                 options.warmStart = true;
                 const fluid::FieldState input = randomState(grid, ++seed);
-                auto created = fluid::SmokeSolver::create(ctx(), options);
-                ASSERT_TRUE(created.ok()) << created.error().message;
-                fluid::SmokeSolver& gpu = *created.value();
-                gpu.setState(input);
-                gpu.runStage(fluid::Stage::SolvePressure);
-                fluid::ReferenceSolver cpu(options);
-                cpu.setState(input);
-                cpu.solvePressure();
-                const fluid::StateDifference d = fluid::difference(gpu.state(), cpu.state());
+                const StageSideBySide run =
+                    runStageSideBySide(ctx(), options, input, fluid::Stage::SolvePressure);
+                ASSERT_TRUE(run.ok);
+                const fluid::StateDifference d = fluid::difference(run.gpu, run.cpu);
                 EXPECT_LE(d.pressure.relL2, 1e-5)
                     << grid.cellsX << "x" << grid.cellsY << "x" << grid.cellsZ << ", layout "
                     << (&layout - layouts) << ", " << sweeps << " sweeps (max abs "

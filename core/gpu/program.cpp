@@ -144,6 +144,14 @@ DescriptorWrite bindBuffer(uint32_t binding, const Buffer& buffer, VkDeviceSize 
     return write;
 }
 
+std::vector<DescriptorWrite>
+bindBuffers(std::initializer_list<std::reference_wrapper<const Buffer>> buffers) {
+    std::vector<DescriptorWrite> writes;
+    for (const Buffer& buffer : buffers)
+        writes.push_back(bindBuffer(uint32_t(writes.size()), buffer));
+    return writes;
+}
+
 DescriptorWrite bindImage(uint32_t binding, const Image& image, VkImageLayout layout,
                           VkSampler sampler) {
     DescriptorWrite write;

@@ -12,6 +12,7 @@
 #include "core/gpu/spirv_bindings.h"
 
 #include <cstdint>
+#include <functional>
 #include <initializer_list>
 #include <span>
 #include <string>
@@ -34,6 +35,9 @@ struct DescriptorWrite {
 
 DescriptorWrite bindBuffer(uint32_t binding, const Buffer& buffer, VkDeviceSize offset = 0,
                            VkDeviceSize range = VK_WHOLE_SIZE);
+// Whole buffers at bindings 0, 1, 2, ... in the order given.
+std::vector<DescriptorWrite>
+bindBuffers(std::initializer_list<std::reference_wrapper<const Buffer>> buffers);
 // `layout` is the layout the image will be in when the set is used (GENERAL for storage images,
 // SHADER_READ_ONLY_OPTIMAL for sampled ones).
 DescriptorWrite bindImage(uint32_t binding, const Image& image, VkImageLayout layout,

@@ -139,8 +139,7 @@ Result<std::unique_ptr<Queue>> Queue::create(const gpu::Context& ctx, Source sou
         desc.topology = VK_PRIMITIVE_TOPOLOGY_POINT_LIST;
         desc.rasterizerDiscard = true;
         q->program_ = gpu::createGraphicsProgram(ctx, desc);
-        q->resources_ = {gpu::bindBuffer(0, q->palette_), gpu::bindBuffer(1, q->sources_),
-                         gpu::bindBuffer(2, q->colours_)};
+        q->resources_ = gpu::bindBuffers({q->palette_, q->sources_, q->colours_});
         q->bindXfb_ = reinterpret_cast<PFN_vkCmdBindTransformFeedbackBuffersEXT>(
             ctx.deviceFunction("vkCmdBindTransformFeedbackBuffersEXT"));
         q->beginXfb_ = reinterpret_cast<PFN_vkCmdBeginTransformFeedbackEXT>(
@@ -156,10 +155,8 @@ Result<std::unique_ptr<Queue>> Queue::create(const gpu::Context& ctx, Source sou
         desc.spirv = split ? shaders::build_segment_comp : shaders::build_trail_comp;
         desc.pushConstantSize = sizeof(shared::TrajectoryConstants);
         q->program_ = gpu::createComputeProgram(ctx, desc);
-        q->resources_ = {gpu::bindBuffer(0, q->palette_), gpu::bindBuffer(1, q->sources_),
-                         gpu::bindBuffer(2, q->colours_),
-                         gpu::bindBuffer(3, split ? q->transforms_ : q->times_),
-                         gpu::bindBuffer(4, q->ring_)};
+        q->resources_ = gpu::bindBuffers(
+            {q->palette_, q->sources_, q->colours_, split ? q->transforms_ : q->times_, q->ring_});
     }
     q->timer_ = gpu::GpuTimer(ctx, 1);
     return q;

@@ -64,14 +64,11 @@ std::vector<uint32_t> afterimageCopies(const std::vector<shared::SkinVertexIn>& 
 AfterimagePass::AfterimagePass(const gpu::Context& ctx, const scene::Scene& scene,
                                const anim::Character& character, VkSampleCountFlagBits samples)
     : MeshEffectPass(ctx, character) {
-    for (size_t i = 0; i < scene.effects.size(); ++i) {
-        const scene::EffectSpec& e = scene.effects[i];
-        const auto* kind = e.as<scene::AfterimageSpec>();
-        if (!kind) continue;
-        Result<trajectory::Source> selected = scene::effectSource(character, e);
-        if (!selected || selected.value().vertices.empty()) continue;
-        Effect effect(MeshEffect(ctx, i, meshEffectColour(*kind), std::move(selected).value(),
-                                 VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "afterimage"),
+    for (Selected& selected : selectedEffects(scene)) {
+        const Kind* kind = selected.kind;
+        Effect effect(MeshEffect(ctx, selected.index, meshEffectColour(*kind),
+                                 std::move(selected.source), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
+                                 "afterimage"),
                       *kind);
         const trajectory::Source& source = effect.source;
         const scene::AfterimageVariant variant = kind->variant;
@@ -118,6 +115,9 @@ AfterimagePass::AfterimagePass(const gpu::Context& ctx, const scene::Scene& scen
                                        VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "afterimage indices");
         effect.counters =
             effectCounters(ctx, sizeof(shared::AfterimageCounters), "afterimage counters");
+        effect.resources = gpu::bindBuffers(
+            {effect.skinned, effect.history, effect.colours, effect.pushed, effect.primitives,
+             effect.output, effect.indices, effect.counters, effect.decided, effect.copies});
         effects_.push_back(std::move(effect));
     }
     if (effects_.empty()) return; // a scene without the effect pays for nothing
@@ -126,14 +126,6 @@ AfterimagePass::AfterimagePass(const gpu::Context& ctx, const scene::Scene& scen
     smear_ = computeProgram(ctx, "afterimage_smear", shaders::afterimage_smear_comp);
     weld_ = computeProgram(ctx, "afterimage_weld", shaders::afterimage_weld_comp);
     build_ = computeProgram(ctx, "afterimage_build", shaders::afterimage_build_comp);
-    for (Effect& effect : effects_) {
-        effect.resources = {
-            gpu::bindBuffer(0, effect.skinned),    gpu::bindBuffer(1, effect.history),
-            gpu::bindBuffer(2, effect.colours),    gpu::bindBuffer(3, effect.pushed),
-            gpu::bindBuffer(4, effect.primitives), gpu::bindBuffer(5, effect.output),
-            gpu::bindBuffer(6, effect.indices),    gpu::bindBuffer(7, effect.counters),
-            gpu::bindBuffer(8, effect.decided),    gpu::bindBuffer(9, effect.copies)};
-    }
 
     // The smear is by default an opaque copy of the mesh: it writes depth.
     smearDraw_ =
@@ -145,87 +137,77 @@ AfterimagePass::AfterimagePass(const gpu::Context& ctx, const scene::Scene& scen
     frame_ = sceneFrameBuffer(ctx, "afterimage frame");
 }
 
-void AfterimagePass::advance(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
-                             uint32_t frame) {
-    if (effects_.empty()) return;
-    const FrameHistory::Step step = history_.step(simulation.serial(), frame);
-    if (step == FrameHistory::Step::Same) return; // the same frame again: the ring stays as it is
-    const bool reset = step == FrameHistory::Step::Restart;
+void AfterimagePass::beginFrame(const sim::SceneSimulation& simulation, bool reset) {
+    // The whole character's motion (m^U of Smith 2016, Sec. 4.3): its root's travel this frame.
+    const glm::vec3 root = simulation.rootPosition(simulation.framePose());
+    characterMotion_ = reset ? glm::vec3(0.0f) : root - lastRoot_;
+    lastRoot_ = root;
+}
 
+void AfterimagePass::recordEffect(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
+                                  uint32_t frame, Effect& effect, bool reset) {
     const scene::Scene& scene = simulation.scene();
     const float time = simulation.frameTime(frame);
-    const anim::Pose& pose = simulation.framePose();
-    // The whole character's motion (m^U of Smith 2016, Sec. 4.3): its root's travel this frame.
-    const glm::vec3 root = simulation.rootPosition(pose);
-    const glm::vec3 characterMotion = reset ? glm::vec3(0.0f) : root - lastRoot_;
-    lastRoot_ = root;
+    effect.newest = reset ? 0 : (effect.newest + 1) % effect.historySlots;
+    effect.filled = reset ? 1 : std::min(effect.filled + 1, effect.historySlots);
 
-    for (Effect& effect : effects_) {
-        effect.skin(cmd, skinning_, character_, pose, simulation.placement());
+    shared::AfterimageCounters zero{};
+    zero.indexedInstanceCount = 1;
+    zero.instanceCount = 1;
+    vkCmdUpdateBuffer(cmd, effect.counters.get(), 0, sizeof zero, &zero);
+    transferToComputeBarrier(cmd);
 
-        effect.newest = reset ? 0 : (effect.newest + 1) % effect.historySlots;
-        effect.filled = reset ? 1 : std::min(effect.filled + 1, effect.historySlots);
+    const scene::AfterimageSpec& a = effect.kind;
+    shared::AfterimageConstants c{};
+    c.characterMotion = glm::vec4(characterMotion_, 0.0f);
+    c.vertexCount = effect.vertexCount;
+    c.primitiveCount = effect.primitiveCount;
+    c.historySlots = effect.historySlots;
+    c.newest = effect.newest;
+    c.filled = effect.filled;
+    c.reset = reset ? 1 : 0;
+    c.variant = a.variant == scene::AfterimageVariant::Smear        ? MFX_AFTERIMAGE_SMEAR
+                : a.variant == scene::AfterimageVariant::SpeedLines ? MFX_AFTERIMAGE_SPEED_LINES
+                                                                    : MFX_AFTERIMAGE_MULTI;
+    c.afterimages = a.afterimages;
+    c.strengthCharacter = a.strengthCharacter;
+    c.strengthAnimation = a.strengthAnimation;
+    c.randomMin = a.randomMin;
+    c.randomMax = a.randomMax;
+    c.randomThreshold = a.randomThreshold;
+    c.taper = a.taper;
+    c.minSpeed = a.minSpeed / scene.output.fps; // per second → per frame
+    c.relativeSpeed = a.relativeSpeed;
+    c.alphaStart = a.alphaStart;
+    c.alphaEnd = a.alphaEnd;
+    c.alphaPower = a.alphaPower;
+    c.influencePower = a.influencePower;
+    c.stride = a.stride;
 
-        shared::AfterimageCounters zero{};
-        zero.indexedInstanceCount = 1;
-        zero.instanceCount = 1;
-        vkCmdUpdateBuffer(cmd, effect.counters.get(), 0, sizeof zero, &zero);
-        transferToComputeBarrier(cmd);
-
-        const scene::AfterimageSpec& a = effect.kind;
-        shared::AfterimageConstants c{};
-        c.characterMotion = glm::vec4(characterMotion, 0.0f);
-        c.vertexCount = effect.vertexCount;
-        c.primitiveCount = effect.primitiveCount;
-        c.historySlots = effect.historySlots;
-        c.newest = effect.newest;
-        c.filled = effect.filled;
-        c.reset = reset ? 1 : 0;
-        c.variant = a.variant == scene::AfterimageVariant::Smear        ? MFX_AFTERIMAGE_SMEAR
-                    : a.variant == scene::AfterimageVariant::SpeedLines ? MFX_AFTERIMAGE_SPEED_LINES
-                                                                        : MFX_AFTERIMAGE_MULTI;
-        c.afterimages = a.afterimages;
-        c.strengthCharacter = a.strengthCharacter;
-        c.strengthAnimation = a.strengthAnimation;
-        c.randomMin = a.randomMin;
-        c.randomMax = a.randomMax;
-        c.randomThreshold = a.randomThreshold;
-        c.taper = a.taper;
-        c.minSpeed = a.minSpeed / scene.output.fps; // per second → per frame
-        c.relativeSpeed = a.relativeSpeed;
-        c.alphaStart = a.alphaStart;
-        c.alphaEnd = a.alphaEnd;
-        c.alphaPower = a.alphaPower;
-        c.influencePower = a.influencePower;
-        c.stride = a.stride;
-
-        const uint32_t vertexGroups =
-            gpu::groupCount(effect.vertexCount, MFX_AFTERIMAGE_GROUP_SIZE);
-        record_.bind(cmd, effect.resources);
-        record_.push(cmd, c);
+    const uint32_t vertexGroups = gpu::groupCount(effect.vertexCount, MFX_AFTERIMAGE_GROUP_SIZE);
+    record_.bind(cmd, effect.resources);
+    record_.push(cmd, c);
+    vkCmdDispatch(cmd, vertexGroups, 1, 1);
+    // Outside its window the effect records its history (so it enters the window with the
+    // right motion) but builds nothing.
+    const bool live = simulation.effectLive(simulation.scene().effects[effect.index], time);
+    if (live) {
+        computeToComputeBarrier(cmd);
+        smear_.bind(cmd, effect.resources);
+        smear_.push(cmd, c);
         vkCmdDispatch(cmd, vertexGroups, 1, 1);
-        // Outside its window the effect records its history (so it enters the window with the
-        // right motion) but builds nothing.
-        const bool live = simulation.effectLive(simulation.scene().effects[effect.index], time);
-        if (live) {
+        computeToComputeBarrier(cmd);
+        weld_.bind(cmd, effect.resources);
+        weld_.push(cmd, c);
+        vkCmdDispatch(cmd, vertexGroups, 1, 1);
+        if (effect.primitiveCount > 0) {
             computeToComputeBarrier(cmd);
-            smear_.bind(cmd, effect.resources);
-            smear_.push(cmd, c);
-            vkCmdDispatch(cmd, vertexGroups, 1, 1);
-            computeToComputeBarrier(cmd);
-            weld_.bind(cmd, effect.resources);
-            weld_.push(cmd, c);
-            vkCmdDispatch(cmd, vertexGroups, 1, 1);
-            if (effect.primitiveCount > 0) {
-                computeToComputeBarrier(cmd);
-                build_.bind(cmd, effect.resources);
-                build_.push(cmd, c);
-                vkCmdDispatch(
-                    cmd, gpu::groupCount(effect.primitiveCount, MFX_AFTERIMAGE_GROUP_SIZE), 1, 1);
-            }
+            build_.bind(cmd, effect.resources);
+            build_.push(cmd, c);
+            vkCmdDispatch(cmd, gpu::groupCount(effect.primitiveCount, MFX_AFTERIMAGE_GROUP_SIZE), 1,
+                          1);
         }
     }
-    computeToDrawBarrier(cmd);
 }
 
 uint32_t AfterimagePass::draw(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,

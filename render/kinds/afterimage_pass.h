@@ -68,9 +68,7 @@ public:
                    const anim::Character& character,
                    VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT);
 
-    // EffectKindPass (render/mesh_effect_pass.h).
-    void advance(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
-                 uint32_t frame) override;
+    // EffectKindPass (render/mesh_effect_pass.h): it draws lines and arcs as well.
     uint32_t draw(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
                   const SceneCamera& camera, float time,
                   std::span<const uint8_t> shown = {}) override;
@@ -97,10 +95,12 @@ public:
     Decisions decisions(size_t effect) const;
 
 private:
-    using Effect = AfterimageEffect;
+    void recordEffect(VkCommandBuffer cmd, const sim::SceneSimulation& simulation, uint32_t frame,
+                      Effect& effect, bool reset) override;
     gpu::Program record_, smear_, weld_, build_;
     gpu::Program smearDraw_, lineDraw_, arcDraw_;
-    glm::vec3 lastRoot_{0.0f};
+    void beginFrame(const sim::SceneSimulation& simulation, bool reset) override;
+    glm::vec3 lastRoot_{0.0f}, characterMotion_{0.0f};
 };
 
 // The copies of each bound vertex at one bind-pose position, as afterimage_weld.comp reads them:

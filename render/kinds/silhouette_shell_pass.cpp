@@ -75,28 +75,24 @@ SilhouetteShellPass::SilhouetteShellPass(const gpu::Context& ctx, const scene::S
                                          const anim::Character& character,
                                          VkSampleCountFlagBits samples)
     : MeshEffectPass(ctx, character) {
-    for (size_t i = 0; i < scene.effects.size(); ++i) {
-        const scene::EffectSpec& e = scene.effects[i];
-        const auto* kind = e.as<scene::SilhouetteShellSpec>();
-        if (!kind) continue;
-        Result<trajectory::Source> selected = scene::effectSource(character, e);
-        if (!selected || selected.value().triangles.empty()) continue;
+    for (Selected& selected : selectedEffects(scene)) {
+        const Kind* kind = selected.kind;
         // A triangle with two corners at one point has no edge to sweep: its strip would be a
         // line. Leaving such triangles out keeps every strip a surface.
         std::vector<uint32_t> kept;
-        const std::vector<uint32_t>& all = selected.value().triangles;
+        const std::vector<uint32_t>& all = selected.source.triangles;
         for (size_t t = 0; t + 2 < all.size(); t += 3) {
-            const glm::vec3 p0(selected.value().vertices[all[t]].position);
-            const glm::vec3 p1(selected.value().vertices[all[t + 1]].position);
-            const glm::vec3 p2(selected.value().vertices[all[t + 2]].position);
+            const glm::vec3 p0(selected.source.vertices[all[t]].position);
+            const glm::vec3 p1(selected.source.vertices[all[t + 1]].position);
+            const glm::vec3 p2(selected.source.vertices[all[t + 2]].position);
             if (p0 == p1 || p1 == p2 || p2 == p0) continue;
             kept.insert(kept.end(), all.begin() + ptrdiff_t(t), all.begin() + ptrdiff_t(t + 3));
         }
         if (kept.empty()) continue;
-        selected.value().triangles = std::move(kept);
-        Effect effect(
-            MeshEffect(ctx, i, meshEffectColour(*kind), std::move(selected).value(), 0, "shell"),
-            *kind);
+        selected.source.triangles = std::move(kept);
+        Effect effect(MeshEffect(ctx, selected.index, meshEffectColour(*kind),
+                                 std::move(selected.source), 0, "shell"),
+                      *kind);
         const trajectory::Source& source = effect.source;
         const uint32_t n = effect.vertexCount;
         effect.triangleCount = uint32_t(source.triangles.size() / 3);
@@ -128,6 +124,9 @@ SilhouetteShellPass::SilhouetteShellPass(const gpu::Context& ctx, const scene::S
                                       VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "shell geometry");
         effect.counters =
             effectCounters(ctx, sizeof(shared::SilhouetteShellCounters), "shell counters");
+        effect.resources = gpu::bindBuffers(
+            {effect.skinned, effect.adjacency, effect.triangles, effect.current, effect.last,
+             effect.states, effect.history, effect.colours, effect.output, effect.counters});
         effects_.push_back(std::move(effect));
     }
     if (effects_.empty()) return; // a scene without the effect pays for nothing
@@ -136,14 +135,6 @@ SilhouetteShellPass::SilhouetteShellPass(const gpu::Context& ctx, const scene::S
         computeProgram(ctx, "silhouette_shell_normals", shaders::silhouette_shell_normals_comp);
     update_ = computeProgram(ctx, "silhouette_shell_update", shaders::silhouette_shell_update_comp);
     build_ = computeProgram(ctx, "silhouette_shell_build", shaders::silhouette_shell_build_comp);
-    for (Effect& effect : effects_) {
-        effect.resources = {
-            gpu::bindBuffer(0, effect.skinned),   gpu::bindBuffer(1, effect.adjacency),
-            gpu::bindBuffer(2, effect.triangles), gpu::bindBuffer(3, effect.current),
-            gpu::bindBuffer(4, effect.last),      gpu::bindBuffer(5, effect.states),
-            gpu::bindBuffer(6, effect.history),   gpu::bindBuffer(7, effect.colours),
-            gpu::bindBuffer(8, effect.output),    gpu::bindBuffer(9, effect.counters)};
-    }
 
     // Translucent and unsorted, like the swept volume: the strips do not write depth.
     draw_ =
@@ -151,84 +142,72 @@ SilhouetteShellPass::SilhouetteShellPass(const gpu::Context& ctx, const scene::S
     frame_ = sceneFrameBuffer(ctx, "shell frame");
 }
 
-void SilhouetteShellPass::advance(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
-                                  uint32_t frame) {
-    if (effects_.empty()) return;
-    const FrameHistory::Step step = history_.step(simulation.serial(), frame);
-    if (step == FrameHistory::Step::Same) return; // the same frame again: the rings stay
-    const bool reset = step == FrameHistory::Step::Restart;
-
+void SilhouetteShellPass::recordEffect(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
+                                       uint32_t frame, Effect& effect, bool reset) {
     const float time = simulation.frameTime(frame);
-    const anim::Pose& pose = simulation.framePose();
-    for (Effect& effect : effects_) {
-        effect.skin(cmd, skinning_, character_, pose, simulation.placement());
-
-        shared::SilhouetteShellCounters zero{};
-        zero.instanceCount = 1;
-        vkCmdUpdateBuffer(cmd, effect.counters.get(), 0, sizeof zero, &zero);
-        if (reset) {
-            // A new start (first frame, a jump, a new simulation): no polygon has an edge yet and
-            // every slot is empty.
-            vkCmdFillBuffer(cmd, effect.states.get(), 0, VK_WHOLE_SIZE, 0);
-            vkCmdFillBuffer(cmd, effect.history.get(), 0, VK_WHOLE_SIZE, 0);
-            effect.newest = 0;
-        }
-        transferToComputeBarrier(cmd);
-
-        const scene::SilhouetteShellSpec& e = effect.kind;
-        shared::SilhouetteShellConstants c{};
-        c.vertexCount = effect.vertexCount;
-        c.triangleCount = effect.triangleCount;
-        c.historySlots = effect.historySlots;
-        c.subdivisions = e.subdivisions;
-        c.newest = effect.newest;
-        c.updatesPerFrame = effect.cadence.updatesPerFrame;
-        c.edgeRule =
-            e.edgeRule == scene::ShellEdgeRule::Back ? MFX_SHELL_EDGE_BACK : MFX_SHELL_EDGE_FRONT;
-        c.initialAlpha = e.initialAlpha;
-        c.fadeOut = e.fadeOut;
-
-        normals_.bind(cmd, effect.resources);
-        normals_.push(cmd, c);
-        vkCmdDispatch(cmd, gpu::groupCount(effect.vertexCount, MFX_SHELL_GROUP_SIZE), 1, 1);
-        computeToComputeBarrier(cmd);
-        // The first frame after a start only sets where the vertices were: a motion needs two.
-        // With a blur time longer than subdivisions frames, frames between two updates only build
-        // (from the live mesh back through the ring) and the motion of the next update runs from
-        // the vertices of the last one.
-        effect.framesSinceUpdate = reset ? 0 : effect.framesSinceUpdate + 1;
-        effect.updated = !reset && effect.framesSinceUpdate >= effect.cadence.framesPerUpdate;
-        if (effect.updated) {
-            for (uint32_t u = 0; u < effect.cadence.updatesPerFrame; ++u) {
-                effect.newest = (effect.newest + 1) % effect.historySlots;
-                c.newest = effect.newest;
-                c.update = u;
-                update_.bind(cmd, effect.resources);
-                update_.push(cmd, c);
-                vkCmdDispatch(cmd, gpu::groupCount(effect.triangleCount, MFX_SHELL_GROUP_SIZE), 1,
-                              1);
-                computeToComputeBarrier(cmd);
-            }
-            effect.framesSinceUpdate = 0;
-        }
-        if (reset || effect.updated) {
-            // These vertices are where the next update's motion starts from.
-            computeToTransfer(cmd);
-            const VkBufferCopy copy{0, 0,
-                                    VkDeviceSize(effect.vertexCount) * sizeof(shared::ShellVertex)};
-            vkCmdCopyBuffer(cmd, effect.current.get(), effect.last.get(), 1, &copy);
-            transferToComputeBarrier(cmd);
-        }
-
-        // Outside its window the effect keeps updating its rings (so it enters the window with
-        // the right history) but builds nothing.
-        const bool live = simulation.effectLive(simulation.scene().effects[effect.index], time);
-        if (!live) continue;
-        build_.bind(cmd, effect.resources);
-        build_.push(cmd, c);
-        vkCmdDispatch(cmd, gpu::groupCount(effect.triangleCount, MFX_SHELL_GROUP_SIZE), 1, 1);
+    shared::SilhouetteShellCounters zero{};
+    zero.instanceCount = 1;
+    vkCmdUpdateBuffer(cmd, effect.counters.get(), 0, sizeof zero, &zero);
+    if (reset) {
+        // A new start (first frame, a jump, a new simulation): no polygon has an edge yet and
+        // every slot is empty.
+        vkCmdFillBuffer(cmd, effect.states.get(), 0, VK_WHOLE_SIZE, 0);
+        vkCmdFillBuffer(cmd, effect.history.get(), 0, VK_WHOLE_SIZE, 0);
+        effect.newest = 0;
     }
-    computeToDrawBarrier(cmd);
+    transferToComputeBarrier(cmd);
+
+    const scene::SilhouetteShellSpec& e = effect.kind;
+    shared::SilhouetteShellConstants c{};
+    c.vertexCount = effect.vertexCount;
+    c.triangleCount = effect.triangleCount;
+    c.historySlots = effect.historySlots;
+    c.subdivisions = e.subdivisions;
+    c.newest = effect.newest;
+    c.updatesPerFrame = effect.cadence.updatesPerFrame;
+    c.edgeRule =
+        e.edgeRule == scene::ShellEdgeRule::Back ? MFX_SHELL_EDGE_BACK : MFX_SHELL_EDGE_FRONT;
+    c.initialAlpha = e.initialAlpha;
+    c.fadeOut = e.fadeOut;
+
+    normals_.bind(cmd, effect.resources);
+    normals_.push(cmd, c);
+    vkCmdDispatch(cmd, gpu::groupCount(effect.vertexCount, MFX_SHELL_GROUP_SIZE), 1, 1);
+    computeToComputeBarrier(cmd);
+    // The first frame after a start only sets where the vertices were: a motion needs two.
+    // With a blur time longer than subdivisions frames, frames between two updates only build
+    // (from the live mesh back through the ring) and the motion of the next update runs from
+    // the vertices of the last one.
+    effect.framesSinceUpdate = reset ? 0 : effect.framesSinceUpdate + 1;
+    effect.updated = !reset && effect.framesSinceUpdate >= effect.cadence.framesPerUpdate;
+    if (effect.updated) {
+        for (uint32_t u = 0; u < effect.cadence.updatesPerFrame; ++u) {
+            effect.newest = (effect.newest + 1) % effect.historySlots;
+            c.newest = effect.newest;
+            c.update = u;
+            update_.bind(cmd, effect.resources);
+            update_.push(cmd, c);
+            vkCmdDispatch(cmd, gpu::groupCount(effect.triangleCount, MFX_SHELL_GROUP_SIZE), 1, 1);
+            computeToComputeBarrier(cmd);
+        }
+        effect.framesSinceUpdate = 0;
+    }
+    if (reset || effect.updated) {
+        // These vertices are where the next update's motion starts from.
+        computeToTransfer(cmd);
+        const VkBufferCopy copy{0, 0,
+                                VkDeviceSize(effect.vertexCount) * sizeof(shared::ShellVertex)};
+        vkCmdCopyBuffer(cmd, effect.current.get(), effect.last.get(), 1, &copy);
+        transferToComputeBarrier(cmd);
+    }
+
+    // Outside its window the effect keeps updating its rings (so it enters the window with
+    // the right history) but builds nothing.
+    const bool live = simulation.effectLive(simulation.scene().effects[effect.index], time);
+    if (!live) return;
+    build_.bind(cmd, effect.resources);
+    build_.push(cmd, c);
+    vkCmdDispatch(cmd, gpu::groupCount(effect.triangleCount, MFX_SHELL_GROUP_SIZE), 1, 1);
 }
 
 SilhouetteShellPass::Counts SilhouetteShellPass::counts(size_t effect) const {

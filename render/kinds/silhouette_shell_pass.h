@@ -74,10 +74,6 @@ public:
                         const anim::Character& character,
                         VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT);
 
-    // EffectKindPass (render/mesh_effect_pass.h).
-    void advance(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
-                 uint32_t frame) override;
-
     // After the recording has finished executing, what effect `effect` (its index in
     // scene.effects) built: all zero for an effect that is not a silhouette_shell.
     struct Counts {
@@ -101,7 +97,8 @@ public:
     std::vector<glm::vec3> livePositions(size_t effect) const;
 
 private:
-    using Effect = SilhouetteShellEffect;
+    void recordEffect(VkCommandBuffer cmd, const sim::SceneSimulation& simulation, uint32_t frame,
+                      Effect& effect, bool reset) override;
     gpu::Program normals_, update_, build_;
 };
 

@@ -68,15 +68,11 @@ std::vector<uint32_t> sweptVolumeEdges(const std::vector<shared::SkinVertexIn>& 
 SweptVolumePass::SweptVolumePass(const gpu::Context& ctx, const scene::Scene& scene,
                                  const anim::Character& character, VkSampleCountFlagBits samples)
     : MeshEffectPass(ctx, character) {
-    for (size_t i = 0; i < scene.effects.size(); ++i) {
-        const scene::EffectSpec& e = scene.effects[i];
-        const auto* kind = e.as<scene::SweptVolumeSpec>();
-        if (!kind) continue;
-        Result<trajectory::Source> selected = scene::effectSource(character, e);
-        if (!selected || selected.value().vertices.empty()) continue;
-        Effect effect(
-            MeshEffect(ctx, i, meshEffectColour(*kind), std::move(selected).value(), 0, "swept"),
-            *kind);
+    for (Selected& selected : selectedEffects(scene)) {
+        const Kind* kind = selected.kind;
+        Effect effect(MeshEffect(ctx, selected.index, meshEffectColour(*kind),
+                                 std::move(selected.source), 0, "swept"),
+                      *kind);
         const trajectory::Source& source = effect.source;
         const uint32_t n = effect.vertexCount;
         effect.triangleCount = uint32_t(source.triangles.size() / 3);
@@ -101,6 +97,9 @@ SweptVolumePass::SweptVolumePass(const gpu::Context& ctx, const scene::Scene& sc
                                       VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "swept geometry");
         effect.counters =
             effectCounters(ctx, sizeof(shared::SweptVolumeCounters), "swept counters");
+        effect.resources =
+            gpu::bindBuffers({effect.skinned, effect.history, effect.colours, effect.triangles,
+                              effect.edges, effect.output, effect.counters});
         effects_.push_back(std::move(effect));
     }
     if (effects_.empty()) return; // a scene without the effect pays for nothing
@@ -108,13 +107,6 @@ SweptVolumePass::SweptVolumePass(const gpu::Context& ctx, const scene::Scene& sc
     record_ = computeProgram(ctx, "swept_volume_record", shaders::swept_volume_record_comp);
     motion_ = computeProgram(ctx, "swept_volume_motion", shaders::swept_volume_motion_comp);
     build_ = computeProgram(ctx, "swept_volume_build", shaders::swept_volume_build_comp);
-    for (Effect& effect : effects_) {
-        effect.resources = {
-            gpu::bindBuffer(0, effect.skinned), gpu::bindBuffer(1, effect.history),
-            gpu::bindBuffer(2, effect.colours), gpu::bindBuffer(3, effect.triangles),
-            gpu::bindBuffer(4, effect.edges),   gpu::bindBuffer(5, effect.output),
-            gpu::bindBuffer(6, effect.counters)};
-    }
 
     // Translucent and unsorted, as the paper draws it (Sec. 5.1: few of its polygons overlap), so
     // it does not write depth.
@@ -122,61 +114,49 @@ SweptVolumePass::SweptVolumePass(const gpu::Context& ctx, const scene::Scene& sc
     frame_ = sceneFrameBuffer(ctx, "swept frame");
 }
 
-void SweptVolumePass::advance(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
-                              uint32_t frame) {
-    if (effects_.empty()) return;
-    const FrameHistory::Step step = history_.step(simulation.serial(), frame);
-    if (step == FrameHistory::Step::Same) return; // the same frame again: the ring stays
-    const bool reset = step == FrameHistory::Step::Restart;
-
+void SweptVolumePass::recordEffect(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
+                                   uint32_t frame, Effect& effect, bool reset) {
     const scene::Scene& scene = simulation.scene();
     const float time = simulation.frameTime(frame);
-    const anim::Pose& pose = simulation.framePose();
-    for (Effect& effect : effects_) {
-        effect.skin(cmd, skinning_, character_, pose, simulation.placement());
+    effect.newest = reset ? 0 : (effect.newest + 1) % effect.historySlots;
+    effect.filled = reset ? 1 : std::min(effect.filled + 1, effect.historySlots);
 
-        effect.newest = reset ? 0 : (effect.newest + 1) % effect.historySlots;
-        effect.filled = reset ? 1 : std::min(effect.filled + 1, effect.historySlots);
+    shared::SweptVolumeCounters zero{};
+    zero.instanceCount = 1;
+    vkCmdUpdateBuffer(cmd, effect.counters.get(), 0, sizeof zero, &zero);
+    transferToComputeBarrier(cmd);
 
-        shared::SweptVolumeCounters zero{};
-        zero.instanceCount = 1;
-        vkCmdUpdateBuffer(cmd, effect.counters.get(), 0, sizeof zero, &zero);
-        transferToComputeBarrier(cmd);
+    const scene::SweptVolumeSpec& e = effect.kind;
+    shared::SweptVolumeConstants c{};
+    c.cameraPosition = glm::vec4(scene.camera.position, 1.0f);
+    c.vertexCount = effect.vertexCount;
+    c.triangleCount = effect.triangleCount;
+    c.edgeCount = effect.edgeCount;
+    c.historySlots = effect.historySlots;
+    c.newest = effect.newest;
+    c.filled = effect.filled;
+    c.reset = reset ? 1 : 0;
+    c.segments = e.segments;
+    c.pieces = e.subSamples;
+    c.temporalFilter = filterCode(e.filter);
+    c.alphaFloor = e.alphaFloor;
 
-        const scene::SweptVolumeSpec& e = effect.kind;
-        shared::SweptVolumeConstants c{};
-        c.cameraPosition = glm::vec4(scene.camera.position, 1.0f);
-        c.vertexCount = effect.vertexCount;
-        c.triangleCount = effect.triangleCount;
-        c.edgeCount = effect.edgeCount;
-        c.historySlots = effect.historySlots;
-        c.newest = effect.newest;
-        c.filled = effect.filled;
-        c.reset = reset ? 1 : 0;
-        c.segments = e.segments;
-        c.pieces = e.subSamples;
-        c.temporalFilter = filterCode(e.filter);
-        c.alphaFloor = e.alphaFloor;
-
-        record_.bind(cmd, effect.resources);
-        record_.push(cmd, c);
-        vkCmdDispatch(cmd, gpu::groupCount(effect.vertexCount, MFX_SWEPT_GROUP_SIZE), 1, 1);
-        // Outside its window the effect records its history (so it enters the window with the
-        // right motion) but builds nothing.
-        const bool live = simulation.effectLive(simulation.scene().effects[effect.index], time);
-        if (!live) continue;
-        computeToComputeBarrier(cmd);
-        motion_.bind(cmd, effect.resources);
-        motion_.push(cmd, c);
-        vkCmdDispatch(cmd, 1, 1, 1);
-        computeToComputeBarrier(cmd);
-        build_.bind(cmd, effect.resources);
-        build_.push(cmd, c);
-        vkCmdDispatch(
-            cmd, gpu::groupCount(effect.edgeCount + effect.triangleCount, MFX_SWEPT_GROUP_SIZE), 1,
-            1);
-    }
-    computeToDrawBarrier(cmd);
+    record_.bind(cmd, effect.resources);
+    record_.push(cmd, c);
+    vkCmdDispatch(cmd, gpu::groupCount(effect.vertexCount, MFX_SWEPT_GROUP_SIZE), 1, 1);
+    // Outside its window the effect records its history (so it enters the window with the
+    // right motion) but builds nothing.
+    const bool live = simulation.effectLive(simulation.scene().effects[effect.index], time);
+    if (!live) return;
+    computeToComputeBarrier(cmd);
+    motion_.bind(cmd, effect.resources);
+    motion_.push(cmd, c);
+    vkCmdDispatch(cmd, 1, 1, 1);
+    computeToComputeBarrier(cmd);
+    build_.bind(cmd, effect.resources);
+    build_.push(cmd, c);
+    vkCmdDispatch(
+        cmd, gpu::groupCount(effect.edgeCount + effect.triangleCount, MFX_SWEPT_GROUP_SIZE), 1, 1);
 }
 
 SweptVolumePass::Counts SweptVolumePass::counts(size_t effect) const {

@@ -63,10 +63,6 @@ public:
                     const anim::Character& character,
                     VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT);
 
-    // EffectKindPass (render/mesh_effect_pass.h).
-    void advance(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
-                 uint32_t frame) override;
-
     // After the recording has finished executing, what effect `effect` (its index in
     // scene.effects) built: all zero for an effect that is not a swept_volume.
     struct Counts {
@@ -86,7 +82,8 @@ public:
     std::vector<shared::TrajectoryVertex> geometry(size_t effect) const;
 
 private:
-    using Effect = SweptVolumeEffect;
+    void recordEffect(VkCommandBuffer cmd, const sim::SceneSimulation& simulation, uint32_t frame,
+                      Effect& effect, bool reset) override;
     gpu::Program record_, motion_, build_;
 };
 
