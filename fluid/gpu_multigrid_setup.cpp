@@ -117,17 +117,8 @@ GpuMultigrid::GpuMultigrid(const gpu::Context& ctx, const SolverOptions& options
     // index a fine index interpolates from, by the reference's rule (the sign of the fine centre's
     // offset from its parent's centre): with it a wrapped index can be unwrapped.
     auto sides = [&](size_t l, int a) {
-        auto centres = [](const std::vector<double>& widths) {
-            std::vector<double> x(widths.size());
-            double start = 0.0;
-            for (size_t i = 0; i < widths.size(); ++i) {
-                x[i] = start + 0.5 * widths[i];
-                start += widths[i];
-            }
-            return x;
-        };
-        const std::vector<double> fine = centres(grid(l).widths(a));
-        const std::vector<double> coarse = centres(grid(l + 1).widths(a));
+        const std::vector<double> fine = cellCentres(grid(l).widths(a));
+        const std::vector<double> coarse = cellCentres(grid(l + 1).widths(a));
         std::vector<int> side(fine.size(), 0);
         for (size_t i = 0; i < fine.size(); ++i) {
             const Multigrid::Interpolation& in = hierarchy->interpolation(l, a)[i];

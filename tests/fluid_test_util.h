@@ -11,6 +11,15 @@
 
 namespace mfx::test {
 
+// The solver's names the fluid tests use unqualified.
+using fluid::AdvectionScheme;
+using fluid::Boundary;
+using fluid::FieldState;
+using fluid::GridShape;
+using fluid::PressureSolver;
+using fluid::SolverOptions;
+using fluid::Storage;
+
 // Every feature on, every boundary kind present: x periodic, y no-slip walls (the top one moving),
 // z open below and a free-slip wall above.
 inline fluid::SolverOptions mixedBoundaryOptions(fluid::GridShape grid = {12, 10, 8, 0.1f}) {

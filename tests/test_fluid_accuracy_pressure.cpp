@@ -17,12 +17,6 @@
 namespace mfx::test {
 namespace {
 
-using fluid::Boundary;
-using fluid::FieldState;
-using fluid::GridShape;
-using fluid::PressureSolver;
-using fluid::SolverOptions;
-
 // --- Helpers ------------------------------------------------------------------------------------
 
 double rms(const std::vector<float>& values) {

@@ -19,10 +19,6 @@
 namespace mfx::test {
 namespace {
 
-using fluid::AdvectionScheme;
-using fluid::FieldState;
-using fluid::SolverOptions;
-
 struct AdvectionCase {
     AdvectionScheme scheme;
     fluid::Stage stage;

@@ -26,10 +26,6 @@
 namespace mfx::test {
 namespace {
 
-using fluid::FieldState;
-using fluid::SolverOptions;
-using fluid::Storage;
-
 constexpr double kHalfStep = 1.0 / 2048.0; // 2^-11: one binary16 rounding step, relative
 
 struct HalfCase {

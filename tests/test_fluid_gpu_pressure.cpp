@@ -22,12 +22,6 @@
 namespace mfx::test {
 namespace {
 
-using fluid::Boundary;
-using fluid::FieldState;
-using fluid::GridShape;
-using fluid::PressureSolver;
-using fluid::SolverOptions;
-
 // A smooth velocity field (low Fourier modes, no symmetry) far from divergence-free, with its
 // divergence (boundaries applied first, as a step does): the right-hand side multigrid's
 // convergence rate is quoted for (the same field as test_fluid_accuracy_pressure.cpp's).

@@ -22,9 +22,6 @@
 namespace mfx::test {
 namespace {
 
-using fluid::FieldState;
-using fluid::SolverOptions;
-
 // --- Helpers ------------------------------------------------------------------------------------
 
 double rms(std::span<const float> values) {

@@ -15,10 +15,6 @@
 namespace mfx::test {
 namespace {
 
-using fluid::FieldState;
-using fluid::GridShape;
-using fluid::SolverOptions;
-
 // --- Helpers ------------------------------------------------------------------------------------
 
 size_t faceIndex(const GridShape& g, int c, glm::uvec3 q) {

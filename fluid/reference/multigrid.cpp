@@ -43,8 +43,9 @@ bool canHalve(int cells) {
     return cells >= 3;
 }
 
-// Centres of cells of the given widths, measured from the axis' low face.
-std::vector<double> centres(const std::vector<double>& widths) {
+} // namespace
+
+std::vector<double> cellCentres(const std::vector<double>& widths) {
     std::vector<double> x(widths.size());
     double start = 0.0;
     for (size_t i = 0; i < widths.size(); ++i) {
@@ -53,8 +54,6 @@ std::vector<double> centres(const std::vector<double>& widths) {
     }
     return x;
 }
-
-} // namespace
 
 Multigrid::Multigrid(const PressureGrid& finest, uint32_t levels) {
     levels_.push_back(finest);
@@ -87,8 +86,8 @@ Multigrid::Multigrid(const PressureGrid& finest, uint32_t levels) {
 
         std::array<std::vector<Interpolation>, 3> interpolation;
         for (int a = 0; a < 3; ++a) {
-            const std::vector<double> xf = centres(fine.widths(a));
-            const std::vector<double> xc = centres(coarseWidths[a]);
+            const std::vector<double> xf = cellCentres(fine.widths(a));
+            const std::vector<double> xc = cellCentres(coarseWidths[a]);
             const std::vector<double>& wc = coarseWidths[a];
             const int nc = int(wc.size());
             interpolation[a].resize(xf.size());
@@ -144,54 +143,49 @@ Multigrid::Multigrid(const PressureGrid& finest, uint32_t levels) {
 
 Multigrid::~Multigrid() = default;
 
-Eigen::ArrayXd Multigrid::prolong(size_t l, const Eigen::ArrayXd& coarse) const {
-    const PressureGrid& fineGrid = levels_[l];
-    const PressureGrid& coarseGrid = levels_[l + 1];
-    const auto& in = interpolation_[l];
-    Eigen::ArrayXd fine = Eigen::ArrayXd::Zero(fineGrid.size());
+namespace {
+
+// Calls visit(fine, coarse, weight) for each fine cell of `fineGrid` (in index order) and each
+// coarse cell of `coarseGrid` its trilinear interpolation `in` reads (open ghosts left out): the
+// entries of P, row by row.
+template <class Visit>
+void forEachProlongationWeight(const PressureGrid& fineGrid, const PressureGrid& coarseGrid,
+                               const std::array<std::vector<Multigrid::Interpolation>, 3>& in,
+                               Visit&& visit) {
     const glm::ivec3 n = fineGrid.cells();
     for (int k = 0; k < n.z; ++k)
         for (int j = 0; j < n.y; ++j)
             for (int i = 0; i < n.x; ++i) {
-                const Interpolation& x = in[0][size_t(i)];
-                const Interpolation& y = in[1][size_t(j)];
-                const Interpolation& z = in[2][size_t(k)];
-                double value = 0.0;
+                const Multigrid::Interpolation& x = in[0][size_t(i)];
+                const Multigrid::Interpolation& y = in[1][size_t(j)];
+                const Multigrid::Interpolation& z = in[2][size_t(k)];
+                const Eigen::Index fine = Eigen::Index(fineGrid.index({i, j, k}));
                 for (int c = 0; c < 2; ++c)
                     for (int b = 0; b < 2; ++b)
                         for (int a = 0; a < 2; ++a) {
                             if (x.coarse[a] < 0 || y.coarse[b] < 0 || z.coarse[c] < 0) continue;
                             const glm::ivec3 Q(x.coarse[a], y.coarse[b], z.coarse[c]);
-                            value += x.weight[a] * y.weight[b] * z.weight[c] *
-                                     coarse[Eigen::Index(coarseGrid.index(Q))];
+                            visit(fine, Eigen::Index(coarseGrid.index(Q)),
+                                  x.weight[a] * y.weight[b] * z.weight[c]);
                         }
-                fine[Eigen::Index(fineGrid.index({i, j, k}))] = value;
             }
+}
+
+} // namespace
+
+Eigen::ArrayXd Multigrid::prolong(size_t l, const Eigen::ArrayXd& coarse) const {
+    Eigen::ArrayXd fine = Eigen::ArrayXd::Zero(levels_[l].size());
+    forEachProlongationWeight(
+        levels_[l], levels_[l + 1], interpolation_[l],
+        [&](Eigen::Index f, Eigen::Index c, double w) { fine[f] += w * coarse[c]; });
     return fine;
 }
 
 Eigen::ArrayXd Multigrid::restrictTranspose(size_t l, const Eigen::ArrayXd& fine) const {
-    const PressureGrid& fineGrid = levels_[l];
-    const PressureGrid& coarseGrid = levels_[l + 1];
-    const auto& in = interpolation_[l];
-    Eigen::ArrayXd coarse = Eigen::ArrayXd::Zero(coarseGrid.size());
-    const glm::ivec3 n = fineGrid.cells();
-    for (int k = 0; k < n.z; ++k)
-        for (int j = 0; j < n.y; ++j)
-            for (int i = 0; i < n.x; ++i) {
-                const Interpolation& x = in[0][size_t(i)];
-                const Interpolation& y = in[1][size_t(j)];
-                const Interpolation& z = in[2][size_t(k)];
-                const double value = fine[Eigen::Index(fineGrid.index({i, j, k}))];
-                for (int c = 0; c < 2; ++c)
-                    for (int b = 0; b < 2; ++b)
-                        for (int a = 0; a < 2; ++a) {
-                            if (x.coarse[a] < 0 || y.coarse[b] < 0 || z.coarse[c] < 0) continue;
-                            const glm::ivec3 Q(x.coarse[a], y.coarse[b], z.coarse[c]);
-                            coarse[Eigen::Index(coarseGrid.index(Q))] +=
-                                x.weight[a] * y.weight[b] * z.weight[c] * value;
-                        }
-            }
+    Eigen::ArrayXd coarse = Eigen::ArrayXd::Zero(levels_[l + 1].size());
+    forEachProlongationWeight(
+        levels_[l], levels_[l + 1], interpolation_[l],
+        [&](Eigen::Index f, Eigen::Index c, double w) { coarse[c] += w * fine[f]; });
     return coarse;
 }
 

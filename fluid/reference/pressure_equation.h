@@ -27,6 +27,9 @@
 
 namespace mfx::fluid {
 
+// The centres of cells of the given widths along one axis, measured from the axis' low face.
+std::vector<double> cellCentres(const std::vector<double>& widths);
+
 class PressureGrid {
 public:
     // A grid whose cells along axis a have widths[a] (in finest cells), with the six domain faces
