@@ -9,9 +9,11 @@
 #include "fluid/scenarios.h"
 #include "fluid/smoke_solver.h"
 
+#include <cstdio>
 #include <functional>
 #include <gtest/gtest.h>
 #include <span>
+#include <string>
 
 namespace mfx::test {
 
@@ -47,6 +49,31 @@ inline void runSideBySide(const gpu::Context& ctx, const char* name, glm::uvec3 
     out.gpu = gpu.state();
     out.cpu = cpu.state();
     out.difference = fluid::difference(out.gpu, out.cpu);
+}
+
+// Each field's relative L2 difference at most `bound`, `what` naming the comparison.
+inline void expectClose(const fluid::StateDifference& d, double bound, const std::string& what) {
+    EXPECT_LE(d.velocity.relL2, bound)
+        << what << ": velocity (max abs " << d.velocity.maxAbs << ")";
+    EXPECT_LE(d.pressure.relL2, bound)
+        << what << ": pressure (max abs " << d.pressure.maxAbs << ")";
+    EXPECT_LE(d.divergence.relL2, bound)
+        << what << ": divergence (max abs " << d.divergence.maxAbs << ")";
+    EXPECT_LE(d.pigment.relL2, bound) << what << ": pigment (max abs " << d.pigment.maxAbs << ")";
+}
+
+// The comparison's line in the test log: "  <label>: velocity ..., pressure ..., ...".
+inline void printDifference(const std::string& label, const fluid::StateDifference& d) {
+    std::printf("  %s: velocity %.3g, pressure %.3g, pigment %.3g, divergence %.3g\n",
+                label.c_str(), d.velocity.relL2, d.pressure.relL2, d.pigment.relL2,
+                d.divergence.relL2);
+}
+
+// What every many-step comparison checks besides its bounds: the reference's smoke still moves
+// (kinetic energy above 1e-6) and the GPU's state is finite.
+inline void expectMovingAndFinite(const SideBySide& run) {
+    EXPECT_GT(fluid::computeDiagnostics(run.options, run.cpu).kineticEnergy, 1e-6);
+    EXPECT_EQ(fluid::computeDiagnostics(run.options, run.gpu).nonFinite, 0u);
 }
 
 // One stage alone from the same state `input` and `emitters`, on the GPU solver and on the CPU

@@ -380,19 +380,9 @@ TEST_P(GpuPressureStepsTest, HundredStepsStayCloseToReference) {
         ctx(), "puff", {16, 16, 16}, 100, [&](SolverOptions& o) { o.pressureSolver = GetParam(); },
         run);
     if (HasFatalFailure()) return;
-    const SolverOptions& options = run.options;
-    const FieldState& cpuState = run.cpu;
-    const fluid::StateDifference& d = run.difference;
-    std::printf("  %s: velocity %.3g, pressure %.3g, pigment %.3g, divergence %.3g\n",
-                fluid::pressureSolverName(GetParam()), d.velocity.relL2, d.pressure.relL2,
-                d.pigment.relL2, d.divergence.relL2);
-    EXPECT_LE(d.velocity.relL2, 1e-4);
-    EXPECT_LE(d.pressure.relL2, 1e-4);
-    EXPECT_LE(d.pigment.relL2, 1e-4);
-    EXPECT_LE(d.divergence.relL2, 1e-4);
-    const fluid::Diagnostics diagnostics = fluid::computeDiagnostics(options, cpuState);
-    EXPECT_GT(diagnostics.kineticEnergy, 1e-6);
-    EXPECT_EQ(fluid::computeDiagnostics(options, run.gpu).nonFinite, 0u);
+    printDifference(fluid::pressureSolverName(GetParam()), run.difference);
+    expectClose(run.difference, 1e-4, "100 steps");
+    expectMovingAndFinite(run);
 }
 
 INSTANTIATE_TEST_SUITE_P(GpuPressure, GpuPressureStepsTest,

@@ -22,16 +22,6 @@ std::string caseName(const ::testing::TestParamInfo<StageCase>& info) {
 
 class FluidStageTest : public GpuTest, public ::testing::WithParamInterface<StageCase> {};
 
-void expectClose(const fluid::StateDifference& d, double bound, const std::string& what) {
-    EXPECT_LE(d.velocity.relL2, bound)
-        << what << ": velocity (max abs " << d.velocity.maxAbs << ")";
-    EXPECT_LE(d.pressure.relL2, bound)
-        << what << ": pressure (max abs " << d.pressure.maxAbs << ")";
-    EXPECT_LE(d.divergence.relL2, bound)
-        << what << ": divergence (max abs " << d.divergence.maxAbs << ")";
-    EXPECT_LE(d.pigment.relL2, bound) << what << ": pigment (max abs " << d.pigment.maxAbs << ")";
-}
-
 TEST_P(FluidStageTest, GpuMatchesReference) {
     const StageCase c = GetParam();
     const fluid::SolverOptions options =
