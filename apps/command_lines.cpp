@@ -1,6 +1,6 @@
 // The program's whole command-line surface in one place: each subcommand's help (its usage line
 // and what it does) and its options. The subcommands (command_<name>.cpp) parse their words with
-// these; README.md "Commands" describes the same.
+// these; README.md "The program" describes the same.
 #include "apps/commands.h"
 #include "fluid/scenarios.h"
 #include "fluid/solver_options.h"
