@@ -52,11 +52,15 @@ CommandLine renderCommandLine() {
         "scene file (JSON; README.md \"Scene files\"), or a .gltf/.glb character "
         "with the default effects on its fastest limb, framed, or without either the "
         "built-in default scene headless into DIR/frame_0000.png, frame_0001.png, ... "
-        "and, when ffmpeg is installed, DIR/scene.mp4.",
+        "and, when ffmpeg is installed, DIR/scene.mp4 (H.264, yuv420p: it plays in "
+        "browsers).",
         1, CommandLine::kDevice | CommandLine::kScene);
     command.option("out", "DIR", "write the frames into DIR (default: out)")
         .option("frames", "N", "render the first N frames (default: the scene's)")
         .option("size", "WxH", "image size in pixels (default: the scene's, 1280x720)")
+        .option("fps", "N",
+                "frames per second of the simulation, the frames and the video, 1 to 240 "
+                "(default: the scene's, 30)")
         .option("stats", "FILE", "write per-frame statistics as JSON");
     return command;
 }

@@ -1,5 +1,6 @@
 // motionfx render: a scene (or the built-in default) rendered headless, frame by frame, into
-// numbered PNGs (and an MP4 when ffmpeg is installed), with a progress bar and per-frame stats.
+// numbered PNGs and, when ffmpeg is installed, an H.264 MP4, with a progress bar and per-frame
+// stats.
 #include "apps/commands.h"
 #include "apps/progress.h"
 
@@ -8,16 +9,68 @@
 #include "render/scene_player.h"
 #include "sim/scene_simulation.h"
 
+#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <nlohmann/json.hpp>
+#include <spawn.h>
+#include <string>
+#include <sys/wait.h>
+#include <vector>
+
+extern char** environ;
 
 namespace mfx::app {
 
 namespace {
 
-bool haveFfmpeg() {
-    return std::system("command -v ffmpeg >/dev/null 2>&1") == 0;
+// Runs the program argv[0] (looked up on PATH) with `argv`, no shell between, and waits: its exit
+// status; -1 if it did not start (`missing` set when there is no such program) or did not exit.
+int runProgram(const std::vector<std::string>& argv, bool& missing) {
+    std::vector<char*> words;
+    for (const std::string& word : argv)
+        words.push_back(const_cast<char*>(word.c_str()));
+    words.push_back(nullptr);
+    pid_t pid = 0;
+    const int started = posix_spawnp(&pid, words[0], nullptr, nullptr, words.data(), environ);
+    missing = started == ENOENT;
+    if (started != 0) return -1;
+    int status = 0;
+    if (waitpid(pid, &status, 0) != pid || !WIFEXITED(status)) return -1;
+    return WEXITSTATUS(status);
+}
+
+// DIR/frame_0000.png ... as DIR/scene.mp4 with ffmpeg: H.264 in yuv420p, which browsers play, the
+// picture padded by one black row or column to an even size where it is odd (4:2:0 halves both),
+// exactly `frames` frames (higher-numbered frames left in DIR by an earlier run are not read) at
+// `fps`. Returns the note for the closing line.
+std::string encodeVideo(const std::string& dir, float fps, uint32_t frames) {
+    char rate[32];
+    std::snprintf(rate, sizeof rate, "%g", double(fps));
+    bool missing = false;
+    const int status = runProgram({"ffmpeg",
+                                   "-nostdin",
+                                   "-y",
+                                   "-loglevel",
+                                   "error",
+                                   "-framerate",
+                                   rate,
+                                   "-i",
+                                   dir + "/frame_%04d.png",
+                                   "-frames:v",
+                                   std::to_string(frames),
+                                   "-vf",
+                                   "pad=ceil(iw/2)*2:ceil(ih/2)*2",
+                                   "-c:v",
+                                   "libx264",
+                                   "-pix_fmt",
+                                   "yuv420p",
+                                   "-movflags",
+                                   "+faststart",
+                                   dir + "/scene.mp4"},
+                                  missing);
+    if (missing) return " (ffmpeg is not installed: no MP4)";
+    return status == 0 ? ", and " + dir + "/scene.mp4" : " (ffmpeg failed: no MP4)";
 }
 
 std::string frameName(uint32_t frame) {
@@ -74,16 +127,7 @@ int runRender(const cli::ParsedArgs& parsed) {
         progress.update(f + 1, note);
     }
     progress.finish();
-    std::string video;
-    if (haveFfmpeg()) {
-        const std::string ffmpeg =
-            "ffmpeg -y -loglevel error -framerate " + std::to_string(s.output.fps) + " -i \"" +
-            outDir + "/frame_%04d.png\" -pix_fmt yuv420p \"" + outDir + "/scene.mp4\"";
-        video = std::system(ffmpeg.c_str()) == 0 ? ", and " + outDir + "/scene.mp4"
-                                                 : " (ffmpeg failed: no MP4)";
-    } else {
-        video = " (ffmpeg is not installed: no MP4)";
-    }
+    const std::string video = encodeVideo(outDir, s.output.fps, sim.frameCount());
     std::printf("rendered %s on %s: %u frames of %ux%u in %s/frame_0000.png ... %s%s\n",
                 s.file.c_str(), ctx.info().name.c_str(), sim.frameCount(), s.output.width,
                 s.output.height, outDir.c_str(), frameName(sim.frameCount() - 1).c_str(),

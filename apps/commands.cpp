@@ -95,6 +95,15 @@ bool loadSceneArgument(const cli::ParsedArgs& given, SceneArgument& out, int& ex
         }
         out.scene.output.frames = frames.value();
     }
+    if (parsed.has("fps")) {
+        auto fps = cli::parseNumber(parsed.value("fps"), 1.0, 240.0, "--fps");
+        if (!fps) {
+            printError(fps.error().message);
+            exitCode = kExitUsage;
+            return false;
+        }
+        out.scene.output.fps = float(fps.value());
+    }
     std::string scaleNote;
     Result<anim::Character> character = scene::loadCharacter(out.scene, &scaleNote);
     if (!character) {

@@ -30,12 +30,12 @@ std::unique_ptr<gpu::Context> createContext(const cli::ParsedArgs& args);
 bool openOutputFile(const std::string& path, std::ofstream& file);
 
 // The scene a command was given as its first word, or the built-in default without one, with
-// --size (else `defaultSize`, where given) and --frames applied where the command has them, and its
-// character loaded. On failure prints the one-line reason, sets `exitCode` (1, or 2 for a bad
-// option value) and returns false. A .gltf/.glb file in place of a scene previews that character
-// (scene::previewScene); --clip, where the command has it, picks the clip. The scene is fitted to
-// its character (scene::fitScene), and what was chosen for the user (a scale, a limb) is printed on
-// stdout.
+// --size (else `defaultSize`, where given), --frames and --fps applied where the command has them,
+// and its character loaded. On failure prints the one-line reason, sets `exitCode` (1, or 2 for a
+// bad option value) and returns false. A .gltf/.glb file in place of a scene previews that
+// character (scene::previewScene); --clip, where the command has it, picks the clip. The scene is
+// fitted to its character (scene::fitScene), and what was chosen for the user (a scale, a limb) is
+// printed on stdout.
 struct SceneArgument {
     scene::Scene scene;
     anim::Character character;

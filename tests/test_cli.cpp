@@ -306,6 +306,58 @@ TEST(Cli, RenderOfASpeedLinesSceneRunsToItsEnd) {
     EXPECT_FALSE(std::filesystem::exists(dir + "/frame_0027.png"));
 }
 
+// What ffprobe reads of the first video stream of `file`: key=value pairs (frames counted by
+// decoding).
+std::map<std::string, std::string> probeVideo(const std::string& file) {
+    const std::string listing = file + ".probe";
+    const std::string command =
+        "ffprobe -v error -select_streams v:0 -count_frames -show_entries "
+        "stream=codec_name,pix_fmt,width,height,nb_read_frames,r_frame_rate "
+        "-of default=noprint_wrappers=1 \"" +
+        file + "\" >\"" + listing + "\"";
+    std::map<std::string, std::string> values;
+    if (std::system(command.c_str()) != 0) return values;
+    std::istringstream lines(readFile(listing));
+    for (std::string line; std::getline(lines, line);)
+        if (const size_t eq = line.find('='); eq != std::string::npos)
+            values[line.substr(0, eq)] = line.substr(eq + 1);
+    return values;
+}
+
+// The video (./build.sh installs ffmpeg): H.264 in yuv420p, which browsers play, one frame per
+// frame rendered at --fps, an odd size padded to even. --fps sets the simulation's rate too: the
+// default scene's 0.9 s is 9 frames at 10 fps. The folder holds 18 frames of an earlier run at
+// 20 fps, which the video must not pick up.
+TEST(Cli, RenderWritesAnH264VideoOfItsFramesAtItsFps) {
+    ASSERT_EQ(std::system("command -v ffprobe >/dev/null 2>&1"), 0)
+        << "ffprobe is not installed (./build.sh deps installs ffmpeg)";
+    const std::string dir = std::string(MFX_TEST_OUTPUT_DIR) + "/cli_render_video";
+    std::filesystem::remove_all(dir);
+    const RunResult earlier = runMotionfx("render --size 65x37 --fps 20 --out " + dir);
+    ASSERT_EQ(earlier.exitCode, 0) << earlier.err;
+    ASSERT_TRUE(std::filesystem::exists(dir + "/frame_0017.png"));
+    const RunResult r = runMotionfx("render --size 65x37 --fps 10 --out " + dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("9 frames of 65x37"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find(dir + "/scene.mp4"), std::string::npos) << r.out;
+    const std::map<std::string, std::string> video = probeVideo(dir + "/scene.mp4");
+    EXPECT_EQ(video.count("codec_name") ? video.at("codec_name") : "", "h264");
+    EXPECT_EQ(video.count("pix_fmt") ? video.at("pix_fmt") : "", "yuv420p");
+    EXPECT_EQ(video.count("width") ? video.at("width") : "", "66");
+    EXPECT_EQ(video.count("height") ? video.at("height") : "", "38");
+    EXPECT_EQ(video.count("r_frame_rate") ? video.at("r_frame_rate") : "", "10/1");
+    EXPECT_EQ(video.count("nb_read_frames") ? video.at("nb_read_frames") : "", "9");
+}
+
+TEST(Cli, RenderRefusesAnFpsOutOfRange) {
+    for (const char* fps : {"0", "241", "nan", "fast"}) {
+        const RunResult r = runMotionfx(std::string("render --fps ") + fps);
+        EXPECT_EQ(r.exitCode, 2) << fps;
+        EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+        EXPECT_NE(r.err.find("--fps"), std::string::npos) << r.err;
+    }
+}
+
 TEST(Cli, RenderOfABadSceneIsOneLine) {
     const RunResult r = runMotionfx("render /nonexistent/scene.json");
     EXPECT_EQ(r.exitCode, 1);
