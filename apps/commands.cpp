@@ -76,34 +76,24 @@ bool loadSceneArgument(const cli::ParsedArgs& given, SceneArgument& out, int& ex
         }
         out.scene.character.clip = parsed.value("clip");
     }
+    // --size, --frames and --fps, where given (and the command has them), over the scene's; a
+    // value not given is read as a valid placeholder and not applied.
+    const Result<std::pair<uint32_t, uint32_t>> size =
+        cli::parseSize(parsed.value("size", "1x1"), 16384);
+    const Result<uint32_t> frames =
+        cli::parseUnsigned(parsed.value("frames", "1"), 1, 100000, "--frames");
+    const Result<double> fps = cli::parseNumber(parsed.value("fps", "30"), 1.0, 240.0, "--fps");
+    if (reportFirstError(size, frames, fps)) {
+        exitCode = kExitUsage;
+        return false;
+    }
+    scene::OutputSpec& output = out.scene.output;
     if (parsed.has("size")) {
-        auto size = cli::parseSize(parsed.value("size"), 16384);
-        if (!size) {
-            printError(size.error().message);
-            exitCode = kExitUsage;
-            return false;
-        }
-        out.scene.output.width = size.value().first;
-        out.scene.output.height = size.value().second;
+        output.width = size.value().first;
+        output.height = size.value().second;
     }
-    if (parsed.has("frames")) {
-        auto frames = cli::parseUnsigned(parsed.value("frames"), 1, 100000, "--frames");
-        if (!frames) {
-            printError(frames.error().message);
-            exitCode = kExitUsage;
-            return false;
-        }
-        out.scene.output.frames = frames.value();
-    }
-    if (parsed.has("fps")) {
-        auto fps = cli::parseNumber(parsed.value("fps"), 1.0, 240.0, "--fps");
-        if (!fps) {
-            printError(fps.error().message);
-            exitCode = kExitUsage;
-            return false;
-        }
-        out.scene.output.fps = float(fps.value());
-    }
+    if (parsed.has("frames")) output.frames = frames.value();
+    if (parsed.has("fps")) output.fps = float(fps.value());
     std::string scaleNote;
     Result<anim::Character> character = scene::loadCharacter(out.scene, &scaleNote);
     if (!character) {
