@@ -84,8 +84,7 @@ int runBenchEffects(const cli::ParsedArgs& parsed) {
     for (size_t i = 0; i < files.size(); ++i) {
         cli::ParsedArgs one = parsed;
         one.positional = {files[i]};
-        if (!one.has("size")) one.values["size"] = "960x540";
-        if (!loadSceneArgument(one, withEffects[i], exitCode)) return exitCode;
+        if (!loadSceneArgument(one, withEffects[i], exitCode, "960x540")) return exitCode;
         if (withEffects[i].scene.effects.empty()) {
             printError(files[i] + ": the scene has no effect to measure");
             return kExitUsage;

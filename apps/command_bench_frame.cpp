@@ -40,10 +40,9 @@ int runBenchFrame(const cli::ParsedArgs& parsed) {
     if (reportFirstError(timed, warmup, samples)) return kExitUsage;
     cli::ParsedArgs sceneArgs = parsed;
     sceneArgs.values.erase("frames"); // --frames counts timed frames here
-    if (!sceneArgs.has("size")) sceneArgs.values["size"] = "960x540";
     SceneArgument argument;
     int exitCode = kExitOk;
-    if (!loadSceneArgument(sceneArgs, argument, exitCode)) return exitCode;
+    if (!loadSceneArgument(sceneArgs, argument, exitCode, "960x540")) return exitCode;
     scene::Scene& s = argument.scene;
     s.character.loop = true;
     s.output.frames = warmup.value() + timed.value();

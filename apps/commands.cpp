@@ -41,10 +41,8 @@ bool openOutputFile(const std::string& path, std::ofstream& file) {
     return false;
 }
 
-bool loadSceneArgument(const cli::ParsedArgs& given, SceneArgument& out, int& exitCode,
+bool loadSceneArgument(const cli::ParsedArgs& parsed, SceneArgument& out, int& exitCode,
                        const char* defaultSize) {
-    cli::ParsedArgs parsed = given;
-    if (defaultSize && !parsed.has("size")) parsed.values["size"] = defaultSize;
     const bool preview = !parsed.positional.empty() && scene::isCharacterFile(parsed.positional[0]);
     Result<scene::Scene> loaded =
         parsed.positional.empty() ? Result<scene::Scene>(scene::defaultScene())
@@ -78,8 +76,9 @@ bool loadSceneArgument(const cli::ParsedArgs& given, SceneArgument& out, int& ex
     }
     // --size, --frames and --fps, where given (and the command has them), over the scene's; a
     // value not given is read as a valid placeholder and not applied.
+    const bool sized = parsed.has("size") || defaultSize;
     const Result<std::pair<uint32_t, uint32_t>> size =
-        cli::parseSize(parsed.value("size", "1x1"), 16384);
+        cli::parseSize(parsed.value("size", defaultSize ? defaultSize : "1x1"), 16384);
     const Result<uint32_t> frames =
         cli::parseUnsigned(parsed.value("frames", "1"), 1, 100000, "--frames");
     const Result<double> fps = cli::parseNumber(parsed.value("fps", "30"), 1.0, 240.0, "--fps");
@@ -88,7 +87,7 @@ bool loadSceneArgument(const cli::ParsedArgs& given, SceneArgument& out, int& ex
         return false;
     }
     scene::OutputSpec& output = out.scene.output;
-    if (parsed.has("size")) {
+    if (sized) {
         output.width = size.value().first;
         output.height = size.value().second;
     }
