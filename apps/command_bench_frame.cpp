@@ -103,7 +103,7 @@ int runBenchFrame(const cli::ParsedArgs& parsed) {
     std::printf("frame benchmark on %s (%s)\n%s at %ux%u, %u samples per pixel, smoke grid "
                 "%ux%ux%u (%u steps per frame); median of %u frames after %u warm-up frames\n\n",
                 ctx.info().name.c_str(), ctx.info().driverInfo.c_str(), s.file.c_str(),
-                s.output.width, s.output.height, uint32_t(player.renderer().target().samples),
+                s.output.width, s.output.height, uint32_t(player.renderer().sceneTarget().samples),
                 grid[0], grid[1], grid[2], stepsPerFrame, timed.value(), warmup.value());
     std::printf("%-32s %10s %8s\n", "pass", "GPU ms", "share");
     nlohmann::json passes = nlohmann::json::object();
@@ -122,7 +122,7 @@ int runBenchFrame(const cli::ParsedArgs& parsed) {
                                    {"size", {s.output.width, s.output.height}},
                                    {"grid", grid},
                                    {"steps_per_frame", stepsPerFrame},
-                                   {"samples", uint32_t(player.renderer().target().samples)},
+                                   {"samples", uint32_t(player.renderer().sceneTarget().samples)},
                                    {"frames", timed.value()},
                                    {"frame_ms", wallMs},
                                    {"gpu_ms", gpuMs},

@@ -311,7 +311,7 @@ int runView(const cli::ParsedArgs& parsed) {
         const auto start = std::chrono::steady_clock::now();
         VkCommandBuffer cmd = commands.begin();
         viewer.record(cmd, advance || viewer.shown() < 0);
-        render::RenderTarget& target = viewer.renderer().target();
+        render::RenderTarget& target = viewer.renderer().output();
         gpu::transitionImage(cmd, target.color, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
         const VkImage image = swapchain.image(index);
         gpu::imageBarrier(cmd, image, VK_IMAGE_LAYOUT_UNDEFINED,

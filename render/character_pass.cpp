@@ -30,7 +30,7 @@ CharacterPass::CharacterPass(const gpu::Context& ctx, const anim::Character& cha
     desc.vertexStride = sizeof(shared::SkinVertexOut);
     desc.attributes = {{0, VK_FORMAT_R32G32B32A32_SFLOAT, 0},
                        {1, VK_FORMAT_R32G32B32A32_SFLOAT, 16}};
-    desc.colorFormats = {kColorFormat};
+    desc.colorFormats = {kSceneColorFormat};
     desc.depthFormat = kDepthFormat;
     desc.depthTest = true;
     desc.depthWrite = true;

@@ -28,7 +28,8 @@ public:
     // Records the key light's shadow map of the skinned character (outside any rendering; after
     // skin()). Without it, or for a light with "shadow": false, nothing is shadowed.
     void shadow(VkCommandBuffer cmd);
-    // Records the draws (inside rendering to a colour + depth target of kColorFormat/kDepthFormat).
+    // Records the draws (inside rendering to a colour + depth target of
+    // kSceneColorFormat/kDepthFormat).
     void draw(VkCommandBuffer cmd, const SceneCamera& camera);
 
     static constexpr uint32_t kShadowSize = 2048;

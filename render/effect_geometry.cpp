@@ -53,7 +53,7 @@ gpu::Program trajectoryDrawProgram(const gpu::Context& ctx, const char* name, Tr
                shaders::effect_particles_geom, shaders::effect_particles_frag);
         break;
     }
-    desc.colorFormats = {kColorFormat};
+    desc.colorFormats = {kSceneColorFormat};
     desc.depthFormat = kDepthFormat;
     desc.depthTest = true;
     desc.depthWrite = depthWrite;

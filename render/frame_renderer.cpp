@@ -6,8 +6,10 @@ FrameRenderer::FrameRenderer(const gpu::Context& ctx, const sim::SceneSimulation
                              uint32_t width, uint32_t height, VkSampleCountFlagBits wantedSamples)
     : ctx_(ctx),
       target_(createRenderTarget(ctx, width, height, supportedSamples(ctx, wantedSamples))),
+      output_(createOutputTarget(ctx, width, height)),
       scenePass_(ctx, simulation.character(), simulation.scene(), target_.samples),
       effectPasses_(makeEffectPasses(ctx, simulation, target_.samples)), smokePass_(ctx),
+      bloomPass_(ctx), toneMapPass_(ctx), post_(simulation.scene().post),
       camera_(makeCamera(simulation.scene().camera, float(width) / float(height))),
       timer_(ctx, uint32_t(std::size(kFramePassNames))),
       shown_(simulation.scene().effects.size(), 1) {}
@@ -52,8 +54,16 @@ void FrameRenderer::recordFrame(VkCommandBuffer cmd, const sim::SceneSimulation&
             draws_ += effects->draw(cmd, simulation, camera_, time, shown_);
         endRendering(cmd);
     }
-    gpu::ScopedPass pass(timer_, cmd, "smoke");
-    smokePass_.draw(cmd, target_, simulation, camera_, shown_);
+    {
+        gpu::ScopedPass pass(timer_, cmd, "smoke");
+        smokePass_.draw(cmd, target_, simulation, camera_, shown_);
+    }
+    if (post_.bloom > 0.0f) {
+        gpu::ScopedPass pass(timer_, cmd, "bloom");
+        bloomPass_.record(cmd, target_.color, post_.bloom);
+    }
+    gpu::ScopedPass pass(timer_, cmd, "tone_map");
+    toneMapPass_.record(cmd, target_.color, output_, post_);
 }
 
 } // namespace mfx::render

@@ -1,14 +1,17 @@
 // One frame of a scene, drawn: the character's skinning and shadow, the scene pass, the effect
-// passes and the smoke composite, recorded into one command buffer after the simulation's own
+// passes and the smoke composite in linear HDR colour, then the bloom and the tone map into the
+// 8-bit output, recorded into one command buffer after the simulation's own
 // work for that frame, each pass bracketed by a GPU timestamp. `motionfx render`, `bench frame`
 // and `view` and the golden-image tests all draw through it.
 #pragma once
 
 #include "core/gpu/timer.h"
+#include "render/bloom_pass.h"
 #include "render/character_pass.h"
 #include "render/effect_kind_pass.h"
 #include "render/render_target.h"
 #include "render/smoke_pass.h"
+#include "render/tone_map_pass.h"
 #include "sim/scene_simulation.h"
 
 #include <memory>
@@ -19,8 +22,10 @@ namespace mfx::render {
 
 // The passes a frame records, in order, by the names their timings carry ("skin" includes the
 // effect passes' advance: the afterimage smears', swept volumes' and silhouette shells' skinning,
-// history and geometry; "effects" the effect passes' draws).
-inline constexpr const char* kFramePassNames[] = {"skin", "shadow", "scene", "effects", "smoke"};
+// history and geometry; "effects" the effect passes' draws). "bloom" is left out when the scene
+// has no bloom.
+inline constexpr const char* kFramePassNames[] = {"skin",  "shadow", "scene",   "effects",
+                                                  "smoke", "bloom",  "tone_map"};
 
 class FrameRenderer {
 public:
@@ -50,7 +55,9 @@ public:
     std::vector<gpu::PassTime> passTimes() const { return timer_.results(); }
     uint32_t effectDraws() const { return draws_; }
 
-    RenderTarget& target() { return target_; }
+    // The scene target (linear HDR colour and depth, after the bloom) and the 8-bit sRGB output.
+    RenderTarget& sceneTarget() { return target_; }
+    RenderTarget& output() { return output_; }
     // The frame's effect pass of type `Pass` (render/effect_kinds.cpp); null when the scene has
     // no effect it draws.
     template <class Pass>
@@ -68,9 +75,13 @@ private:
 
     const gpu::Context& ctx_;
     RenderTarget target_;
+    RenderTarget output_;
     CharacterPass scenePass_;
     std::vector<std::unique_ptr<EffectKindPass>> effectPasses_; // in draw order
     SmokePass smokePass_;
+    BloomPass bloomPass_;
+    ToneMapPass toneMapPass_;
+    scene::PostSpec post_;
     SceneCamera camera_;
     gpu::GpuTimer timer_;
     std::vector<uint8_t> shown_;

@@ -2,7 +2,11 @@
 
 #include "core/gpu/context.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
+#include <glm/gtc/packing.hpp>
+#include <stdexcept>
 
 namespace mfx::render {
 
@@ -38,20 +42,32 @@ RenderTarget createRenderTarget(const gpu::Context& ctx, uint32_t width, uint32_
     target.samples = samples;
     if (samples != VK_SAMPLE_COUNT_1_BIT) {
         target.msaaColor =
-            attachment(ctx, width, height, kColorFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT,
+            attachment(ctx, width, height, kSceneColorFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT,
                        samples, "render target colour (MSAA)");
         target.msaaDepth = attachment(ctx, width, height, kDepthFormat,
                                       VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, samples,
                                       "render target depth (MSAA)");
     }
-    // The resolved (or only) images, read back and sampled by the passes after the scene.
+    // The resolved (or only) images, read back and sampled by the passes after the scene; the
+    // bloom writes the colour in place, and tests fill it.
     const VkImageUsageFlags readable = VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
-    target.color =
-        attachment(ctx, width, height, kColorFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | readable,
-                   VK_SAMPLE_COUNT_1_BIT, "render target colour");
+    target.color = attachment(ctx, width, height, kSceneColorFormat,
+                              VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT |
+                                  VK_IMAGE_USAGE_TRANSFER_DST_BIT | readable,
+                              VK_SAMPLE_COUNT_1_BIT, "render target colour");
     target.depth = attachment(ctx, width, height, kDepthFormat,
                               VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | readable,
                               VK_SAMPLE_COUNT_1_BIT, "render target depth");
+    return target;
+}
+
+RenderTarget createOutputTarget(const gpu::Context& ctx, uint32_t width, uint32_t height) {
+    RenderTarget target;
+    target.width = width;
+    target.height = height;
+    target.color = attachment(ctx, width, height, kOutputColorFormat,
+                              VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                              VK_SAMPLE_COUNT_1_BIT, "output colour");
     return target;
 }
 
@@ -122,16 +138,11 @@ void setWholeViewport(VkCommandBuffer cmd, const RenderTarget& target) {
     vkCmdSetScissor(cmd, 0, 1, &scissor);
 }
 
-void beginCompositing(VkCommandBuffer cmd, RenderTarget& target) {
-    gpu::imageBarrier(
-        cmd, target.color, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-        VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
-        VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-        VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+void beginColourRendering(VkCommandBuffer cmd, RenderTarget& target, VkAttachmentLoadOp load) {
     VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     color.imageView = target.color.view.get();
     color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-    color.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+    color.loadOp = load;
     color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
     VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
     rendering.renderArea = {{0, 0}, {target.width, target.height}};
@@ -142,11 +153,49 @@ void beginCompositing(VkCommandBuffer cmd, RenderTarget& target) {
     setWholeViewport(cmd, target);
 }
 
+void beginCompositing(VkCommandBuffer cmd, RenderTarget& target) {
+    gpu::imageBarrier(
+        cmd, target.color, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+        VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
+        VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+        VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+    beginColourRendering(cmd, target, VK_ATTACHMENT_LOAD_OP_LOAD);
+}
+
 void endRendering(VkCommandBuffer cmd) {
     vkCmdEndRendering(cmd);
 }
 
+uint8_t encodeSrgb8(float linear) {
+    const float c = std::clamp(linear, 0.0f, 1.0f); // NaN stays NaN: refused below
+    if (!(c >= 0.0f)) return 0;
+    const float encoded = c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+    return uint8_t(std::lround(encoded * 255.0f));
+}
+
+std::vector<float> readLinearColor(const gpu::Context& ctx, RenderTarget& target) {
+    if (target.color.format != kSceneColorFormat)
+        throw std::logic_error("readLinearColor: the target is not a linear HDR scene target");
+    const std::vector<std::byte> bytes = gpu::readImage(ctx, target.color);
+    std::vector<uint16_t> halves(bytes.size() / sizeof(uint16_t));
+    std::memcpy(halves.data(), bytes.data(), halves.size() * sizeof(uint16_t));
+    std::vector<float> rgba(halves.size());
+    for (size_t i = 0; i < halves.size(); ++i)
+        rgba[i] = glm::unpackHalf1x16(halves[i]);
+    return rgba;
+}
+
 std::vector<uint8_t> readColor(const gpu::Context& ctx, RenderTarget& target) {
+    if (target.color.format == kSceneColorFormat) {
+        const std::vector<float> linear = readLinearColor(ctx, target);
+        std::vector<uint8_t> rgba(linear.size());
+        for (size_t i = 0; i < linear.size(); ++i)
+            rgba[i] = i % 4 == 3 ? (linear[i] >= 0.0f
+                                        ? uint8_t(std::lround(std::min(linear[i], 1.0f) * 255.0f))
+                                        : uint8_t(0))
+                                 : encodeSrgb8(linear[i]);
+        return rgba;
+    }
     const std::vector<std::byte> bytes = gpu::readImage(ctx, target.color);
     std::vector<uint8_t> rgba(bytes.size());
     std::memcpy(rgba.data(), bytes.data(), bytes.size());

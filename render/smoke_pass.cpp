@@ -52,7 +52,7 @@ SmokePass::Programs& SmokePass::programsFor(uint32_t divisor) {
     gpu::GraphicsProgramDesc composite = march;
     composite.name = "smoke_composite";
     composite.fragment = shaders::smoke_composite_frag;
-    composite.colorFormats = {kColorFormat};
+    composite.colorFormats = {kSceneColorFormat};
     composite.blend = gpu::BlendMode::PremultipliedAlpha;
     programs.composite = gpu::createGraphicsProgram(ctx_, composite);
     return programs_.emplace(divisor, std::move(programs)).first->second;

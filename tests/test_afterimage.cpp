@@ -223,13 +223,13 @@ TEST_F(AfterimageTest, APausedFrameDoesNotChange) {
     ASSERT_NE(pass, nullptr);
     const auto smear = pass->geometry(0);
     ASSERT_GT(pass->counts(0).triangles, 0u);
-    const std::vector<uint8_t> picture = render::readColor(ctx(), renderer.target());
+    const std::vector<uint8_t> picture = render::readColor(ctx(), renderer.output());
     for (int redraw = 0; redraw < 3; ++redraw) {
         gpu::submitOneShot(ctx(), [&](VkCommandBuffer cmd) {
             renderer.recordDraw(cmd, *sim.value(), sim.value()->frameTime(kSwingFrame));
         });
         EXPECT_TRUE(sameGeometry(smear, pass->geometry(0)));
-        EXPECT_EQ(picture, render::readColor(ctx(), renderer.target()));
+        EXPECT_EQ(picture, render::readColor(ctx(), renderer.output()));
     }
 }
 

@@ -10,6 +10,7 @@
 #include "render/frame_renderer.h"
 #include "render/image_output.h"
 #include "sim/scene_simulation.h"
+#include "tests/scene_render_util.h"
 
 #include <algorithm>
 #include <cmath>
@@ -92,39 +93,28 @@ protected:
     // `effects` the scene's effects are left out (the character alone, in the scene's shot).
     static render::RgbaImage renderScene(const std::string& name, uint32_t restartAfter = 0,
                                          bool effects = true) {
-        const std::string path = std::string(MFX_SOURCE_DIR) + "/docs/scenes/" + name + ".json";
-        Result<scene::Scene> loaded = scene::loadScene(path);
+        Result<scene::Scene> loaded = docScene(name);
         EXPECT_TRUE(loaded) << (loaded ? "" : loaded.error().message);
         if (!loaded) return {};
         scene::Scene s = std::move(loaded).value();
         s.output.width = kWidth;
         s.output.height = kHeight;
         if (!effects) s.effects.clear();
-        Result<anim::Character> character = scene::loadCharacter(s);
-        EXPECT_TRUE(character) << (character ? "" : character.error().message);
-        if (!character) return {};
-        auto sim = sim::SceneSimulation::create(ctx(), s, character.value());
-        EXPECT_TRUE(sim) << (sim ? "" : sim.error().message);
-        if (!sim) return {};
-        std::unique_ptr<sim::SceneSimulation> simulation = std::move(sim).value();
-        render::FrameRenderer renderer(ctx(), *simulation, kWidth, kHeight);
-        auto play = [&](uint32_t frames) {
-            for (uint32_t f = 0; f < frames; ++f) {
-                gpu::submitOneShot(
-                    ctx(), [&](VkCommandBuffer cmd) { renderer.record(cmd, *simulation, f); });
-                simulation->finishFrame();
-            }
-        };
+        Result<DrawnScene> drawn = drawScene(ctx(), s, kWidth, kHeight);
+        EXPECT_TRUE(drawn) << (drawn ? "" : drawn.error().message);
+        if (!drawn) return {};
+        DrawnScene& d = drawn.value();
         if (restartAfter > 0) {
-            play(std::min(restartAfter, simulation->frameCount()));
-            simulation.reset();
-            auto again = sim::SceneSimulation::create(ctx(), s, character.value());
+            playFrames(ctx(), *d.renderer, *d.simulation, 0,
+                       std::min(restartAfter, d.simulation->frameCount()));
+            d.simulation.reset();
+            auto again = sim::SceneSimulation::create(ctx(), s, *d.character);
             EXPECT_TRUE(again) << (again ? "" : again.error().message);
             if (!again) return {};
-            simulation = std::move(again).value();
+            d.simulation = std::move(again).value();
         }
-        play(simulation->frameCount());
-        return {kWidth, kHeight, render::readColor(ctx(), renderer.target())};
+        d.playTo(ctx());
+        return {kWidth, kHeight, render::readColor(ctx(), d.renderer->output())};
     }
 
     static render::RgbaImage expected(const std::string& name) {

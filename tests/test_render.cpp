@@ -167,7 +167,7 @@ TEST_F(RenderTest, GeometryStageExpandsPointsIntoQuads) {
     desc.vertexStride = sizeof(glm::vec2);
     desc.attributes = {{0, VK_FORMAT_R32G32_SFLOAT, 0}};
     desc.topology = VK_PRIMITIVE_TOPOLOGY_POINT_LIST;
-    desc.colorFormats = {render::kColorFormat};
+    desc.colorFormats = {render::kSceneColorFormat};
     desc.depthFormat = render::kDepthFormat;
     gpu::Program program = gpu::createGraphicsProgram(ctx(), desc);
 

@@ -48,6 +48,7 @@ TEST(SceneFile, EveryKeyIsRead) {
         "stage": {"floor": false, "backdrop": true, "floor_colour": [0.1, 0.2, 0.3],
                   "backdrop_colour": [0.3, 0.2, 0.1]},
         "output": {"width": 320, "height": 180, "fps": 60, "frames": 12},
+        "post": {"exposure": -1.5, "bloom": 0.2, "tone_map": "aces"},
         "effects": [
             {"type": "smoke", "name": "puff", "bones": ["foot_r"], "meshes": ["body"],
              "min_bone_weight": 0.3, "start": 0.2, "end": 0.9, "sub_samples": 3, "lifetime": 4,
@@ -67,6 +68,9 @@ TEST(SceneFile, EveryKeyIsRead) {
     EXPECT_FALSE(s.lights[0].shadow);
     EXPECT_FALSE(s.stage.floor);
     EXPECT_EQ(*s.output.frames, 12u);
+    EXPECT_FLOAT_EQ(s.post.exposure, -1.5f);
+    EXPECT_FLOAT_EQ(s.post.bloom, 0.2f);
+    EXPECT_EQ(s.post.toneMap, scene::ToneMap::Aces);
     EXPECT_EQ(s.effects[0].name, "puff");
     const auto* smoke = s.effects[0].as<scene::SmokeSpec>();
     const auto* lines = s.effects[1].as<scene::SpeedLinesSpec>();
@@ -175,6 +179,12 @@ const BadScene kBadScenes[] = {
      "effects[1].name: \"a\" is the name of an earlier effect"},
     {"LoopNotBoolean", R"({"character": {"loop": 1}, "effects": []})",
      "character.loop: expected true or false, got a number"},
+    {"UnknownToneMap", R"({"post": {"tone_map": "filmic"}, "effects": []})",
+     "post.tone_map: \"filmic\" is not one of: aces, none"},
+    {"BloomAboveOne", R"({"post": {"bloom": 1.5}, "effects": []})",
+     "post.bloom: 1.5 is outside [0, 1]"},
+    {"UnknownPostKey", R"({"post": {"gamma": 2.2}, "effects": []})",
+     "post.gamma: unknown key; keys here are: exposure, bloom, tone_map"},
     {"TinyOutput", R"({"output": {"width": 10}, "effects": []})",
      "output.width: 10 is outside 16..8192"},
     {"FractionalFrames", R"({"output": {"frames": 2.5}, "effects": []})",

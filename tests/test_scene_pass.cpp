@@ -93,7 +93,7 @@ TestScenePass::TestScenePass(const gpu::Context& ctx) {
     desc.attributes = {{0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(TestSceneVertex, position)},
                        {1, VK_FORMAT_R32G32B32_SFLOAT, offsetof(TestSceneVertex, normal)}};
     desc.cullMode = VK_CULL_MODE_BACK_BIT;
-    desc.colorFormats = {kColorFormat};
+    desc.colorFormats = {kSceneColorFormat};
     desc.depthFormat = kDepthFormat;
     desc.depthTest = true;
     desc.depthWrite = true;

@@ -85,11 +85,20 @@ void readOutput(const Object& o, OutputSpec& out) {
         out.frames = o.integer("frames", 1, 1, 100000);
 }
 
+void readPost(const Object& o, PostSpec& post) {
+    o.onlyKeys({"exposure", "bloom", "tone_map"});
+    post.exposure = float(o.number("exposure", post.exposure, -16.0, 16.0));
+    post.bloom = float(o.number("bloom", post.bloom, 0.0, 1.0));
+    const std::string toneMap =
+        o.choice("tone_map", post.toneMap == ToneMap::Aces ? "aces" : "none", {"aces", "none"});
+    post.toneMap = toneMap == "aces" ? ToneMap::Aces : ToneMap::None;
+}
+
 Scene readScene(const json& doc, const std::string& where) {
     Scene s;
     s.file = where;
     const Object top(doc, "");
-    top.onlyKeys({"character", "camera", "lights", "stage", "output", "effects"});
+    top.onlyKeys({"character", "camera", "lights", "stage", "output", "post", "effects"});
     if (top.has("character")) readCharacter(Object(top.raw("character"), "character"), s.character);
     if (top.has("camera")) readCamera(Object(top.raw("camera"), "camera"), s.camera);
     s.camera.automatic = !top.has("camera");
@@ -107,6 +116,7 @@ Scene readScene(const json& doc, const std::string& where) {
     }
     if (top.has("stage")) readStage(Object(top.raw("stage"), "stage"), s.stage);
     if (top.has("output")) readOutput(Object(top.raw("output"), "output"), s.output);
+    if (top.has("post")) readPost(Object(top.raw("post"), "post"), s.post);
     if (!top.has("effects"))
         fail("effects", "missing; a scene lists its effects, e.g. {\"effects\": [{\"type\": "
                         "\"speed_lines\"}]}");

@@ -75,6 +75,19 @@ struct OutputSpec {
     std::optional<uint32_t> frames; // default: the playback range at fps
 };
 
+// What happens to the picture after it is drawn in linear HDR colour, before its 8-bit output
+// (render/bloom_pass.h, render/tone_map_pass.h). Each stage has a value that turns it off, and
+// with all three off the output is the drawn colour clamped to [0, 1].
+enum class ToneMap {
+    None, // clamp to [0, 1]
+    Aces, // the ACES filmic curve (K. Narkowicz's fit of the RRT and ODT), per channel
+};
+struct PostSpec {
+    float exposure = 0.0f;           // stops: the picture is scaled by 2^exposure (0: unchanged)
+    float bloom = 0.0f;              // share of the blurred picture in the result (0: no bloom)
+    ToneMap toneMap = ToneMap::None; // None: no tone map
+};
+
 struct Scene {
     std::string file; // where it came from ("(built-in default)" for the default scene)
     CharacterSpec character;
@@ -82,6 +95,7 @@ struct Scene {
     std::vector<LightSpec> lights{LightSpec{}};
     StageSpec stage;
     OutputSpec output;
+    PostSpec post;
     std::vector<EffectSpec> effects;
 };
 

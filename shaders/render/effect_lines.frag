@@ -9,8 +9,10 @@ layout(location = 1) in float across;
 layout(location = 0) out vec4 outColor;
 
 void main() {
-    float edge = 1.0 - across * across;
-    float a = ribbonColour.a * edge;
+    // Interpolation may carry `across` a little past the edge: the picture is HDR, where a
+    // negative weight is not clamped away.
+    float edge = clamp(1.0 - across * across, 0.0, 1.0);
+    float a = clamp(ribbonColour.a * edge, 0.0, 1.0);
     vec3 core = mix(ribbonColour.rgb, vec3(1.0), 0.5 * edge * edge); // a white-hot centre
     outColor = vec4(core * a, a);
 }
