@@ -36,6 +36,18 @@ CharacterPass::CharacterPass(const gpu::Context& ctx, const anim::Character& cha
     desc.depthWrite = true;
     desc.samples = samples;
     program_ = gpu::createGraphicsProgram(ctx, desc);
+    const scene::CharacterSpec& look = scene.character;
+    outlined_ =
+        scene::characterStyle(look) == scene::CharacterStyle::Toon && look.outlineWidth > 0.0f;
+    if (outlined_) {
+        gpu::GraphicsProgramDesc outline = desc;
+        outline.name = "outline";
+        outline.vertex = shaders::outline_vert;
+        outline.fragment = shaders::outline_frag;
+        outline.pushConstantSize = sizeof(shared::OutlineDraw);
+        outline.cullMode = VK_CULL_MODE_FRONT_BIT; // the hull's back faces only
+        outlineProgram_ = gpu::createGraphicsProgram(ctx, outline);
+    }
     frame_ = gpu::createBuffer(ctx, sizeof(shared::SceneFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                gpu::MemoryUsage::Upload, "scene frame");
 
@@ -92,6 +104,22 @@ CharacterPass::CharacterPass(const gpu::Context& ctx, const anim::Character& cha
                                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
                                                 VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
                                             gpu::MemoryUsage::DeviceLocal, "skinned");
+            if (outlined_) {
+                std::vector<shared::SkinVertexIn> hull = packed;
+                const std::vector<glm::vec3> welded =
+                    anim::weldedNormals(p.positions, p.normals, glm::vec3(0.0f, 1.0f, 0.0f));
+                for (size_t v = 0; v < hull.size(); ++v)
+                    hull[v].normal = glm::vec4(welded[v], 0.0f);
+                part.outlineInput =
+                    gpu::createBuffer(ctx, hull.size() * sizeof(shared::SkinVertexIn), kStorage,
+                                      gpu::MemoryUsage::DeviceLocal, "outline bind pose");
+                gpu::uploadBuffer(ctx, part.outlineInput,
+                                  std::span<const shared::SkinVertexIn>(hull));
+                part.outlineOutput = gpu::createBuffer(
+                    ctx, hull.size() * sizeof(shared::SkinVertexOut),
+                    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
+                    gpu::MemoryUsage::DeviceLocal, "outline skinned");
+            }
             part.indices = gpu::createBuffer(ctx, p.indices.size() * sizeof(uint32_t),
                                              VK_BUFFER_USAGE_INDEX_BUFFER_BIT |
                                                  VK_BUFFER_USAGE_TRANSFER_DST_BIT,
@@ -156,6 +184,9 @@ void CharacterPass::skin(VkCommandBuffer cmd, const anim::Pose& pose, const glm:
                     it->second.size() * sizeof(shared::SkinJoint));
         skinning_.record(cmd, part.palette, part.jointCount, part.input, part.output,
                          part.vertexCount);
+        if (outlined_)
+            skinning_.record(cmd, part.palette, part.jointCount, part.outlineInput,
+                             part.outlineOutput, part.vertexCount);
     }
 }
 
@@ -211,11 +242,15 @@ void CharacterPass::draw(VkCommandBuffer cmd, const SceneCamera& camera) {
     std::memcpy(frame_.mapped, &frame, sizeof frame);
     program_.bind(cmd, resources_);
     const VkDeviceSize offset = 0;
+    const scene::CharacterSpec& look = scene_.character;
+    const bool toon = scene::characterStyle(look) == scene::CharacterStyle::Toon;
     auto drawMesh = [&](const gpu::Buffer& vertices, const gpu::Buffer& indices, uint32_t count,
-                        glm::vec3 colour) {
+                        glm::vec3 colour, bool character) {
         shared::SceneObject object{};
         object.model = glm::mat4(1.0f);
         object.baseColor = glm::vec4(colour, 1.0f);
+        if (character && toon)
+            object.style = glm::vec4(MFX_STYLE_TOON, float(look.toonBands), look.rim, 0.0f);
         program_.push(cmd, object);
         VkBuffer vb = vertices.get();
         vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
@@ -223,9 +258,27 @@ void CharacterPass::draw(VkCommandBuffer cmd, const SceneCamera& camera) {
         vkCmdDrawIndexed(cmd, count, 1, 0, 0, 0);
     };
     for (const StageMesh& m : stage_)
-        drawMesh(m.vertices, m.indices, m.indexCount, m.colour);
+        drawMesh(m.vertices, m.indices, m.indexCount, m.colour, false);
     for (const Part& part : parts_)
-        drawMesh(part.output, part.indices, part.indexCount, glm::vec3(part.primitive->baseColor));
+        drawMesh(part.output, part.indices, part.indexCount, glm::vec3(part.primitive->baseColor),
+                 true);
+}
+
+void CharacterPass::drawOutline(VkCommandBuffer cmd, uint32_t width, uint32_t height) {
+    if (!outlined_) return;
+    outlineProgram_.bind(cmd, {gpu::bindBuffer(0, frame_)}); // written by draw()
+    shared::OutlineDraw d{};
+    d.colour = glm::vec4(scene_.character.outlineColour, 1.0f);
+    d.width =
+        glm::vec4(scene_.character.outlineWidth, 2.0f / float(width), 2.0f / float(height), 0.0f);
+    outlineProgram_.push(cmd, d);
+    const VkDeviceSize offset = 0;
+    for (const Part& part : parts_) {
+        VkBuffer vb = part.outlineOutput.get();
+        vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
+        vkCmdBindIndexBuffer(cmd, part.indices.get(), 0, VK_INDEX_TYPE_UINT32);
+        vkCmdDrawIndexed(cmd, part.indexCount, 1, 0, 0, 0);
+    }
 }
 
 } // namespace mfx::render

@@ -1,7 +1,13 @@
 // The scene pass: the character, skinned on the GPU every frame (anim::SkinVertices, dual
 // quaternion skinning from a palette per skin), and the stage (a floor and a backdrop), lit with
-// the scene's key light. Recording is in two parts: skin() before rendering begins (compute), then
-// draw() inside it.
+// the scene's key light; the character in its style (scene::characterStyle: lit, or toon with a
+// banded ramp, a rim light and an inverted-hull outline). Recording is in two parts: skin() before
+// rendering begins (compute), then draw() and drawOutline() inside it.
+//
+// Why an inverted hull for the outline rather than an edge pass over depth and normals: it is one
+// more draw of the character's own triangles (a fraction of a full-screen pass on a CPU
+// rasteriser), it outlines the character alone (not the stage or the effects), multisampling
+// smooths it like any geometry, and its width is set in pixels by the vertex shader.
 #pragma once
 
 #include "core/anim/character.h"
@@ -31,6 +37,10 @@ public:
     // Records the draws (inside rendering to a colour + depth target of
     // kSceneColorFormat/kDepthFormat).
     void draw(VkCommandBuffer cmd, const SceneCamera& camera);
+    // Whether the character has an outline (toon, width > 0), and the draws of it (after draw(),
+    // in the same rendering, into a target of `width` x `height` pixels).
+    bool hasOutline() const { return outlined_; }
+    void drawOutline(VkCommandBuffer cmd, uint32_t width, uint32_t height);
 
     static constexpr uint32_t kShadowSize = 2048;
 
@@ -38,6 +48,7 @@ private:
     struct Part {
         const anim::Primitive* primitive = nullptr;
         gpu::Buffer input, output, indices, palette;
+        gpu::Buffer outlineInput, outlineOutput; // the bind pose with welded normals, skinned
         uint32_t vertexCount = 0, indexCount = 0, jointCount = 0;
     };
     struct StageMesh {
@@ -52,7 +63,8 @@ private:
     const anim::Character& character_;
     const scene::Scene scene_; // a copy: the pass may outlive the simulation that owned it
     anim::SkinVertices skinning_;
-    gpu::Program program_, shadowProgram_;
+    gpu::Program program_, shadowProgram_, outlineProgram_;
+    bool outlined_ = false;
     gpu::Buffer frame_;
     gpu::Image shadowMap_;
     gpu::UniqueSampler shadowSampler_;

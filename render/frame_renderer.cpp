@@ -47,6 +47,10 @@ void FrameRenderer::recordFrame(VkCommandBuffer cmd, const sim::SceneSimulation&
         beginRendering(cmd, target_, kClearColour);
         scenePass_.draw(cmd, camera_);
     }
+    if (scenePass_.hasOutline()) {
+        gpu::ScopedPass pass(timer_, cmd, "outline");
+        scenePass_.drawOutline(cmd, target_.width, target_.height);
+    }
     {
         gpu::ScopedPass pass(timer_, cmd, "effects");
         draws_ = 0;

@@ -22,10 +22,10 @@ namespace mfx::render {
 
 // The passes a frame records, in order, by the names their timings carry ("skin" includes the
 // effect passes' advance: the afterimage smears', swept volumes' and silhouette shells' skinning,
-// history and geometry; "effects" the effect passes' draws). "bloom" is left out when the scene
-// has no bloom.
-inline constexpr const char* kFramePassNames[] = {"skin",  "shadow", "scene",   "effects",
-                                                  "smoke", "bloom",  "tone_map"};
+// history and geometry; "effects" the effect passes' draws). "outline" is left out without a
+// toon outline, "bloom" without bloom.
+inline constexpr const char* kFramePassNames[] = {"skin",    "shadow", "scene", "outline",
+                                                  "effects", "smoke",  "bloom", "tone_map"};
 
 class FrameRenderer {
 public:

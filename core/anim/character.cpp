@@ -1,6 +1,8 @@
 #include "core/anim/character.h"
 
+#include <array>
 #include <cmath>
+#include <map>
 
 namespace mfx::anim {
 
@@ -46,6 +48,20 @@ std::vector<glm::vec3> smoothNormals(const std::vector<glm::vec3>& positions,
         n = length > 0.0f && std::isfinite(length) ? n / length : fallback;
     }
     return normals;
+}
+
+std::vector<glm::vec3> weldedNormals(const std::vector<glm::vec3>& positions,
+                                     const std::vector<glm::vec3>& normals, glm::vec3 fallback) {
+    std::map<std::array<float, 3>, glm::vec3> sums;
+    for (size_t v = 0; v < positions.size() && v < normals.size(); ++v)
+        sums[{positions[v].x, positions[v].y, positions[v].z}] += normals[v];
+    std::vector<glm::vec3> welded(positions.size(), fallback);
+    for (size_t v = 0; v < positions.size(); ++v) {
+        const glm::vec3 n = sums[{positions[v].x, positions[v].y, positions[v].z}];
+        const float length = glm::length(n);
+        if (length > 1e-6f && std::isfinite(length)) welded[v] = n / length;
+    }
+    return welded;
 }
 
 namespace {

@@ -100,6 +100,12 @@ struct Character {
 std::vector<glm::vec3> smoothNormals(const std::vector<glm::vec3>& positions,
                                      const std::vector<uint32_t>& indices, glm::vec3 fallback);
 
+// Normals for an outline hull: each vertex gets the normalised sum of the normals of every vertex
+// of the primitive at exactly its position, so vertices split at a seam or a hard edge (a
+// flat-shaded mesh) move out together and the hull stays closed; `fallback` where they cancel.
+std::vector<glm::vec3> weldedNormals(const std::vector<glm::vec3>& positions,
+                                     const std::vector<glm::vec3>& normals, glm::vec3 fallback);
+
 // Scales the whole character uniformly by `factor` about its origin, so that every world position
 // it takes in every pose is `factor` times what it was and every rotation is unchanged: each
 // node's rest translation, every translation key (CUBICSPLINE tangents too), the translation of

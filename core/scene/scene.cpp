@@ -25,7 +25,8 @@ using namespace detail;
 
 void readCharacter(const Object& o, CharacterSpec& c) {
     o.onlyKeys({"source", "clip", "start", "end", "speed", "loop", "position", "yaw_degrees",
-                "height", "scale"});
+                "height", "scale", "style", "toon_bands", "rim", "outline_width",
+                "outline_colour"});
     c.source = o.string("source", c.source);
     if (c.source.empty()) fail(o.at("source"), "must name \"fighter\" or a .gltf/.glb file");
     c.clip = o.string("clip", c.clip);
@@ -43,6 +44,13 @@ void readCharacter(const Object& o, CharacterSpec& c) {
                             "character to; scale: the factor to scale it by)");
     if (const std::optional<double> h = o.optionalNumber("height", 1e-4, 1e4)) c.height = *h;
     if (const std::optional<double> f = o.optionalNumber("scale", 1e-6, 1e6)) c.scale = *f;
+    if (o.has("style"))
+        c.style = o.choice("style", "", {"toon", "lit"}) == "toon" ? CharacterStyle::Toon
+                                                                   : CharacterStyle::Lit;
+    c.toonBands = o.integer("toon_bands", c.toonBands, 2, 4);
+    c.rim = float(o.number("rim", c.rim, 0.0, 4.0));
+    c.outlineWidth = float(o.number("outline_width", c.outlineWidth, 0.0, 16.0));
+    c.outlineColour = glm::vec3(o.colour("outline_colour", glm::vec4(c.outlineColour, 1.0f)));
 }
 
 void readCamera(const Object& o, CameraSpec& c) {
@@ -145,6 +153,11 @@ std::string parseMessage(const std::string& what) {
 }
 
 } // namespace
+
+CharacterStyle characterStyle(const CharacterSpec& character) {
+    if (character.style) return *character.style;
+    return character.source == "fighter" ? CharacterStyle::Toon : CharacterStyle::Lit;
+}
 
 Result<Scene> parseScene(const std::string& text, const std::string& where) {
     json doc;

@@ -19,6 +19,12 @@
 
 namespace mfx::scene {
 
+// How the character is shaded (render/character_pass.h).
+enum class CharacterStyle {
+    Lit,  // Blinn-Phong with a hemisphere ambient
+    Toon, // banded diffuse from a ramp, a rim light and inverted-hull outlines
+};
+
 struct CharacterSpec {
     std::string source = "fighter"; // "fighter" (built in) or a .gltf/.glb path
     std::string clip;               // empty: roundhouse_kick for the fighter, else the first
@@ -32,7 +38,16 @@ struct CharacterSpec {
     // it by; neither: outliers are brought to a human height, others left alone.
     std::optional<float> height;
     std::optional<float> scale;
+    // Shading: default toon for the built-in fighter, lit for a character file (characterStyle).
+    std::optional<CharacterStyle> style;
+    uint32_t toonBands = 3;    // levels of the diffuse ramp, 2-4
+    float rim = 0.6f;          // strength of the toon rim light, 0: none
+    float outlineWidth = 2.0f; // toon outline width in pixels of the output, 0: none
+    glm::vec3 outlineColour{0.02f, 0.015f, 0.03f}; // linear
 };
+
+// The character's style: its "style", else toon for the built-in fighter and lit for a file.
+CharacterStyle characterStyle(const CharacterSpec& character);
 
 struct CameraSpec {
     glm::vec3 position{2.6f, 1.5f, 3.4f};

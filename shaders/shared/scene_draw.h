@@ -19,10 +19,21 @@ struct SceneFrame {
     vec4 shadow;              // x: 1 when the shadow map is used; y: depth bias; z: 1 / its size
 };
 
+// SceneObject::style.x values.
+#define MFX_STYLE_LIT 0.0
+#define MFX_STYLE_TOON 1.0
+
 // Push constants, one per draw.
 struct SceneObject {
     mat4 model;     // identity for skinned geometry (already in world space)
     vec4 baseColor; // linear RGB; a: 1
+    vec4 style;     // x: MFX_STYLE_*; toon: y = ramp levels, z = rim strength; w: unused
+};
+
+// Push constants of the toon outline (shaders/render/outline.vert, .frag).
+struct OutlineDraw {
+    vec4 colour; // linear RGB; a: 1
+    vec4 width;  // x: pixels; yz: 2 / the target's width and height (pixels to clip units)
 };
 
 MFX_SHARED_END
@@ -34,7 +45,10 @@ MFX_CHECK_LAYOUT(SceneFrame, shadow, 208);
 MFX_CHECK_LAYOUT(SceneFrame, cameraPosition, 64);
 MFX_CHECK_LAYOUT(SceneFrame, lightColor, 96);
 MFX_CHECK_LAYOUT(SceneFrame, ground, 128);
-MFX_CHECK_SIZE(SceneObject, 80);
+MFX_CHECK_SIZE(SceneObject, 96);
+MFX_CHECK_LAYOUT(SceneObject, style, 80);
+MFX_CHECK_SIZE(OutlineDraw, 32);
+MFX_CHECK_LAYOUT(OutlineDraw, width, 16);
 #endif
 
 #endif
