@@ -6,6 +6,7 @@
 #include "render/image_output.h"
 #include "render/render_target.h"
 #include "tests/gpu_test.h"
+#include "tests/scene_render_util.h"
 
 #include <glm/gtc/constants.hpp>
 #include <map>
@@ -177,6 +178,45 @@ TEST_F(ToonShadingTest, TheOutlineStaysClosedAroundAFlatShadedCube) {
         EXPECT_GE(outline, 1) << "row " << y << " meets the cube without an outline";
     }
     EXPECT_GT(rows, 60);
+}
+
+// Imported characters in the toon style, through the whole frame: the flat-shaded RiggedFigure
+// (split normals everywhere) and RobotExpressive (several meshes and materials). Each is outlined
+// wherever it meets the background from the left.
+TEST_F(ToonShadingTest, ImportedCharactersAreOutlinedAllRound) {
+    for (const char* file : {"RiggedFigure.gltf", "RobotExpressive.glb"}) {
+        scene::Scene s =
+            scene::previewScene(std::string(MFX_SOURCE_DIR) + "/../shared/assets/" + file);
+        s.effects.clear();
+        s.stage.floor = s.stage.backdrop = false;
+        s.character.style = scene::CharacterStyle::Toon;
+        s.character.rim = 0.0f;
+        s.character.outlineColour = glm::vec3(0.0f, 1.0f, 0.0f);
+        s.character.outlineWidth = 2.0f;
+        s.output.frames = 3;
+        Result<DrawnScene> drawn = drawScene(ctx(), s, kSize, kSize, VK_SAMPLE_COUNT_1_BIT);
+        ASSERT_TRUE(drawn) << drawn.error().message;
+        drawn.value().playTo(ctx());
+        const std::vector<uint8_t> rgba = render::readColor(ctx(), drawn.value().renderer->output());
+        EXPECT_TRUE(render::writePng(std::string(MFX_TEST_OUTPUT_DIR) + "/toon/" + file + ".png",
+                                     kSize, kSize, rgba)
+                        .ok());
+        // Each row meeting the character: the first pixel off the background is the outline's.
+        int rows = 0, outlined = 0;
+        for (uint32_t y = 0; y < kSize; ++y)
+            for (uint32_t x = 0; x < kSize; ++x) {
+                const uint8_t* p = &rgba[(size_t(y) * kSize + x) * 4];
+                // The background: the clear colour, as in the top-left corner.
+                if (std::abs(p[0] - rgba[0]) + std::abs(p[1] - rgba[1]) + std::abs(p[2] - rgba[2]) <
+                    6)
+                    continue;
+                ++rows;
+                outlined += p[1] > 2 * std::max(p[0], p[2]) ? 1 : 0;
+                break;
+            }
+        EXPECT_GT(rows, 100) << file;
+        EXPECT_GE(outlined, rows - 2) << file << ": of " << rows << " rows";
+    }
 }
 
 } // namespace
