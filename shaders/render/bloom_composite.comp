@@ -1,5 +1,6 @@
 // bloomComposite: the picture replaced in place by mix(picture, bloom, strength), where the bloom
-// is the sum of the pyramid's levels (tent up-sampled from the finest) divided by their number,
+// is the sum of the pyramid's levels (bilinearly up-sampled from the finest, which the sum has
+// already made smooth: one fetch a pixel rather than the tent's nine) divided by their number,
 // so it has the picture's mean: the mix keeps the picture's total light (bloom_common.glsl).
 // Alpha is kept.
 #version 450
@@ -14,6 +15,6 @@ void main() {
     vec2 uv;
     if (!texelOf(texel, uv)) return;
     vec4 own = imageLoad(picture, texel);
-    vec3 bloom = upsampleTent(levels, uv, 1.0 / vec2(step.size.zw)) * step.weights.y;
+    vec3 bloom = textureLod(levels, uv, 0.0).rgb * step.weights.y;
     imageStore(picture, texel, vec4(mix(own.rgb, bloom, step.weights.x), own.a));
 }
