@@ -62,6 +62,26 @@ gpu::Program trajectoryDrawProgram(const gpu::Context& ctx, const char* name, Tr
     return gpu::createGraphicsProgram(ctx, desc);
 }
 
+gpu::Buffer ribbonStyleBuffer(const gpu::Context& ctx, const scene::RibbonLook& look) {
+    shared::RibbonStyle style{};
+    for (size_t i = 0; i < look.colourOverLife.size() && i < MFX_RIBBON_MAX_STOPS; ++i) {
+        style.colours[i] = look.colourOverLife[i].colour;
+        style.colourAt[i / 4][int(i % 4)] = look.colourOverLife[i].at;
+    }
+    for (size_t i = 0; i < look.widthOverLife.size() && i < MFX_RIBBON_MAX_STOPS; ++i) {
+        style.widths[i / 4][int(i % 4)] = look.widthOverLife[i].value;
+        style.widthAt[i / 4][int(i % 4)] = look.widthOverLife[i].at;
+    }
+    style.counts =
+        glm::vec4(float(std::min<size_t>(look.colourOverLife.size(), 8)),
+                  float(std::min<size_t>(look.widthOverLife.size(), 8)), look.intensity, look.core);
+    style.blend = glm::vec4(look.additive ? 1.0f : 0.0f, 0.0f, 0.0f, 0.0f);
+    gpu::Buffer buffer = gpu::createBuffer(ctx, sizeof style, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                                           gpu::MemoryUsage::Upload, "ribbon style");
+    std::memcpy(buffer.mapped, &style, sizeof style);
+    return buffer;
+}
+
 gpu::Buffer sceneFrameBuffer(const gpu::Context& ctx, const char* name) {
     return gpu::createBuffer(ctx, sizeof(shared::SceneFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                              gpu::MemoryUsage::Upload, name);

@@ -6,6 +6,8 @@
 // per-frame history starts again.
 #pragma once
 
+#include "core/scene/kinds/trail_effects.h"
+
 #include "core/anim/skin_vertices.h"
 #include "core/gpu/program.h"
 #include "core/gpu/resources.h"
@@ -53,6 +55,10 @@ gpu::Program trajectoryDrawProgram(const gpu::Context& ctx, const char* name, Tr
 
 // The host-visible uniform a pass writes shared::SceneFrame into each draw.
 gpu::Buffer sceneFrameBuffer(const gpu::Context& ctx, const char* name);
+
+// The speed-line programs' ribbon style (binding 1, shaders/render/ribbon_style.glsl) of `look`,
+// in a host-visible uniform buffer.
+gpu::Buffer ribbonStyleBuffer(const gpu::Context& ctx, const scene::RibbonLook& look);
 
 // A device-local storage buffer (at least 64 bytes, so an empty one is still valid) that can also
 // be copied to and from, with `extra` usage.

@@ -46,6 +46,9 @@ Shot shoot(gpu::Context& ctx, const fluid::SmokeSolver* smoke, glm::vec3 centre,
     scene::Scene s = scene::defaultScene();
     s.camera.position = glm::vec3(0.0f, 1.0f, 4.0f);
     s.camera.target = glm::vec3(0.0f, 0.8f, 0.0f);
+    // Lit: the chest a mid tone that white smoke in front visibly brightens (the toon style's lit
+    // band is near white there).
+    s.character.style = scene::CharacterStyle::Lit;
     const render::SceneCamera camera = render::makeCamera(s.camera, float(kWidth) / kHeight);
     render::RenderTarget target = render::createRenderTarget(ctx, kWidth, kHeight);
     render::CharacterPass scenePass(ctx, fighter, s);

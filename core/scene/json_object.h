@@ -137,6 +137,19 @@ public:
         }
         return out;
     }
+    // The objects of an array of `minCount` to `maxCount` objects, each named by its index.
+    std::vector<Object> objects(const std::string& key, size_t minCount, size_t maxCount) const {
+        const json& v = j_.at(key);
+        if (!v.is_array() || v.size() < minCount || v.size() > maxCount)
+            fail(at(key),
+                 "expected an array of " + std::to_string(minCount) + " to " +
+                     std::to_string(maxCount) + " objects, got " +
+                     (v.is_array() ? "an array of " + std::to_string(v.size()) : typeOf(v)));
+        std::vector<Object> out;
+        for (size_t i = 0; i < v.size(); ++i)
+            out.emplace_back(v[i], at(key) + "[" + std::to_string(i) + "]");
+        return out;
+    }
     std::vector<double> numbers(const std::string& key, size_t minCount, size_t maxCount,
                                 double low, double high) const {
         const json& v = j_.at(key);

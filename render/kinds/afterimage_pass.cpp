@@ -135,6 +135,7 @@ AfterimagePass::AfterimagePass(const gpu::Context& ctx, const scene::Scene& scen
     arcDraw_ =
         trajectoryDrawProgram(ctx, "afterimage_arcs", TrajectoryShape::Triangles, samples, false);
     frame_ = sceneFrameBuffer(ctx, "afterimage frame");
+    ribbon_ = ribbonStyleBuffer(ctx, scene::RibbonLook{});
 }
 
 void AfterimagePass::beginFrame(const sim::SceneSimulation& simulation, bool reset) {
@@ -237,7 +238,10 @@ uint32_t AfterimagePass::draw(VkCommandBuffer cmd, const sim::SceneSimulation& s
         } else {
             gpu::Program& program =
                 variant == scene::AfterimageVariant::SpeedLines ? lineDraw_ : arcDraw_;
-            program.bind(cmd, {gpu::bindBuffer(0, frame_)});
+            if (variant == scene::AfterimageVariant::SpeedLines)
+                program.bind(cmd, {gpu::bindBuffer(0, frame_), gpu::bindBuffer(1, ribbon_)});
+            else
+                program.bind(cmd, {gpu::bindBuffer(0, frame_)});
             program.push(cmd, d);
             VkBuffer vb = effect.output.get();
             vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);

@@ -41,10 +41,17 @@ uint32_t EffectPass::draw(VkCommandBuffer cmd, const sim::SceneSimulation& simul
             const trajectory::Queue& queue = *effect.queue;
             const auto live = queue.liveSegments();
             if (live.empty()) continue;
-            program.bind(cmd, {gpu::bindBuffer(0, frame_)});
-            shared::EffectDraw d{};
-            // The ribbon's width or the sprite's size (volumes have neither).
+            // The ribbon's width and style, or the sprite's size (volumes have neither).
             const auto* lines = effect.spec->as<scene::SpeedLinesSpec>();
+            if (lines) {
+                auto ribbon = ribbons_.find(index);
+                if (ribbon == ribbons_.end())
+                    ribbon = ribbons_.emplace(index, ribbonStyleBuffer(ctx_, lines->ribbon)).first;
+                program.bind(cmd, {gpu::bindBuffer(0, frame_), gpu::bindBuffer(1, ribbon->second)});
+            } else {
+                program.bind(cmd, {gpu::bindBuffer(0, frame_)});
+            }
+            shared::EffectDraw d{};
             const auto* particles = effect.spec->as<scene::MotionParticlesSpec>();
             const float width = lines ? lines->width : particles ? particles->size : 0.0f;
             d.timing = glm::vec4(now, float(effect.trail->lifetime) / simulation.scene().output.fps,

@@ -7,6 +7,8 @@
 // Every sample's alpha is its attenuation along the segment times 1 - age / lifetime.
 #pragma once
 
+#include <map>
+
 #include "core/gpu/program.h"
 #include "core/gpu/resources.h"
 #include "core/scene/kinds/trail_effects.h"
@@ -47,6 +49,7 @@ private:
     const gpu::Context& ctx_;
     gpu::Program volumes_, lines_, particles_;
     gpu::Buffer frame_;
+    std::map<size_t, gpu::Buffer> ribbons_; // each speed-line effect's style, by effect index
 };
 
 } // namespace mfx::render

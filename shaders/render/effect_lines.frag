@@ -1,7 +1,10 @@
-// Speed-lines: a bright core fading to the ribbon's edges, added to the picture (premultiplied).
+// Speed-lines: a bright core fading to the ribbon's edges, over the picture (premultiplied), its
+// colour times the ribbon's HDR intensity; additive ribbons add their light (alpha 0 in the
+// premultiplied blend) instead of covering what is behind.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "effect_common.glsl"
+#include "ribbon_style.glsl"
 
 layout(location = 0) in vec4 ribbonColour;
 layout(location = 1) in float across;
@@ -13,6 +16,7 @@ void main() {
     // negative weight is not clamped away.
     float edge = clamp(1.0 - across * across, 0.0, 1.0);
     float a = clamp(ribbonColour.a * edge, 0.0, 1.0);
-    vec3 core = mix(ribbonColour.rgb, vec3(1.0), 0.5 * edge * edge); // a white-hot centre
-    outColor = vec4(core * a, a);
+    vec3 core = mix(ribbonColour.rgb, vec3(1.0), ribbon.counts.w * edge * edge); // white-hot centre
+    vec3 light = core * ribbon.counts.z * a;
+    outColor = vec4(light, ribbon.blend.x > 0.5 ? 0.0 : a);
 }

@@ -1,15 +1,17 @@
 // Speed-lines: each line piece becomes a ribbon facing the camera (a quad across the piece,
-// perpendicular to it and to the view direction), tapering along the segment and with age:
-// width * (1 - 0.7 tau) * alpha.
+// perpendicular to it and to the view direction), `width` * width_over_life(u) wide, or without
+// that curve tapering along the segment and with age: width * (1 - 0.7 tau) * alpha.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "effect_common.glsl"
+#include "ribbon_style.glsl"
 
 layout(lines) in;
 layout(triangle_strip, max_vertices = 4) out;
 
 layout(location = 0) in vec4 vertexColour[];
 layout(location = 1) in float vertexTau[];
+layout(location = 2) in float vertexLife[];
 
 layout(location = 0) out vec4 ribbonColour;
 layout(location = 1) out float across; // -1 .. 1 over the ribbon's width
@@ -25,8 +27,10 @@ void main() {
     side = normalize(side);
     for (int k = 0; k < 2; ++k) {
         vec3 p = k == 0 ? a : b;
-        float halfWidth =
-            0.5 * draw.timing.z * (1.0 - 0.7 * vertexTau[k]) * max(vertexColour[k].a, 0.15);
+        float halfWidth = ribbon.counts.y > 0.0
+                              ? 0.5 * draw.timing.z * widthOverLife(vertexLife[k])
+                              : 0.5 * draw.timing.z * (1.0 - 0.7 * vertexTau[k]) *
+                                    max(vertexColour[k].a, 0.15);
         for (int s = -1; s <= 1; s += 2) {
             ribbonColour = vertexColour[k];
             across = float(s);

@@ -1,8 +1,11 @@
 // Speed-lines: trajectory vertices passed on to the geometry stage, which widens each piece of a
-// motion line into a camera-facing ribbon (effect_lines.geom).
+// motion line into a camera-facing ribbon (effect_lines.geom). Each vertex's life u = age /
+// lifetime; its colour is the ribbon's colour_over_life at u (times the segment's attenuation),
+// or without one the trail's colour faded with age (Xu et al., Algorithm 1).
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "effect_common.glsl"
+#include "ribbon_style.glsl"
 
 layout(location = 0) in vec4 position;
 layout(location = 1) in vec4 normal;
@@ -10,10 +13,18 @@ layout(location = 2) in vec4 colour;
 
 layout(location = 0) out vec4 vertexColour;
 layout(location = 1) out float vertexTau;
+layout(location = 2) out float vertexLife;
 
 void main() {
     float fade = ageFade(normal.w);
-    vertexColour = vec4(colour.rgb * draw.tint.rgb, colour.a * draw.tint.a * fade);
+    vertexLife = 1.0 - fade;
+    if (ribbon.counts.x > 0.0) {
+        // The stored alpha is the source's alpha times the attenuation at tau.
+        vec4 c = colourOverLife(vertexLife);
+        vertexColour = vec4(c.rgb * draw.tint.rgb, c.a * colour.a * draw.tint.a);
+    } else {
+        vertexColour = vec4(colour.rgb * draw.tint.rgb, colour.a * draw.tint.a * fade);
+    }
     vertexTau = position.w;
     gl_Position = vec4(position.xyz, 1.0); // world space; projected in the geometry stage
 }

@@ -4,6 +4,8 @@
 
 namespace mfx::scene {
 
+using detail::fail;
+using detail::formatNumber;
 using detail::Object;
 
 namespace {
@@ -38,9 +40,77 @@ void readTrail(const Object& o, TrailSpec& t) {
     t.alphaPower = float(o.number("alpha_power", t.alphaPower, 0.0, 16.0, true));
 }
 
+std::vector<std::string> ribbonKeys() {
+    return {"colour_over_life", "width_over_life", "intensity", "blend", "core"};
+}
+
+namespace {
+
+// Stops of an array of 2-8 objects {"at": u, <valueKey>: ...}, `at` rising from 0 to 1.
+template <class Stop, class ReadValue>
+std::vector<Stop> readStops(const Object& o, const std::string& key, const char* valueKey,
+                            ReadValue readValue) {
+    std::vector<Stop> stops;
+    if (!o.has(key)) return stops;
+    const std::vector<Object> entries = o.objects(key, 2, kMaxRibbonStops);
+    for (size_t i = 0; i < entries.size(); ++i) {
+        const Object& e = entries[i];
+        e.onlyKeys({"at", valueKey});
+        if (!e.has("at")) fail(e.at("at"), "missing; each stop says where in life (0..1) it is");
+        if (!e.has(valueKey)) fail(e.at(valueKey), "missing");
+        Stop stop;
+        stop.at = float(e.number("at", 0.0, 0.0, 1.0));
+        if (i > 0 && stop.at < stops.back().at)
+            fail(e.at("at"), formatNumber(stop.at) + " is before the previous stop's " +
+                                 formatNumber(stops.back().at) + "; stops go from head to tail");
+        readValue(e, stop);
+        stops.push_back(stop);
+    }
+    return stops;
+}
+
+template <class Stop, class Value, class Mix>
+Value valueOf(const std::vector<Stop>& stops, float u, Value Stop::*member, Mix mix) {
+    if (u <= stops.front().at) return stops.front().*member;
+    for (size_t i = 1; i < stops.size(); ++i)
+        if (u <= stops[i].at) {
+            const float span = stops[i].at - stops[i - 1].at;
+            const float f = span > 0.0f ? (u - stops[i - 1].at) / span : 1.0f;
+            return mix(stops[i - 1].*member, stops[i].*member, f);
+        }
+    return stops.back().*member;
+}
+
+} // namespace
+
+void readRibbon(const Object& o, RibbonLook& r) {
+    r.colourOverLife = readStops<GradientStop>(
+        o, "colour_over_life", "colour",
+        [](const Object& e, GradientStop& s) { s.colour = e.colour("colour", s.colour); });
+    r.widthOverLife =
+        readStops<CurveStop>(o, "width_over_life", "width", [](const Object& e, CurveStop& s) {
+            s.value = float(e.number("width", 1.0, 0.0, 100.0));
+        });
+    r.intensity = float(o.number("intensity", r.intensity, 0.0, 1000.0));
+    r.additive =
+        o.choice("blend", r.additive ? "additive" : "alpha", {"alpha", "additive"}) == "additive";
+    r.core = float(o.number("core", r.core, 0.0, 1.0));
+}
+
+glm::vec4 colourAt(const std::vector<GradientStop>& stops, float u) {
+    return valueOf(stops, u, &GradientStop::colour,
+                   [](glm::vec4 a, glm::vec4 b, float f) { return glm::mix(a, b, f); });
+}
+
+float valueAt(const std::vector<CurveStop>& stops, float u) {
+    return valueOf(stops, u, &CurveStop::value,
+                   [](float a, float b, float f) { return a + (b - a) * f; });
+}
+
 std::unique_ptr<EffectKindSpec> SpeedLinesSpec::parse(const Object& o) {
     auto e = readTrailKind<SpeedLinesSpec>(o);
     e->width = float(o.number("width", e->width, 0.0, 1.0, true));
+    readRibbon(o, e->ribbon);
     return e;
 }
 

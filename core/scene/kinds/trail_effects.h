@@ -33,12 +33,45 @@ struct TrailEffect : EffectKind<Kind> {
     uint32_t* strideValue() override { return &trail.stride; }
 };
 
+// How a line effect's ribbons look over their life u = age / lifetime (0 at the head, where the
+// line is being drawn, 1 at the tail, where it dies), as trail renderers give artists.
+struct GradientStop {
+    float at = 0.0f; // u
+    glm::vec4 colour{1.0f};
+};
+struct CurveStop {
+    float at = 0.0f; // u
+    float value = 1.0f;
+};
+inline constexpr size_t kMaxRibbonStops = 8;
+struct RibbonLook {
+    // RGBA by life, 2-8 stops, linear between them; empty: the trail's colour, faded with age.
+    std::vector<GradientStop> colourOverLife;
+    // The width's factor by life, 2-8 stops; empty: the built-in taper along each segment.
+    std::vector<CurveStop> widthOverLife;
+    float intensity = 1.0f; // HDR multiplier of the colour
+    bool additive = false;  // add light instead of covering (alpha) what is behind
+    float core = 0.5f;      // how far the ribbon's centre goes towards white, 0..1
+};
+// The ribbon keys and their reading (speed-lines and the afterimage's speed-line variant).
+std::vector<std::string> ribbonKeys();
+void readRibbon(const detail::Object& o, RibbonLook& r);
+// The colour or the factor at life u.
+glm::vec4 colourAt(const std::vector<GradientStop>& stops, float u);
+float valueAt(const std::vector<CurveStop>& stops, float u);
+
 struct SpeedLinesSpec : TrailEffect<SpeedLinesSpec> {
     static constexpr const char* kType = "speed_lines";
     SpeedLinesSpec() : TrailEffect(trajectory::Kind::Lines, 6, {1.0f, 0.85f, 0.3f, 1.0f}) {}
     float width = 0.012f; // ribbon width (world units)
+    RibbonLook ribbon;
 
-    static std::vector<std::string> keys() { return trailKeys({"width"}); }
+    static std::vector<std::string> keys() {
+        std::vector<std::string> k = trailKeys({"width"});
+        for (const std::string& r : ribbonKeys())
+            k.push_back(r);
+        return k;
+    }
     static std::unique_ptr<EffectKindSpec> parse(const detail::Object& o);
     StrideTarget strideTarget() const override { return StrideTarget::Lines; }
     std::vector<std::pair<const char*, float*>> lengths() override { return {{"width", &width}}; }

@@ -1,0 +1,179 @@
+// The speed-lines' ribbon look (scene::RibbonLook; shaders/render/ribbon_style.glsl): the keys, the
+// gradient and curve between their stops, and on the GPU a straight ribbon (one point sliding
+// along +x at 1.5 m/s, seen from the side) whose colour at its head and tail is the gradient's end
+// stops and whose width follows width_over_life along it.
+#include "core/scene/kinds/trail_effects.h"
+#include "render/frame_renderer.h"
+#include "tests/gpu_test.h"
+#include "tests/moving_point.h"
+#include "tests/scene_render_util.h"
+
+#include <cmath>
+
+namespace mfx::test {
+namespace {
+
+Result<scene::Scene> lineScene(const std::string& look) {
+    return scene::parseScene(R"({
+        "character": {"source": "point.gltf"},
+        "stage": {"floor": false, "backdrop": false},
+        "lights": [{"direction": [0, -1, 0], "shadow": false}],
+        "camera": {"position": [0, 0.6, 2], "target": [0, 0.6, 0], "fov_degrees": 40},
+        "output": {"fps": 30, "frames": 36},
+        "effects": [{"type": "speed_lines", "lifetime": 10, "stride": 1, "width": 0.2,
+                     "alpha_start": 1, "alpha_end": 1, "core": 0, )" +
+                                 look + "}]}",
+                             "ribbon.json");
+}
+
+const scene::SpeedLinesSpec& linesOf(const scene::Scene& s) {
+    return *s.effects.at(0).as<scene::SpeedLinesSpec>();
+}
+
+TEST(RibbonLook, ReadsEveryKey) {
+    Result<scene::Scene> s = lineScene(R"("colour_over_life": [
+            {"at": 0, "colour": [1, 0.9, 0.5, 1]}, {"at": 0.3, "colour": [1, 0.3, 0]},
+            {"at": 1, "colour": [0.2, 0, 0.5, 0]}],
+        "width_over_life": [{"at": 0, "width": 1}, {"at": 1, "width": 0.25}],
+        "intensity": 6, "blend": "additive")");
+    ASSERT_TRUE(s) << s.error().message;
+    const scene::RibbonLook& r = linesOf(s.value()).ribbon;
+    ASSERT_EQ(r.colourOverLife.size(), 3u);
+    EXPECT_FLOAT_EQ(r.colourOverLife[1].at, 0.3f);
+    EXPECT_EQ(r.colourOverLife[1].colour, glm::vec4(1.0f, 0.3f, 0.0f, 1.0f));
+    ASSERT_EQ(r.widthOverLife.size(), 2u);
+    EXPECT_FLOAT_EQ(r.widthOverLife[1].value, 0.25f);
+    EXPECT_FLOAT_EQ(r.intensity, 6.0f);
+    EXPECT_TRUE(r.additive);
+    EXPECT_FLOAT_EQ(r.core, 0.0f);
+}
+
+TEST(RibbonLook, RefusesBadStops) {
+    const std::pair<const char*, const char*> cases[] = {
+        {R"("colour_over_life": [{"at": 0, "colour": [1, 0, 0]}])",
+         "effects[0].colour_over_life: expected an array of 2 to 8 objects, got an array of 1"},
+        {R"("width_over_life": [{"at": 0.5, "width": 1}, {"at": 0.2, "width": 2}])",
+         "effects[0].width_over_life[1].at: 0.2 is before the previous stop's 0.5"},
+        {R"("width_over_life": [{"width": 1}, {"at": 1, "width": 2}])",
+         "effects[0].width_over_life[0].at: missing"},
+        {R"("colour_over_life": [{"at": 0, "color": [1, 0, 0]}, {"at": 1, "colour": [1, 0, 0]}])",
+         "effects[0].colour_over_life[0].color: unknown key; keys here are: at, colour"},
+        {R"("blend": "screen")", "effects[0].blend: \"screen\" is not one of: alpha, additive"},
+        {R"("intensity": -1)", "effects[0].intensity: -1 is outside [0, 1000]"},
+    };
+    for (const auto& [look, message] : cases) {
+        Result<scene::Scene> s = lineScene(look);
+        ASSERT_FALSE(s) << look;
+        EXPECT_NE(s.error().message.find(message), std::string::npos) << s.error().message;
+    }
+}
+
+TEST(RibbonLook, GradientAndCurveAreLinearBetweenStops) {
+    const std::vector<scene::GradientStop> colours = {{0.0f, glm::vec4(1, 0, 0, 1)},
+                                                      {0.5f, glm::vec4(0, 1, 0, 1)},
+                                                      {1.0f, glm::vec4(0, 0, 1, 0)}};
+    EXPECT_EQ(scene::colourAt(colours, 0.0f), glm::vec4(1, 0, 0, 1));
+    EXPECT_EQ(scene::colourAt(colours, 0.25f), glm::vec4(0.5f, 0.5f, 0, 1));
+    EXPECT_EQ(scene::colourAt(colours, 1.0f), glm::vec4(0, 0, 1, 0));
+    const std::vector<scene::CurveStop> widths = {{0.2f, 2.0f}, {0.6f, 1.0f}};
+    EXPECT_FLOAT_EQ(scene::valueAt(widths, 0.0f), 2.0f); // held before the first stop
+    EXPECT_FLOAT_EQ(scene::valueAt(widths, 0.4f), 1.5f);
+    EXPECT_FLOAT_EQ(scene::valueAt(widths, 0.9f), 1.0f); // and after the last
+}
+
+class RibbonDrawTest : public GpuTest {
+protected:
+    static constexpr uint32_t kWidth = 512, kHeight = 256;
+
+    // The last frame's linear colour (RGBA floats), the point's head at x = 0.25, its trail of 10
+    // frames (0.5 m) back to x = -0.25, at y = 0.6 (the picture's middle row).
+    std::vector<float> drawLine(const std::string& look) {
+        Result<scene::Scene> s = lineScene(look);
+        EXPECT_TRUE(s) << (s ? "" : s.error().message);
+        const anim::Character point = movingPoint();
+        auto sim = sim::SceneSimulation::create(ctx(), s.value(), point);
+        EXPECT_TRUE(sim) << (sim ? "" : sim.error().message);
+        render::FrameRenderer renderer(ctx(), *sim.value(), kWidth, kHeight, VK_SAMPLE_COUNT_1_BIT);
+        playFrames(ctx(), renderer, *sim.value(), 0, 36);
+        camera_ = renderer.camera();
+        return render::readLinearColor(ctx(), renderer.sceneTarget());
+    }
+    // The pixel column of world x on the line's row.
+    float column(float x) const {
+        const glm::vec4 clip = camera_.viewProjection * glm::vec4(x, 0.6f, 0.0f, 1.0f);
+        return (clip.x / clip.w * 0.5f + 0.5f) * float(kWidth);
+    }
+    static glm::vec4 at(const std::vector<float>& rgba, int x, int y) {
+        const size_t p = (size_t(y) * kWidth + size_t(x)) * 4;
+        return {rgba[p], rgba[p + 1], rgba[p + 2], rgba[p + 3]};
+    }
+    // Rows in column x the ribbon changes (against the background, the column's top pixel).
+    static int coveredRows(const std::vector<float>& rgba, int x) {
+        const glm::vec4 background = at(rgba, x, 0);
+        int rows = 0;
+        for (uint32_t y = 0; y < kHeight; ++y) {
+            const glm::vec4 d = glm::abs(at(rgba, x, int(y)) - background);
+            rows += d.r + d.g + d.b > 0.004f ? 1 : 0;
+        }
+        return rows;
+    }
+    render::SceneCamera camera_;
+    static constexpr float kHead = 0.25f, kTail = -0.25f;
+};
+
+TEST_F(RibbonDrawTest, HeadAndTailTakeTheGradientsEndStops) {
+    const std::vector<float> rgba = drawLine(R"("colour_over_life": [
+        {"at": 0, "colour": [1, 0.5, 0, 1]}, {"at": 1, "colour": [0, 0.2, 1, 1]}])");
+    const int row = int(kHeight / 2);
+    const float head = column(kHead), tail = column(kTail);
+    ASSERT_GT(head - tail, 60.0f); // 0.5 m at 176 pixels a metre
+    // Two pixels inside each end: u is 2 / (head - tail) from 0 or 1.
+    const glm::vec4 atHead = at(rgba, int(head) - 2, row);
+    const glm::vec4 atTail = at(rgba, int(tail) + 2, row);
+    const float u = 2.5f / (head - tail);
+    const glm::vec4 expectHead = glm::mix(glm::vec4(1, 0.5f, 0, 1), glm::vec4(0, 0.2f, 1, 1), u);
+    const glm::vec4 expectTail =
+        glm::mix(glm::vec4(1, 0.5f, 0, 1), glm::vec4(0, 0.2f, 1, 1), 1.0f - u);
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(atHead[c], expectHead[c], 0.03f) << "head, channel " << c;
+        EXPECT_NEAR(atTail[c], expectTail[c], 0.03f) << "tail, channel " << c;
+    }
+}
+
+TEST_F(RibbonDrawTest, WidthFollowsItsCurveAlongTheRibbon) {
+    const std::vector<float> rgba =
+        drawLine(R"("width_over_life": [{"at": 0, "width": 1}, {"at": 1, "width": 0.4}])");
+    const float head = column(kHead), tail = column(kTail);
+    // Pixels per metre at the line's depth: the 0.2 m width at the head.
+    const float perMetre = (head - tail) / (kHead - kTail);
+    for (float u : {0.1f, 0.3f, 0.5f, 0.7f, 0.9f}) {
+        const int x = int(std::lround(head - u * (head - tail)));
+        const float expected = 0.2f * (1.0f - 0.6f * u) * perMetre;
+        const int rows = coveredRows(rgba, x);
+        std::cout << "u " << u << ": " << rows << " rows, expected " << expected << "\n";
+        EXPECT_NEAR(float(rows), expected, 1.5f) << "at u = " << u << ", column " << x;
+    }
+}
+
+// Intensity 4 of orange: light above 1 on the ribbon. Additive keeps the background's blue
+// behind it (adds), the alpha blend covers it.
+TEST_F(RibbonDrawTest, AdditiveRibbonsAddHdrLight) {
+    const std::string orange = R"("colour_over_life": [
+        {"at": 0, "colour": [1, 0.5, 0, 1]}, {"at": 1, "colour": [1, 0.5, 0, 1]}],
+        "intensity": 4, )";
+    const std::vector<float> added = drawLine(orange + R"("blend": "additive")");
+    const std::vector<float> covered = drawLine(orange + R"("blend": "alpha")");
+    const int x = int(column(0.0f)), y = int(kHeight / 2);
+    const glm::vec4 background = at(added, x, 0), a = at(added, x, y), c = at(covered, x, y);
+    std::cout << "background blue " << background.b << "; ribbon middle, additive: " << a.r << " "
+              << a.g << " " << a.b << "; alpha: " << c.r << " " << c.g << " " << c.b << "\n";
+    const float coverage = (a.r - background.r) / 4.0f; // the soft edge's alpha at this row
+    EXPECT_GT(coverage, 0.9f);
+    EXPECT_GT(a.r, 3.6f) << "HDR light";
+    EXPECT_NEAR(a.g - background.g, 2.0f * coverage, 0.02f) << "orange, as given";
+    EXPECT_NEAR(a.b, background.b, 0.002f) << "additive: the background still shows";
+    EXPECT_LT(c.b, background.b * (1.0f - coverage) + 0.002f) << "alpha: the ribbon covers it";
+}
+
+} // namespace
+} // namespace mfx::test
