@@ -53,7 +53,10 @@ CommandLine renderCommandLine() {
         "with the default effects on its fastest limb, framed, or without either the "
         "built-in default scene headless into DIR/frame_0000.png, frame_0001.png, ... "
         "and, when ffmpeg is installed, DIR/scene.mp4 (H.264, yuv420p: it plays in "
-        "browsers).",
+        "browsers). With --layers each frame also comes as DIR/character_NNNN.png (drawn "
+        "without its effects) and DIR/effects_NNNN.png: the effects alone, RGBA with "
+        "premultiplied colour, which laid over the character frame (rgb + (1 - a) * "
+        "under) gives the full frame.",
         1, CommandLine::kDevice | CommandLine::kScene);
     command.option("out", "DIR", "write the frames into DIR (default: out)")
         .option("frames", "N", "render the first N frames (default: the scene's)")
@@ -61,7 +64,10 @@ CommandLine renderCommandLine() {
         .option("fps", "N",
                 "frames per second of the simulation, the frames and the video, 1 to 240 "
                 "(default: the scene's, 30)")
-        .option("stats", "FILE", "write per-frame statistics as JSON");
+        .option("stats", "FILE", "write per-frame statistics as JSON")
+        .option("layers", "",
+                "also write each frame without its effects and the effects alone "
+                "(premultiplied RGBA)");
     return command;
 }
 

@@ -5,6 +5,7 @@
 #include "apps/progress.h"
 
 #include "core/gpu/commands.h"
+#include "render/effects_layer.h"
 #include "render/image_output.h"
 #include "render/scene_player.h"
 #include "sim/scene_simulation.h"
@@ -73,10 +74,31 @@ std::string encodeVideo(const std::string& dir, float fps, uint32_t frames) {
     return status == 0 ? ", and " + dir + "/scene.mp4" : " (ffmpeg failed: no MP4)";
 }
 
-std::string frameName(uint32_t frame) {
-    char name[32];
-    std::snprintf(name, sizeof name, "frame_%04u.png", frame);
+std::string frameName(uint32_t frame, const char* prefix = "frame") {
+    char name[64];
+    std::snprintf(name, sizeof name, "%s_%04u.png", prefix, frame);
     return name;
+}
+
+// The frame just played drawn again without its effects, and the effects alone as a layer
+// (render/effects_layer.h): DIR/character_NNNN.png and DIR/effects_NNNN.png.
+Status writeLayers(const gpu::Context& ctx, render::ScenePlayer& player, uint32_t frame,
+                   const std::vector<uint8_t>& full, const std::string& dir) {
+    render::FrameRenderer& renderer = player.renderer();
+    sim::SceneSimulation& sim = player.simulation();
+    const size_t effects = sim.scene().effects.size();
+    for (size_t e = 0; e < effects; ++e)
+        renderer.setShown(e, false);
+    gpu::submitOneShot(
+        ctx, [&](VkCommandBuffer cmd) { player.recordRedraw(cmd, sim.frameTime(frame)); });
+    const std::vector<uint8_t> under = render::readColor(ctx, renderer.output());
+    for (size_t e = 0; e < effects; ++e)
+        renderer.setShown(e, true);
+    const uint32_t w = renderer.output().width, h = renderer.output().height;
+    if (Status s = render::writePng(dir + "/" + frameName(frame, "character"), w, h, under); !s)
+        return s;
+    return render::writePng(dir + "/" + frameName(frame, "effects"), w, h,
+                            render::effectsLayer(full, under));
 }
 
 } // namespace
@@ -119,6 +141,11 @@ int runRender(const cli::ParsedArgs& parsed) {
         nlohmann::json record = statsJson(stats);
         record["effect_draws"] = renderer.effectDraws();
         frames.push_back(record);
+        if (parsed.has("layers"))
+            if (Status layers = writeLayers(ctx, player, f, rgba, outDir); !layers) {
+                printError(layers.error().message);
+                return kExitFailure;
+            }
         double gpu = 0.0;
         for (const sim::PassRecord& p : stats.passes)
             gpu += p.gpuMs;
