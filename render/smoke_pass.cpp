@@ -4,6 +4,7 @@
 #include "shaders/embedded.h"
 #include "shaders/shared/smoke_draw.h"
 
+#include <cstring>
 #include <stdexcept>
 
 namespace mfx::render {
@@ -13,6 +14,33 @@ namespace {
 constexpr uint32_t kBoxVertices = 36; // six faces, two triangles each (shaders/render/smoke.vert)
 constexpr VkFormat kFluidColorFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkFormat kFluidDistanceFormat = VK_FORMAT_R32_SFLOAT;
+
+// The volume's shading for the march: the preset's colour ramp by pigment alpha, its glow and cel
+// bands, and the key light.
+shared::SmokeStyle smokeStyle(const scene::SmokeShading& shading, const scene::LightSpec& key) {
+    shared::SmokeStyle style{};
+    using P = scene::SmokePreset;
+    if (shading.preset == P::Fire) {
+        style.ramp[0] = {0.45f, 0.04f, 0.0f, 0.0f};
+        style.ramp[1] = {1.0f, 0.3f, 0.03f, 0.3f};
+        style.ramp[2] = {1.0f, 0.7f, 0.2f, 0.65f};
+        style.ramp[3] = {1.0f, 0.95f, 0.75f, 1.0f};
+    } else if (shading.preset == P::Energy) {
+        style.ramp[0] = {0.05f, 0.25f, 1.0f, 0.0f};
+        style.ramp[1] = {0.2f, 0.7f, 1.0f, 0.4f};
+        style.ramp[2] = {0.6f, 0.95f, 1.0f, 0.75f};
+        style.ramp[3] = {1.0f, 1.0f, 1.0f, 1.0f};
+    } else {
+        for (int i = 0; i < 4; ++i)
+            style.ramp[i] = glm::vec4(1.0f, 1.0f, 1.0f, float(i) / 3.0f);
+    }
+    const float preset = shading.preset == P::Fire     ? MFX_SMOKE_PRESET_FIRE
+                         : shading.preset == P::Energy ? MFX_SMOKE_PRESET_ENERGY
+                                                       : MFX_SMOKE_PRESET_SMOKE;
+    style.params = glm::vec4(shading.glow, float(shading.celBands), key.intensity, preset);
+    style.light = glm::vec4(key.colour, 0.0f);
+    return style;
+}
 
 uint32_t divisorOf(SmokeResolution resolution) {
     return resolution == SmokeResolution::Full ? 1u : 2u;
@@ -121,8 +149,10 @@ uint32_t SmokePass::draw(VkCommandBuffer cmd, RenderTarget& target,
             visible = visible || (index < shown.size() && shown[index] != 0);
         }
         if (!visible) continue;
+        const scene::SmokeSpec* smoke =
+            grid.effects.empty() ? nullptr : simulation.trajectories()[grid.effects[0]].smoke;
         volumes.push_back({&grid.grid.solver().pigmentImage(), grid.grid.solver().options().grid,
-                           grid.grid.origin()});
+                           grid.grid.origin(), smoke ? smoke->shading : scene::SmokeShading{}});
     }
     if (volumes.empty()) return 0;
     const scene::LightSpec key =
@@ -143,6 +173,14 @@ void SmokePass::draw(VkCommandBuffer cmd, RenderTarget& target, std::span<const 
             gpu::createBuffer(ctx_, sizeof(shared::PigmentBounds),
                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                               gpu::MemoryUsage::DeviceLocal, "smoke pigment bounds"));
+    while (styles_.size() < volumes.size())
+        styles_.push_back(gpu::createBuffer(ctx_, sizeof(shared::SmokeStyle),
+                                            VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                                            gpu::MemoryUsage::Upload, "smoke style"));
+    for (size_t i = 0; i < volumes.size(); ++i) {
+        const shared::SmokeStyle style = smokeStyle(volumes[i].shading, key);
+        std::memcpy(styles_[i].mapped, &style, sizeof style);
+    }
     findPigmentBounds(cmd, volumes, look);
     // The scene's depth as a texture.
     gpu::imageBarrier(cmd, target.depth, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
@@ -197,7 +235,8 @@ void SmokePass::draw(VkCommandBuffer cmd, RenderTarget& target, std::span<const 
         vkCmdSetScissor(cmd, 0, 1, &scissor);
         programs.march.bind(
             cmd, {gpu::bindImage(0, *v.pigment, VK_IMAGE_LAYOUT_GENERAL, volumeSampler_.get()),
-                  gpu::bindImage(1, target.depth, read, nearest), gpu::bindBuffer(2, bounds_[i])});
+                  gpu::bindImage(1, target.depth, read, nearest), gpu::bindBuffer(2, bounds_[i]),
+                  gpu::bindBuffer(3, styles_[i])});
         programs.march.push(cmd, d);
         vkCmdDraw(cmd, kBoxVertices, 1, 0, 0);
         vkCmdEndRendering(cmd);

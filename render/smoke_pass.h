@@ -18,6 +18,7 @@
 
 #include "core/gpu/program.h"
 #include "core/gpu/resources.h"
+#include "core/scene/kinds/smoke_effect.h"
 #include "render/render_target.h"
 #include "render/scene_camera.h"
 #include "sim/scene_simulation.h"
@@ -64,11 +65,13 @@ public:
                   const SceneCamera& camera, std::span<const uint8_t> shown = {},
                   const SmokeLook& look = {});
 
-    // One pigment volume (rgba32f, GENERAL layout) of `shape` whose low corner is at `origin`.
+    // One pigment volume (rgba32f, GENERAL layout) of `shape` whose low corner is at `origin`,
+    // shaded as `shading` says (its grid's first smoke effect's).
     struct Volume {
         const gpu::Image* pigment = nullptr;
         fluid::GridShape shape;
         glm::vec3 origin{0.0f};
+        scene::SmokeShading shading;
     };
     void draw(VkCommandBuffer cmd, RenderTarget& target, std::span<const Volume> volumes,
               const SceneCamera& camera, const scene::LightSpec& key, const SmokeLook& look = {});
@@ -99,6 +102,7 @@ private:
     gpu::UniqueSampler volumeSampler_, nearestSampler_;
     FluidBuffer fluid_;
     std::vector<gpu::Buffer> bounds_; // shared::PigmentBounds of the i-th volume of a draw
+    std::vector<gpu::Buffer> styles_; // shared::SmokeStyle of the i-th volume of a draw
 };
 
 } // namespace mfx::render

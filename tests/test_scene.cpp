@@ -56,7 +56,7 @@ TEST(SceneFile, EveryKeyIsRead) {
              "alpha_power": 2, "grid": [32, 24, 16], "cell_size": 0.04, "jacobi": 30,
              "fade": 1.5, "drag": 2, "buoyancy": 0.5, "vorticity": 2, "impulse_k": 0.7, "radius": 0.1,
              "strength": 3, "emission": "surface", "surface_step": 0.01, "max_emitters": 100,
-             "sleep_threshold": 0.001},
+             "sleep_threshold": 0.001, "look": "fire", "glow": 2, "cel_bands": 3},
             {"type": "speed_lines", "width": 0.02},
             {"type": "motion_particles", "size": 0.03},
             {"type": "motion_blur"}
@@ -80,6 +80,9 @@ TEST(SceneFile, EveryKeyIsRead) {
     EXPECT_EQ(smoke->grid.cells, (std::array<uint32_t, 3>{32, 24, 16}));
     EXPECT_EQ(smoke->emission, scene::Emission::Surface);
     EXPECT_EQ(smoke->maxEmitters, 100u);
+    EXPECT_EQ(smoke->shading.preset, scene::SmokePreset::Fire);
+    EXPECT_FLOAT_EQ(smoke->shading.glow, 2.0f);
+    EXPECT_EQ(smoke->shading.celBands, 3u);
     EXPECT_FLOAT_EQ(smoke->grid.drag, 2.0f);
     EXPECT_FLOAT_EQ(smoke->trail.colour.a, 0.8f);
     EXPECT_FLOAT_EQ(lines->width, 0.02f);
@@ -179,6 +182,10 @@ const BadScene kBadScenes[] = {
      "effects[1].name: \"a\" is the name of an earlier effect"},
     {"LoopNotBoolean", R"({"character": {"loop": 1}, "effects": []})",
      "character.loop: expected true or false, got a number"},
+    {"UnknownSmokeLook", R"({"effects": [{"type": "smoke", "look": "plasma"}]})",
+     "effects[0].look: \"plasma\" is not one of: smoke, fire, energy"},
+    {"OneCelBand", R"({"effects": [{"type": "smoke", "cel_bands": 1}]})",
+     "effects[0].cel_bands: 1 is outside 2..4"},
     {"UnknownToneMap", R"({"post": {"tone_map": "filmic"}, "effects": []})",
      "post.tone_map: \"filmic\" is not one of: aces, none"},
     {"BloomAboveOne", R"({"post": {"bloom": 1.5}, "effects": []})",

@@ -37,11 +37,13 @@ std::unique_ptr<fluid::SmokeSolver> ball(gpu::Context& ctx, float radius) {
 struct Shot {
     std::vector<uint8_t> rgba;
     std::vector<float> depth;
+    std::vector<float> linear; // the target's linear RGBA
 };
 
 // The fighter in its idle pose seen from the front, and the ball centred at `centre`.
 Shot shoot(gpu::Context& ctx, const fluid::SmokeSolver* smoke, glm::vec3 centre,
-           const render::SmokeLook& look, const std::string& png) {
+           const render::SmokeLook& look, const std::string& png,
+           const scene::SmokeShading& shading = {}, float keyLight = 1.0f) {
     const anim::Character fighter = anim::makeFighter();
     scene::Scene s = scene::defaultScene();
     s.camera.position = glm::vec3(0.0f, 1.0f, 4.0f);
@@ -49,6 +51,7 @@ Shot shoot(gpu::Context& ctx, const fluid::SmokeSolver* smoke, glm::vec3 centre,
     // Lit: the chest a mid tone that white smoke in front visibly brightens (the toon style's lit
     // band is near white there).
     s.character.style = scene::CharacterStyle::Lit;
+    s.lights[0].intensity = keyLight;
     const render::SceneCamera camera = render::makeCamera(s.camera, float(kWidth) / kHeight);
     render::RenderTarget target = render::createRenderTarget(ctx, kWidth, kHeight);
     render::CharacterPass scenePass(ctx, fighter, s);
@@ -61,11 +64,12 @@ Shot shoot(gpu::Context& ctx, const fluid::SmokeSolver* smoke, glm::vec3 centre,
         render::endRendering(cmd);
         if (smoke) {
             const render::SmokePass::Volume volume{&smoke->pigmentImage(), smoke->options().grid,
-                                                   centre - glm::vec3(0.4f)};
+                                                   centre - glm::vec3(0.4f), shading};
             smokePass.draw(cmd, target, std::span(&volume, 1), camera, s.lights[0], look);
         }
     });
-    Shot shot{render::readColor(ctx, target), render::readDepth(ctx, target)};
+    Shot shot{render::readColor(ctx, target), render::readDepth(ctx, target),
+              render::readLinearColor(ctx, target)};
     const std::string dir = std::string(MFX_TEST_OUTPUT_DIR) + "/smoke_pass";
     EXPECT_TRUE(render::ensureOutputDirectory(dir).ok());
     EXPECT_TRUE(render::writePng(dir + "/" + png, kWidth, kHeight, shot.rgba).ok());
@@ -204,6 +208,48 @@ TEST_F(SmokePassTest, HalfResolutionLooksLikeFull) {
                     100.0 * d.fractionOver16);
         EXPECT_LT(d.fractionOver16, 0.002);
     }
+}
+
+// The presets in the dark (key light off), the ball in front of the fighter: plain smoke has no
+// light of its own and shows black; fire and energy glow, in their ramps' colours, brighter than
+// white at the dense middle, and fire is redder at the thin rim than in its dense middle.
+TEST_F(SmokePassTest, FireAndEnergyGlowInTheDark) {
+    const auto smoke = ball(ctx(), 6.0f);
+    const glm::vec3 centre(0.0f, 1.1f, 0.7f);
+    auto shot = [&](scene::SmokePreset preset, const std::string& png) {
+        return shoot(ctx(), smoke.get(), centre, render::SmokeLook{}, png,
+                     scene::smokeShading(preset), 0.0f);
+    };
+    const Shot plain = shot(scene::SmokePreset::Smoke, "dark_smoke.png");
+    const Shot fire = shot(scene::SmokePreset::Fire, "dark_fire.png");
+    const Shot energy = shot(scene::SmokePreset::Energy, "dark_energy.png");
+    // The ball's middle on the picture, and a point near its rim (4.5 of its 6 cells out).
+    const render::SceneCamera camera = render::makeCamera(
+        {glm::vec3(0.0f, 1.0f, 4.0f), glm::vec3(0.0f, 0.8f, 0.0f)}, float(kWidth) / kHeight);
+    auto pixelOf = [&](glm::vec3 p) {
+        const glm::vec4 clip = camera.viewProjection * glm::vec4(p, 1.0f);
+        const uint32_t x = uint32_t((clip.x / clip.w * 0.5f + 0.5f) * kWidth);
+        const uint32_t y = uint32_t((0.5f - clip.y / clip.w * 0.5f) * kHeight);
+        return (size_t(y) * kWidth + x) * 4;
+    };
+    const size_t middle = pixelOf(centre), rim = pixelOf(centre + glm::vec3(0.225f, 0.0f, 0.0f));
+    auto rgb = [](const Shot& s, size_t p) {
+        return glm::vec3(s.linear[p], s.linear[p + 1], s.linear[p + 2]);
+    };
+    std::cout << "middle: smoke " << glm::length(rgb(plain, middle)) << ", fire "
+              << rgb(fire, middle).r << " " << rgb(fire, middle).g << " " << rgb(fire, middle).b
+              << ", energy " << rgb(energy, middle).r << " " << rgb(energy, middle).g << " "
+              << rgb(energy, middle).b << "; fire rim " << rgb(fire, rim).r << " "
+              << rgb(fire, rim).g << "\n";
+    EXPECT_LT(glm::length(rgb(plain, middle)), 0.02f) << "no light, no glow: black";
+    EXPECT_GT(rgb(fire, middle).r, 1.0f) << "fire glows brighter than white";
+    EXPECT_GT(rgb(fire, middle).r, rgb(fire, middle).b) << "fire is warm";
+    EXPECT_GT(rgb(energy, middle).b, 1.0f) << "energy glows brighter than white";
+    EXPECT_GE(rgb(energy, middle).b, rgb(energy, middle).r) << "energy is cool";
+    const float hotMiddle = rgb(fire, middle).g / rgb(fire, middle).r;
+    const float coolRim = rgb(fire, rim).g / std::max(rgb(fire, rim).r, 1e-6f);
+    EXPECT_GT(rgb(fire, rim).r, 0.01f) << "the rim glows too";
+    EXPECT_GT(hotMiddle, coolRim + 0.1f) << "yellower where denser";
 }
 
 } // namespace

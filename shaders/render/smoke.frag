@@ -12,6 +12,14 @@
 // other, so that along a silhouette both the near and the far surface have texels marched for
 // them (the checkerboard min/max depth downsample common in mixed-resolution rendering).
 //
+// Shading (the volume's SmokeStyle, scene::SmokeShading): each sample scatters the key light (its
+// colour and intensity) towards the eye, isotropically, weighted by the light's transmittance
+// exp(-sum density * ds) over four samples two cells apart towards the light (self-shadowing),
+// plus a constant 0.35 of it as ambient; with cel bands that transmittance is stepped. Its albedo
+// is the pigment's colour (smoke) or the preset's ramp at the sample's pigment alpha (fire,
+// energy), and fire and energy add their own light, glow * ramp * alpha (fire: hotter where
+// denser), which may exceed 1: the bloom spreads it.
+//
 // The ray is marched only inside the box of cells that hold pigment (shaders/render/smoke.vert), with
 // its samples at the same places as a march over the whole grid would put them, so the box moving
 // from frame to frame does not move the samples.
@@ -23,12 +31,25 @@ layout(binding = 1) uniform sampler2D sceneDepth;
 
 #include "smoke_common.glsl"
 
+layout(std140, binding = 3) uniform Style {
+    SmokeStyle style;
+};
+
 layout(location = 0) out vec4 outColor;     // premultiplied
 layout(location = 1) out float outDistance; // marchedDistance() of the scene distance used
 
 vec4 sampleGrid(vec3 world) {
     vec3 uvw = (world - draw.gridOrigin.xyz) / (draw.gridOrigin.w * draw.gridSize.xyz);
     return texture(pigment, uvw);
+}
+
+vec3 rampAt(float x) {
+    if (x <= style.ramp[0].w) return style.ramp[0].rgb;
+    for (int i = 1; i < 4; ++i)
+        if (x <= style.ramp[i].w)
+            return mix(style.ramp[i - 1].rgb, style.ramp[i].rgb,
+                       (x - style.ramp[i - 1].w) / max(style.ramp[i].w - style.ramp[i - 1].w, 1e-6));
+    return style.ramp[3].rgb;
 }
 
 void main() {
@@ -82,8 +103,13 @@ void main() {
         for (int k = 1; k <= 4; ++k)
             shadow += max(sampleGrid(p + light * (float(k) * 2.0 * draw.gridOrigin.w)).a, 0.0);
         float lit = exp(-shadow * scale * 2.0 * draw.gridOrigin.w);
-        vec3 albedo = s.rgb / max(s.a, 1e-4);
-        colour += transmittance * a * albedo * (0.35 + 0.65 * lit);
+        if (style.params.y > 0.0) lit = floor(lit * style.params.y + 0.5) / style.params.y;
+        float density01 = clamp(s.a, 0.0, 1.0);
+        bool ramped = style.params.w != MFX_SMOKE_PRESET_SMOKE;
+        vec3 albedo = ramped ? rampAt(density01) : s.rgb / max(s.a, 1e-4);
+        vec3 keyLight = style.light.rgb * style.params.z;
+        vec3 emitted = ramped ? style.params.x * rampAt(density01) * density01 : vec3(0.0);
+        colour += transmittance * a * (albedo * keyLight * (0.35 + 0.65 * lit) + emitted);
         transmittance *= 1.0 - a;
     }
     outColor = vec4(colour, 1.0 - transmittance);

@@ -42,6 +42,19 @@ struct SmokeDraw {
     vec4 light;                 // xyz: unit vector towards the key light; w: density scale
 };
 
+// SmokeStyle::params.w values (scene::SmokePreset).
+#define MFX_SMOKE_PRESET_SMOKE 0.0
+#define MFX_SMOKE_PRESET_FIRE 1.0
+#define MFX_SMOKE_PRESET_ENERGY 2.0
+
+// How the march shades one volume (uniform buffer, std140, binding 3 of smoke.frag).
+struct SmokeStyle {
+    vec4 ramp[4]; // rgb: the colour at pigment alpha w (rising); used by fire and energy
+    vec4 params;  // x: glow (emitted light at full density); y: cel bands (0: smooth); z: key
+                  // light intensity; w: MFX_SMOKE_PRESET_*
+    vec4 light;   // rgb: the key light's colour
+};
+
 MFX_SHARED_END
 
 #ifdef __cplusplus
@@ -52,6 +65,8 @@ MFX_CHECK_LAYOUT(PigmentBoundsDispatch, threshold, 16);
 MFX_CHECK_SIZE(SmokeDraw, 128);
 MFX_CHECK_LAYOUT(SmokeDraw, gridOrigin, 64);
 MFX_CHECK_LAYOUT(SmokeDraw, light, 112);
+MFX_CHECK_SIZE(SmokeStyle, 96);
+MFX_CHECK_LAYOUT(SmokeStyle, params, 64);
 #endif
 
 #endif

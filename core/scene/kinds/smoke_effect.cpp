@@ -9,7 +9,14 @@ using detail::Object;
 std::vector<std::string> SmokeSpec::keys() {
     return trailKeys({"grid", "cell_size", "jacobi", "fade", "drag", "steps_per_second", "buoyancy",
                       "vorticity", "impulse_k", "radius", "strength", "emission", "surface_step",
-                      "max_emitters", "sleep_threshold", "follow"});
+                      "max_emitters", "sleep_threshold", "follow", "look", "glow", "cel_bands"});
+}
+
+SmokeShading smokeShading(SmokePreset preset) {
+    SmokeShading s;
+    s.preset = preset;
+    s.glow = preset == SmokePreset::Fire ? 3.0f : preset == SmokePreset::Energy ? 4.0f : 0.0f;
+    return s;
 }
 
 std::unique_ptr<EffectKindSpec> SmokeSpec::parse(const Object& o) {
@@ -42,6 +49,12 @@ std::unique_ptr<EffectKindSpec> SmokeSpec::parse(const Object& o) {
     e->surfaceStep = float(o.number("surface_step", e->surfaceStep, 0.0, 1.0, true));
     e->maxEmitters = o.integer("max_emitters", e->maxEmitters, 1, 4096);
     e->sleepThreshold = float(o.number("sleep_threshold", e->sleepThreshold, 0.0, 1.0, true));
+    const std::string look = o.choice("look", "smoke", {"smoke", "fire", "energy"});
+    e->shading = smokeShading(look == "fire"     ? SmokePreset::Fire
+                              : look == "energy" ? SmokePreset::Energy
+                                                 : SmokePreset::Smoke);
+    e->shading.glow = float(o.number("glow", e->shading.glow, 0.0, 1000.0));
+    if (o.has("cel_bands")) e->shading.celBands = o.integer("cel_bands", 0, 2, 4);
     return e;
 }
 

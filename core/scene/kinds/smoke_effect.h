@@ -13,6 +13,19 @@ namespace mfx::scene {
 
 enum class Emission { Vertices, Surface };
 
+// How the smoke is shaded (render/smoke_pass.h, shaders/render/smoke.frag). Presets:
+// smoke: the pigment's colour, lit by the key light with self-shadowing, no light of its own;
+// fire: a colour ramp by density (dark red where thin to yellow-white where dense) that glows,
+//   hotter where denser; energy: a cyan-to-white ramp that glows.
+enum class SmokePreset { Smoke, Fire, Energy };
+struct SmokeShading {
+    SmokePreset preset = SmokePreset::Smoke;
+    float glow = 0.0f;     // emitted light (HDR) at full density; default by preset: 0, 3, 4
+    uint32_t celBands = 0; // 0: smooth light; 2-4: the key light's share in that many steps
+};
+// The preset's defaults (glow) for `preset`.
+SmokeShading smokeShading(SmokePreset preset);
+
 // What a grid is: effects with equal grid settings share it.
 struct SmokeGridSpec {
     std::array<uint32_t, 3> cells{48, 48, 48};
@@ -41,6 +54,7 @@ struct SmokeSpec : TrailEffect<SmokeSpec> {
     float surfaceStep = 0.02f; // UV-space step of surface emission
     uint32_t maxEmitters = 256;
     float sleepThreshold = 1e-4f; // below this pigment and speed, the solver sleeps
+    SmokeShading shading;
 
     static std::vector<std::string> keys();
     static std::unique_ptr<EffectKindSpec> parse(const detail::Object& o);
