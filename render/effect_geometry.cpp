@@ -63,23 +63,33 @@ gpu::Program trajectoryDrawProgram(const gpu::Context& ctx, const char* name, Tr
 }
 
 gpu::Buffer ribbonStyleBuffer(const gpu::Context& ctx, const scene::RibbonLook& look) {
+    // Every stop filled: past the last given, the last again at life 1 (ribbon_style.glsl).
     shared::RibbonStyle style{};
-    for (size_t i = 0; i < look.colourOverLife.size() && i < MFX_RIBBON_MAX_STOPS; ++i) {
-        style.colours[i] = look.colourOverLife[i].colour;
-        style.colourAt[i / 4][int(i % 4)] = look.colourOverLife[i].at;
+    const size_t colours = look.colourOverLife.size(), widths = look.widthOverLife.size();
+    for (size_t i = 0; i < MFX_RIBBON_MAX_STOPS; ++i) {
+        const int lane = int(i % 4);
+        if (colours > 0) {
+            const scene::GradientStop& c = look.colourOverLife[std::min(i, colours - 1)];
+            style.colours[i] = c.colour;
+            style.colourAt[i / 4][lane] = i < colours ? c.at : 1.0f;
+        }
+        if (widths > 0) {
+            const scene::CurveStop& w = look.widthOverLife[std::min(i, widths - 1)];
+            style.widths[i / 4][lane] = w.value;
+            style.widthAt[i / 4][lane] = i < widths ? w.at : 1.0f;
+        }
     }
-    for (size_t i = 0; i < look.widthOverLife.size() && i < MFX_RIBBON_MAX_STOPS; ++i) {
-        style.widths[i / 4][int(i % 4)] = look.widthOverLife[i].value;
-        style.widthAt[i / 4][int(i % 4)] = look.widthOverLife[i].at;
-    }
-    style.counts =
-        glm::vec4(float(std::min<size_t>(look.colourOverLife.size(), 8)),
-                  float(std::min<size_t>(look.widthOverLife.size(), 8)), look.intensity, look.core);
-    style.blend = glm::vec4(look.additive ? 1.0f : 0.0f, 0.0f, 0.0f, 0.0f);
     gpu::Buffer buffer = gpu::createBuffer(ctx, sizeof style, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                            gpu::MemoryUsage::Upload, "ribbon style");
     std::memcpy(buffer.mapped, &style, sizeof style);
     return buffer;
+}
+
+void setRibbonLook(shared::EffectDraw& draw, const scene::RibbonLook& look) {
+    draw.ribbonFlags =
+        glm::vec4(look.colourOverLife.empty() ? 0.0f : 1.0f,
+                  look.widthOverLife.empty() ? 0.0f : 1.0f, look.additive ? 1.0f : 0.0f, 0.0f);
+    draw.ribbonLight = glm::vec4(look.intensity, look.core, 0.0f, 0.0f);
 }
 
 gpu::Buffer sceneFrameBuffer(const gpu::Context& ctx, const char* name) {

@@ -15,6 +15,7 @@
 #include "core/scene/scene.h"
 #include "core/trajectory/trajectory_source.h"
 #include "render/scene_camera.h"
+#include "shaders/shared/effect_draw.h"
 #include "shaders/shared/skinning.h"
 
 #include <cstdint>
@@ -59,6 +60,8 @@ gpu::Buffer sceneFrameBuffer(const gpu::Context& ctx, const char* name);
 // The speed-line programs' ribbon style (binding 1, shaders/render/ribbon_style.glsl) of `look`,
 // in a host-visible uniform buffer.
 gpu::Buffer ribbonStyleBuffer(const gpu::Context& ctx, const scene::RibbonLook& look);
+// The look's switches and light in a speed-line draw's push constants.
+void setRibbonLook(shared::EffectDraw& draw, const scene::RibbonLook& look);
 
 // A device-local storage buffer (at least 64 bytes, so an empty one is still valid) that can also
 // be copied to and from, with `extra` usage.

@@ -227,6 +227,7 @@ uint32_t AfterimagePass::draw(VkCommandBuffer cmd, const sim::SceneSimulation& s
         shared::EffectDraw d{};
         d.timing = glm::vec4(0.0f, 1.0f, effect.kind.width, 1.0f / scene.output.fps);
         d.tint = glm::vec4(1.0f);
+        setRibbonLook(d, scene::RibbonLook{});
         if (variant == scene::AfterimageVariant::Smear) {
             smearDraw_.bind(cmd, {gpu::bindBuffer(0, frame_)});
             smearDraw_.push(cmd, d);

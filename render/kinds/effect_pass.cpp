@@ -57,6 +57,7 @@ uint32_t EffectPass::draw(VkCommandBuffer cmd, const sim::SceneSimulation& simul
             d.timing = glm::vec4(now, float(effect.trail->lifetime) / simulation.scene().output.fps,
                                  width, 1.0f / simulation.scene().output.fps);
             d.tint = glm::vec4(1.0f);
+            if (lines) setRibbonLook(d, lines->ribbon);
             program.push(cmd, d);
             const VkBuffer vertices = queue.vertices().get();
             const VkDeviceSize offset = 0;

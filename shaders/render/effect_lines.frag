@@ -16,7 +16,7 @@ void main() {
     // negative weight is not clamped away.
     float edge = clamp(1.0 - across * across, 0.0, 1.0);
     float a = clamp(ribbonColour.a * edge, 0.0, 1.0);
-    vec3 core = mix(ribbonColour.rgb, vec3(1.0), ribbon.counts.w * edge * edge); // white-hot centre
-    vec3 light = core * ribbon.counts.z * a;
-    outColor = vec4(light, ribbon.blend.x > 0.5 ? 0.0 : a);
+    vec3 core = mix(ribbonColour.rgb, vec3(1.0), draw.ribbonLight.y * edge * edge); // hot centre
+    vec3 light = core * draw.ribbonLight.x * a;
+    outColor = vec4(light, draw.ribbonFlags.z > 0.5 ? 0.0 : a);
 }

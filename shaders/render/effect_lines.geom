@@ -27,7 +27,7 @@ void main() {
     side = normalize(side);
     for (int k = 0; k < 2; ++k) {
         vec3 p = k == 0 ? a : b;
-        float halfWidth = ribbon.counts.y > 0.0
+        float halfWidth = draw.ribbonFlags.y > 0.5
                               ? 0.5 * draw.timing.z * widthOverLife(vertexLife[k])
                               : 0.5 * draw.timing.z * (1.0 - 0.7 * vertexTau[k]) *
                                     max(vertexColour[k].a, 0.15);

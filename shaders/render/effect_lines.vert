@@ -18,7 +18,7 @@ layout(location = 2) out float vertexLife;
 void main() {
     float fade = ageFade(normal.w);
     vertexLife = 1.0 - fade;
-    if (ribbon.counts.x > 0.0) {
+    if (draw.ribbonFlags.x > 0.5) {
         // The stored alpha is the source's alpha times the attenuation at tau.
         vec4 c = colourOverLife(vertexLife);
         vertexColour = vec4(c.rgb * draw.tint.rgb, c.a * colour.a * draw.tint.a);

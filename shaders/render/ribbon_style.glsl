@@ -1,6 +1,9 @@
 // The speed-line ribbon's look over its life u = age / lifetime (0 at the head, 1 at the tail):
 // colour_over_life and width_over_life, piecewise linear between their stops
 // (scene::RibbonLook; core/scene/kinds/trail_effects.cpp colourAt and valueAt on the CPU).
+// Every one of the MFX_RIBBON_MAX_STOPS stops is filled (the last given repeated at life 1), so
+// the loops have a fixed length and no branch reads the uniform buffer: each step moves towards
+// the next stop by how far u is past the previous one, which is 0 before it and 1 after it.
 #ifndef MFX_RIBBON_STYLE_GLSL
 #define MFX_RIBBON_STYLE_GLSL
 
@@ -16,29 +19,27 @@ float colourStopAt(int i) {
 float widthStopAt(int i) {
     return ribbon.widthAt[i / 4][i % 4];
 }
+float widthOf(int i) {
+    return ribbon.widths[i / 4][i % 4];
+}
+
+// How far u is from stop a to stop b, clamped to [0, 1] (1 when they coincide and u is past).
+float between(float u, float a, float b) {
+    return b > a ? clamp((u - a) / (b - a), 0.0, 1.0) : step(a, u);
+}
 
 vec4 colourOverLife(float u) {
-    int n = int(ribbon.counts.x);
-    if (u <= colourStopAt(0)) return ribbon.colours[0];
-    for (int i = 1; i < n; ++i)
-        if (u <= colourStopAt(i)) {
-            float span = colourStopAt(i) - colourStopAt(i - 1);
-            float f = span > 0.0 ? (u - colourStopAt(i - 1)) / span : 1.0;
-            return mix(ribbon.colours[i - 1], ribbon.colours[i], f);
-        }
-    return ribbon.colours[n - 1];
+    vec4 c = ribbon.colours[0];
+    for (int i = 1; i < MFX_RIBBON_MAX_STOPS; ++i)
+        c = mix(c, ribbon.colours[i], between(u, colourStopAt(i - 1), colourStopAt(i)));
+    return c;
 }
 
 float widthOverLife(float u) {
-    int n = int(ribbon.counts.y);
-    if (u <= widthStopAt(0)) return ribbon.widths[0][0];
-    for (int i = 1; i < n; ++i)
-        if (u <= widthStopAt(i)) {
-            float span = widthStopAt(i) - widthStopAt(i - 1);
-            float f = span > 0.0 ? (u - widthStopAt(i - 1)) / span : 1.0;
-            return mix(ribbon.widths[(i - 1) / 4][(i - 1) % 4], ribbon.widths[i / 4][i % 4], f);
-        }
-    return ribbon.widths[(n - 1) / 4][(n - 1) % 4];
+    float w = widthOf(0);
+    for (int i = 1; i < MFX_RIBBON_MAX_STOPS; ++i)
+        w = mix(w, widthOf(i), between(u, widthStopAt(i - 1), widthStopAt(i)));
+    return w;
 }
 
 #endif

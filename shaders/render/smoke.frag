@@ -43,13 +43,16 @@ vec4 sampleGrid(vec3 world) {
     return texture(pigment, uvw);
 }
 
+// The ramp at x, piecewise linear. No branch here or below reads the style's buffer (lavapipe
+// compiles a shader variant for each value a uniform-buffer branch takes): each step moves towards
+// the next stop by how far x is past the previous one, and the switches are mixes.
 vec3 rampAt(float x) {
-    if (x <= style.ramp[0].w) return style.ramp[0].rgb;
-    for (int i = 1; i < 4; ++i)
-        if (x <= style.ramp[i].w)
-            return mix(style.ramp[i - 1].rgb, style.ramp[i].rgb,
-                       (x - style.ramp[i - 1].w) / max(style.ramp[i].w - style.ramp[i - 1].w, 1e-6));
-    return style.ramp[3].rgb;
+    vec3 c = style.ramp[0].rgb;
+    for (int i = 1; i < 4; ++i) {
+        float a = style.ramp[i - 1].w, b = style.ramp[i].w;
+        c = mix(c, style.ramp[i].rgb, b > a ? clamp((x - a) / (b - a), 0.0, 1.0) : step(a, x));
+    }
+    return c;
 }
 
 void main() {
@@ -103,12 +106,14 @@ void main() {
         for (int k = 1; k <= 4; ++k)
             shadow += max(sampleGrid(p + light * (float(k) * 2.0 * draw.gridOrigin.w)).a, 0.0);
         float lit = exp(-shadow * scale * 2.0 * draw.gridOrigin.w);
-        if (style.params.y > 0.0) lit = floor(lit * style.params.y + 0.5) / style.params.y;
+        float bands = max(style.params.y, 1.0);
+        lit = mix(lit, floor(lit * bands + 0.5) / bands, float(style.params.y > 0.5));
         float density01 = clamp(s.a, 0.0, 1.0);
-        bool ramped = style.params.w != MFX_SMOKE_PRESET_SMOKE;
-        vec3 albedo = ramped ? rampAt(density01) : s.rgb / max(s.a, 1e-4);
+        float ramped = float(style.params.w > 0.5); // fire or energy
+        vec3 ramp = rampAt(density01);
+        vec3 albedo = mix(s.rgb / max(s.a, 1e-4), ramp, ramped);
         vec3 keyLight = style.light.rgb * style.params.z;
-        vec3 emitted = ramped ? style.params.x * rampAt(density01) * density01 : vec3(0.0);
+        vec3 emitted = ramped * style.params.x * ramp * density01;
         colour += transmittance * a * (albedo * keyLight * (0.35 + 0.65 * lit) + emitted);
         transmittance *= 1.0 - a;
     }

@@ -11,28 +11,32 @@ struct EffectDraw {
     vec4 timing; // x: the frame's time (s); y: the trail's lifetime (s); z: width or size (world
                  // units); w: the segment's dt (s), for the age of a sample along it
     vec4 tint;   // rgb multiplies the vertex colour; a multiplies its alpha
+    // Speed-line ribbons (scene::RibbonLook): x 1 = colour over life, y 1 = width over life,
+    // z 1 = additive; w: unused. In push constants, not the style's uniform buffer, so that no
+    // branch depends on a uniform buffer (lavapipe compiles a shader variant per value of such).
+    vec4 ribbonFlags;
+    vec4 ribbonLight; // x: intensity; y: core whiteness; zw: unused
 };
 
 // How a speed-line ribbon looks over its life (scene::RibbonLook; uniform buffer, std140, binding
-// 1 of the speed-line program). Stop i's position is colourAt[i / 4][i % 4], and so on.
+// 1 of the speed-line program). Stop i's position is colourAt[i / 4][i % 4], and so on; all
+// MFX_RIBBON_MAX_STOPS stops are filled, those past the last given repeating it at life 1.
 #define MFX_RIBBON_MAX_STOPS 8
 struct RibbonStyle {
     vec4 colours[MFX_RIBBON_MAX_STOPS]; // RGBA by life
     vec4 colourAt[2];
     vec4 widths[2]; // the width's factor by life
     vec4 widthAt[2];
-    vec4 counts; // x: colour stops (0: the trail's colour, faded with age); y: width stops (0: the
-                 // built-in taper); z: intensity; w: core whiteness
-    vec4 blend;  // x: 1 additive, 0 alpha
 };
 
 MFX_SHARED_END
 
 #ifdef __cplusplus
-MFX_CHECK_SIZE(EffectDraw, 32);
-MFX_CHECK_SIZE(RibbonStyle, 256);
+MFX_CHECK_SIZE(EffectDraw, 64);
+MFX_CHECK_LAYOUT(EffectDraw, ribbonLight, 48);
+MFX_CHECK_SIZE(RibbonStyle, 224);
 MFX_CHECK_LAYOUT(RibbonStyle, colourAt, 128);
-MFX_CHECK_LAYOUT(RibbonStyle, counts, 224);
+MFX_CHECK_LAYOUT(RibbonStyle, widthAt, 192);
 #endif
 
 #endif
