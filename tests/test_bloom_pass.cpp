@@ -7,6 +7,7 @@
 #include "tests/scene_render_util.h"
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 namespace mfx::test {
@@ -108,6 +109,20 @@ TEST_F(BloomPassTest, ADrawnFrameKeepsItsEnergy) {
     std::cout << "linear total without bloom " << before << ", with " << after << "\n";
     EXPECT_NEAR(after / before, 1.0, 0.03);
     EXPECT_NE(plain, bloomed);
+}
+
+// Stacked additive light can overflow fp16 to infinity, and a NaN would spread to every texel the
+// bloom touches: both stay contained, and the picture stays finite.
+TEST_F(BloomPassTest, InfinityAndNaNStayContained) {
+    std::vector<float> rgba = black();
+    rgba[at(40, 48)] = std::numeric_limits<float>::infinity();
+    rgba[at(120, 48)] = std::numeric_limits<float>::quiet_NaN();
+    const std::vector<float> out = bloom(rgba, 0.5f);
+    size_t bad = 0;
+    for (size_t p = 0; p < out.size(); p += 4)
+        bad += std::isfinite(out[p]) ? 0 : 1;
+    EXPECT_EQ(bad, 0u);
+    EXPECT_LT(out[at(140, 48)], 1.0f) << "the NaN spreads no light";
 }
 
 TEST_F(BloomPassTest, AnEvenPictureStaysEven) {

@@ -6,6 +6,7 @@
 #include "tests/post_test_util.h"
 
 #include <cmath>
+#include <limits>
 
 namespace mfx::test {
 namespace {
@@ -97,6 +98,21 @@ TEST_F(ToneMapPassTest, OneStopOfExposureDoublesTheColour) {
             ASSERT_LE(darker[x], normal[x]) << "at " << x;
         }
     }
+}
+
+TEST_F(ToneMapPassTest, InfinityIsWhiteAndNaNIsBlack) {
+    std::vector<float> rgba(size_t(kWidth) * kHeight * 4, 0.5f);
+    rgba[0] = rgba[1] = rgba[2] = std::numeric_limits<float>::infinity();
+    rgba[4] = rgba[5] = rgba[6] = std::numeric_limits<float>::quiet_NaN();
+    render::RenderTarget picture = render::createRenderTarget(ctx(), kWidth, kHeight);
+    render::RenderTarget output = render::createOutputTarget(ctx(), kWidth, kHeight);
+    fillSceneColour(ctx(), picture, rgba);
+    render::ToneMapPass pass(ctx());
+    gpu::submitOneShot(
+        ctx(), [&](VkCommandBuffer cmd) { pass.record(cmd, picture.color, output, aces()); });
+    const std::vector<uint8_t> out = render::readColor(ctx(), output);
+    EXPECT_EQ(out[0], 255);
+    EXPECT_EQ(out[4], 0);
 }
 
 } // namespace

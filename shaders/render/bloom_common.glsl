@@ -15,6 +15,13 @@ layout(push_constant) uniform Step {
     BloomStep step;
 };
 
+// fp16 holds at most 65504: stacked additive light can overflow to infinity, and a NaN spreads to
+// every texel the bloom touches. Each tap is kept finite, non-negative and within fp16.
+vec3 finiteLight(vec3 c) {
+    bvec3 bad = isnan(c);
+    return clamp(vec3(bad.x ? 0.0 : c.x, bad.y ? 0.0 : c.y, bad.z ? 0.0 : c.z), 0.0, 65504.0);
+}
+
 // The 13 taps around `uv` of a texture of texel size `t`: four overlapping 2x2 boxes around the
 // centre (weight 0.5 together) and four boxes at the corners of a 4x4 block, shared by the centre
 // box (0.125 each, the shared taps weighted so that the nine weights sum to 1).
@@ -32,8 +39,10 @@ vec3 downsample13(sampler2D source, vec2 uv, vec2 t) {
     vec3 k = textureLod(source, uv + t * vec2(1.0, -1.0), 0.0).rgb;
     vec3 l = textureLod(source, uv + t * vec2(-1.0, 1.0), 0.0).rgb;
     vec3 m = textureLod(source, uv + t * vec2(1.0, 1.0), 0.0).rgb;
-    return e * 0.125 + (a + c + g + i) * 0.03125 + (b + d + f + h) * 0.0625 +
-           (j + k + l + m) * 0.125;
+    return finiteLight(e) * 0.125 +
+           (finiteLight(a) + finiteLight(c) + finiteLight(g) + finiteLight(i)) * 0.03125 +
+           (finiteLight(b) + finiteLight(d) + finiteLight(f) + finiteLight(h)) * 0.0625 +
+           (finiteLight(j) + finiteLight(k) + finiteLight(l) + finiteLight(m)) * 0.125;
 }
 
 // The 3x3 tent (1 2 1 / 2 4 2 / 1 2 1, over 16) one texel of the coarser level `t` apart.

@@ -15,6 +15,7 @@ void main() {
     vec2 uv;
     if (!texelOf(texel, uv)) return;
     vec4 own = imageLoad(picture, texel);
+    own.rgb = finiteLight(own.rgb);
     vec3 bloom = textureLod(levels, uv, 0.0).rgb * step.weights.y;
     imageStore(picture, texel, vec4(mix(own.rgb, bloom, step.weights.x), own.a));
 }

@@ -21,7 +21,11 @@ vec3 acesFit(vec3 x) {
 }
 
 void main() {
-    vec3 colour = max(texelFetch(picture, ivec2(gl_FragCoord.xy), 0).rgb, vec3(0.0));
+    // NaN to 0, infinity to the largest fp16, below 0 to 0.
+    vec3 colour = texelFetch(picture, ivec2(gl_FragCoord.xy), 0).rgb;
+    bvec3 bad = isnan(colour);
+    colour = vec3(bad.x ? 0.0 : colour.x, bad.y ? 0.0 : colour.y, bad.z ? 0.0 : colour.z);
+    colour = clamp(colour, 0.0, 65504.0);
     colour *= draw.exposureScale;
     if (draw.toneMap == MFX_TONE_MAP_ACES) colour = acesFit(colour);
     outColor = vec4(clamp(colour, 0.0, 1.0), 1.0);
