@@ -51,13 +51,12 @@ anim::Character flatCube() {
             const glm::vec3 u = axis == 1 ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
             const glm::vec3 v = glm::cross(n, u);
             const uint32_t base = uint32_t(p.positions.size());
-            for (glm::vec2 c : {glm::vec2(-1, -1), glm::vec2(1, -1), glm::vec2(1, 1),
-                                glm::vec2(-1, 1)}) {
+            for (glm::vec2 c :
+                 {glm::vec2(-1, -1), glm::vec2(1, -1), glm::vec2(1, 1), glm::vec2(-1, 1)}) {
                 p.positions.push_back(0.4f * (n + c.x * u + c.y * v));
                 p.normals.push_back(n);
             }
-            p.indices.insert(p.indices.end(),
-                             {base, base + 1, base + 2, base, base + 2, base + 3});
+            p.indices.insert(p.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
         }
     p.baseColor = glm::vec4(0.9f, 0.25f, 0.2f, 1.0f);
     anim::Character c;
@@ -157,9 +156,9 @@ TEST_F(ToonShadingTest, TheOutlineIsAsWideNearAndFar) {
     const anim::Character ball = sphere();
     for (float width : {2.0f, 4.0f}) {
         for (float distance : {2.5f, 6.0f}) {
-            const std::vector<uint8_t> rgba = draw(ball, objectScene(distance, 3, width),
-                                                   "outline_" + std::to_string(int(width)) + "_" +
-                                                       std::to_string(int(distance)));
+            const std::vector<uint8_t> rgba =
+                draw(ball, objectScene(distance, 3, width),
+                     "outline_" + std::to_string(int(width)) + "_" + std::to_string(int(distance)));
             const int measured = outlineFromLeft(rgba, kSize / 2);
             EXPECT_NEAR(measured, width, 1.0) << "width " << width << " at distance " << distance;
         }
@@ -197,7 +196,8 @@ TEST_F(ToonShadingTest, ImportedCharactersAreOutlinedAllRound) {
         Result<DrawnScene> drawn = drawScene(ctx(), s, kSize, kSize, VK_SAMPLE_COUNT_1_BIT);
         ASSERT_TRUE(drawn) << drawn.error().message;
         drawn.value().playTo(ctx());
-        const std::vector<uint8_t> rgba = render::readColor(ctx(), drawn.value().renderer->output());
+        const std::vector<uint8_t> rgba =
+            render::readColor(ctx(), drawn.value().renderer->output());
         EXPECT_TRUE(render::writePng(std::string(MFX_TEST_OUTPUT_DIR) + "/toon/" + file + ".png",
                                      kSize, kSize, rgba)
                         .ok());

@@ -57,9 +57,10 @@ std::vector<glm::vec3> weldedNormals(const std::vector<glm::vec3>& positions,
         sums[{positions[v].x, positions[v].y, positions[v].z}] += normals[v];
     std::vector<glm::vec3> welded(positions.size(), fallback);
     for (size_t v = 0; v < positions.size(); ++v) {
-        const glm::vec3 n = sums[{positions[v].x, positions[v].y, positions[v].z}];
-        const float length = glm::length(n);
-        if (length > 1e-6f && std::isfinite(length)) welded[v] = n / length;
+        const auto sum = sums.find({positions[v].x, positions[v].y, positions[v].z});
+        if (sum == sums.end()) continue; // a position without a normal: the fallback
+        const float length = glm::length(sum->second);
+        if (length > 1e-6f && std::isfinite(length)) welded[v] = sum->second / length;
     }
     return welded;
 }

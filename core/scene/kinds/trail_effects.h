@@ -53,7 +53,8 @@ struct RibbonLook {
     bool additive = false;  // add light instead of covering (alpha) what is behind
     float core = 0.5f;      // how far the ribbon's centre goes towards white, 0..1
 };
-// The ribbon keys and their reading (speed-lines and the afterimage's speed-line variant).
+// The ribbon keys and their reading (speed-lines; the afterimage's speed-line variant draws the
+// default look).
 std::vector<std::string> ribbonKeys();
 void readRibbon(const detail::Object& o, RibbonLook& r);
 // The colour or the factor at life u.
