@@ -86,10 +86,10 @@ gpu::Buffer ribbonStyleBuffer(const gpu::Context& ctx, const scene::RibbonLook& 
 }
 
 void setRibbonLook(shared::EffectDraw& draw, const scene::RibbonLook& look) {
-    draw.ribbonFlags =
-        glm::vec4(look.colourOverLife.empty() ? 0.0f : 1.0f,
-                  look.widthOverLife.empty() ? 0.0f : 1.0f, look.additive ? 1.0f : 0.0f, 0.0f);
-    draw.ribbonLight = glm::vec4(look.intensity, look.core, 0.0f, 0.0f);
+    draw.ribbonFlags = glm::vec4(look.colourOverLife.empty() ? 0.0f : 1.0f,
+                                 look.widthOverLife.empty() ? 0.0f : 1.0f,
+                                 look.additive ? 1.0f : 0.0f, look.bladeFacing ? 1.0f : 0.0f);
+    draw.ribbonLight = glm::vec4(look.intensity, look.core, look.tube ? 1.0f : 0.0f, 0.0f);
 }
 
 gpu::Buffer sceneFrameBuffer(const gpu::Context& ctx, const char* name) {

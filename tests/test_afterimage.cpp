@@ -331,6 +331,9 @@ TEST(AfterimageScene, RefusesKeysOfOtherEffectsAndVariants) {
     EXPECT_EQ(sceneError(R"({"type": "afterimage_smear", "variant": "multi", "width": 0.1})"),
               "s.json: effects[0].width: only for \"variant\": \"speed_lines\" (the variant is "
               "\"multi\")");
+    EXPECT_EQ(sceneError(R"({"type": "afterimage_smear", "shape": "tube"})"),
+              "s.json: effects[0].shape: only for \"variant\": \"speed_lines\" (the variant is "
+              "\"smear\")");
 }
 
 } // namespace

@@ -13,17 +13,23 @@
 namespace mfx::test {
 namespace {
 
-Result<scene::Scene> lineScene(const std::string& look) {
+// The point sliding along x, seen from the side, with one effect: speed-lines with `look`, or
+// the JSON of `effect`.
+Result<scene::Scene> pointScene(const std::string& effect) {
     return scene::parseScene(R"({
         "character": {"source": "point.gltf"},
         "stage": {"floor": false, "backdrop": false},
         "lights": [{"direction": [0, -1, 0], "shadow": false}],
         "camera": {"position": [0, 0.6, 2], "target": [0, 0.6, 0], "fov_degrees": 40},
         "output": {"fps": 30, "frames": 36},
-        "effects": [{"type": "speed_lines", "lifetime": 10, "stride": 1, "width": 0.2,
-                     "alpha_start": 1, "alpha_end": 1, "core": 0, )" +
-                                 look + "}]}",
+        "effects": [)" + effect + "]}",
                              "ribbon.json");
+}
+
+Result<scene::Scene> lineScene(const std::string& look) {
+    return pointScene(R"({"type": "speed_lines", "lifetime": 10, "stride": 1, "width": 0.2,
+                          "alpha_start": 1, "alpha_end": 1, "core": 0, )" +
+                      look + "}");
 }
 
 const scene::SpeedLinesSpec& linesOf(const scene::Scene& s) {
@@ -46,6 +52,12 @@ TEST(RibbonLook, ReadsEveryKey) {
     EXPECT_FLOAT_EQ(r.intensity, 6.0f);
     EXPECT_TRUE(r.additive);
     EXPECT_FLOAT_EQ(r.core, 0.0f);
+    EXPECT_FALSE(r.bladeFacing);
+    EXPECT_FALSE(r.tube);
+    Result<scene::Scene> shaped = lineScene(R"("facing": "blade", "shape": "tube")");
+    ASSERT_TRUE(shaped) << shaped.error().message;
+    EXPECT_TRUE(linesOf(shaped.value()).ribbon.bladeFacing);
+    EXPECT_TRUE(linesOf(shaped.value()).ribbon.tube);
 }
 
 TEST(RibbonLook, RefusesBadStops) {
@@ -60,6 +72,8 @@ TEST(RibbonLook, RefusesBadStops) {
          "effects[0].colour_over_life[0].color: unknown key; keys here are: at, colour"},
         {R"("blend": "screen")", "effects[0].blend: \"screen\" is not one of: alpha, additive"},
         {R"("intensity": -1)", "effects[0].intensity: -1 is outside [0, 1000]"},
+        {R"("facing": "view")", "effects[0].facing: \"view\" is not one of: camera, blade"},
+        {R"("shape": "cylinder")", "effects[0].shape: \"cylinder\" is not one of: flat, tube"},
     };
     for (const auto& [look, message] : cases) {
         Result<scene::Scene> s = lineScene(look);
@@ -87,10 +101,25 @@ protected:
 
     // The last frame's linear colour (RGBA floats), the point's head at x = 0.25, its trail of 10
     // frames (0.5 m) back to x = -0.25, at y = 0.6 (the picture's middle row).
-    std::vector<float> drawLine(const std::string& look) {
-        Result<scene::Scene> s = lineScene(look);
+    // `normal`: the point's surface normal (what a blade-facing ribbon lies across).
+    std::vector<float> drawLine(const std::string& look, glm::vec3 normal = {0, 1, 0}) {
+        return draw(lineScene(look), normal);
+    }
+    // With `triangle`, the point is a triangle a millimetre across (the afterimage draws from
+    // the vertices of triangles).
+    std::vector<float> draw(const Result<scene::Scene>& s, glm::vec3 normal,
+                            bool triangle = false) {
         EXPECT_TRUE(s) << (s ? "" : s.error().message);
-        const anim::Character point = movingPoint();
+        anim::Character point = movingPoint();
+        anim::Primitive& p = point.meshes[0].primitives[0];
+        p.normals[0] = normal;
+        if (triangle) {
+            p.positions = {glm::vec3(0.0f), glm::vec3(0, 0.001f, 0), glm::vec3(0, 0, 0.001f)};
+            p.normals.assign(3, normal);
+            p.joints.assign(3, glm::uvec4(0));
+            p.weights.assign(3, glm::vec4(1, 0, 0, 0));
+            p.indices = {0, 1, 2};
+        }
         auto sim = sim::SceneSimulation::create(ctx(), s.value(), point);
         EXPECT_TRUE(sim) << (sim ? "" : sim.error().message);
         render::FrameRenderer renderer(ctx(), *sim.value(), kWidth, kHeight, VK_SAMPLE_COUNT_1_BIT);
@@ -118,6 +147,9 @@ protected:
         return rows;
     }
     render::SceneCamera camera_;
+    // The full width all along (no taper).
+    inline static const std::string kEvenWidth =
+        R"("width_over_life": [{"at": 0, "width": 1}, {"at": 1, "width": 1}], )";
     static constexpr float kHead = 0.25f, kTail = -0.25f;
 };
 
@@ -173,6 +205,91 @@ TEST_F(RibbonDrawTest, AdditiveRibbonsAddHdrLight) {
     EXPECT_NEAR(a.g - background.g, 2.0f * coverage, 0.02f) << "orange, as given";
     EXPECT_NEAR(a.b, background.b, 0.002f) << "additive: the background still shows";
     EXPECT_LT(c.b, background.b * (1.0f - coverage) + 0.002f) << "alpha: the ribbon covers it";
+}
+
+// Facing the blade, the ribbon lies in the plane of the point's surface through its motion: with
+// the normal towards the camera it is as wide as a camera-facing one; with the normal up (the
+// motion plane seen edge-on from the side) it all but vanishes, where the camera-facing one stays.
+TEST_F(RibbonDrawTest, BladeFacingLiesInTheSurfacesPlane) {
+    const int x = int(column(0.0f));
+    const int facing = coveredRows(drawLine(kEvenWidth + R"("facing": "camera")", {0, 1, 0}), x);
+    const int bladeToCamera =
+        coveredRows(drawLine(kEvenWidth + R"("facing": "blade")", {0, 0, 1}), x);
+    const int bladeEdgeOn =
+        coveredRows(drawLine(kEvenWidth + R"("facing": "blade")", {0, 1, 0}), x);
+    std::cout << "rows: camera-facing " << facing << ", blade facing the camera " << bladeToCamera
+              << ", blade seen edge-on " << bladeEdgeOn << "\n";
+    EXPECT_GT(facing, 10);
+    EXPECT_NEAR(bladeToCamera, facing, 1);
+    EXPECT_LE(bladeEdgeOn, 2);
+}
+
+// A tube is as wide on the screen as the flat ribbon whatever the normal, and lit by the key light
+// from above: brighter above its axis than below, where the flat ribbon is the same both sides.
+TEST_F(RibbonDrawTest, TubeKeepsItsWidthAndIsLitFromAbove) {
+    const std::string white = std::string(R"("colour_over_life": [
+        {"at": 0, "colour": [1, 1, 1, 1]}, {"at": 1, "colour": [1, 1, 1, 1]}], )") +
+                              kEvenWidth;
+    const int x = int(column(0.0f)), row = int(kHeight / 2);
+    const std::vector<float> flat = drawLine(white + R"("shape": "flat")");
+    const std::vector<float> tube = drawLine(white + R"("shape": "tube", "facing": "blade")");
+    const std::vector<float> tubeEdgeOn =
+        drawLine(white + R"("shape": "tube", "facing": "blade")", {0, 0, 1});
+    const int flatRows = coveredRows(flat, x);
+    std::cout << "rows: flat " << flatRows << ", tube " << coveredRows(tube, x)
+              << ", tube with the normal to the camera " << coveredRows(tubeEdgeOn, x) << "\n";
+    EXPECT_NEAR(coveredRows(tube, x), flatRows, 1);
+    EXPECT_NEAR(coveredRows(tubeEdgeOn, x), flatRows, 1);
+    const int quarter = flatRows / 4;
+    auto luminance = [&](const std::vector<float>& rgba, int y) {
+        const glm::vec4 c = at(rgba, x, y);
+        return c.r + c.g + c.b;
+    };
+    // Row 0 is the picture's top; the axis runs between rows row - 1 and row.
+    const int above = row - 1 - quarter, below = row + quarter;
+    const float tubeAbove = luminance(tube, above), tubeBelow = luminance(tube, below);
+    const float flatAbove = luminance(flat, above), flatBelow = luminance(flat, below);
+    std::cout << "background " << luminance(flat, above - quarter * 3) << " / "
+              << luminance(flat, below + quarter * 3) << "\n";
+    std::cout << "a quarter of the width above and below the axis: tube " << tubeAbove << " / "
+              << tubeBelow << ", flat " << flatAbove << " / " << flatBelow << "\n";
+    EXPECT_GT(tubeAbove, 1.5f * tubeBelow) << "lit from above";
+    EXPECT_NEAR(flatAbove, flatBelow, 0.05f * flatAbove) << "the flat ribbon is its own light";
+}
+
+// The afterimage's speed-line variant takes the same look, its life running from the mesh (u = 0)
+// to the pushed end (u = 1): the point, facing back along its motion, pushed back 6 frames of
+// its travel; the line's two ends take the gradient's end stops.
+TEST_F(RibbonDrawTest, AfterimageLinesTakeTheGradientFromTheMeshToThePushedEnd) {
+    const std::vector<float> rgba = draw(pointScene(R"({"type": "afterimage_smear",
+        "variant": "speed_lines", "width": 0.2, "strength_character": 6, "strength_animation": 0,
+        "random_min": 1, "random_max": 1, "alpha_end": 1,
+        "colour_over_life": [{"at": 0, "colour": [1, 0.5, 0, 1]}, {"at": 1, "colour": [0, 0.2, 1, 1]}],
+        "width_over_life": [{"at": 0, "width": 1}, {"at": 1, "width": 1}], "core": 0})"),
+                                         {-1, 0, 0}, true);
+    // The covered run of the middle row: the pushed end on the left, the point on the right.
+    const int row = int(kHeight / 2);
+    const glm::vec4 background = at(rgba, 0, row);
+    int first = -1, last = -1;
+    for (int x = 0; x < int(kWidth); ++x) {
+        const glm::vec4 d = glm::abs(at(rgba, x, row) - background);
+        if (d.r + d.g + d.b > 0.01f) {
+            if (first < 0) first = x;
+            last = x;
+        }
+    }
+    std::cout << "afterimage line from column " << first << " to " << last << "\n";
+    ASSERT_GT(last - first, 40) << "a line 6 frames of the point's travel long";
+    EXPECT_NEAR(float(last), column(0.25f), 2.0f) << "the line starts at the point";
+    const float u = 2.5f / float(last - first);
+    const glm::vec4 head = at(rgba, last - 2, row), tail = at(rgba, first + 2, row);
+    const glm::vec4 expectHead = glm::mix(glm::vec4(1, 0.5f, 0, 1), glm::vec4(0, 0.2f, 1, 1), u);
+    const glm::vec4 expectTail =
+        glm::mix(glm::vec4(1, 0.5f, 0, 1), glm::vec4(0, 0.2f, 1, 1), 1.0f - u);
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(head[c], expectHead[c], 0.05f) << "at the mesh, channel " << c;
+        EXPECT_NEAR(tail[c], expectTail[c], 0.05f) << "at the pushed end, channel " << c;
+    }
 }
 
 } // namespace

@@ -1,5 +1,7 @@
 #include "render/kinds/afterimage_pass.h"
 
+#include <limits>
+
 #include "core/gpu/check.h"
 #include "core/gpu/context.h"
 #include "render/effect_geometry.h"
@@ -118,6 +120,7 @@ AfterimagePass::AfterimagePass(const gpu::Context& ctx, const scene::Scene& scen
         effect.resources = gpu::bindBuffers(
             {effect.skinned, effect.history, effect.colours, effect.pushed, effect.primitives,
              effect.output, effect.indices, effect.counters, effect.decided, effect.copies});
+        ribbons_.push_back(ribbonStyleBuffer(ctx, kind->ribbon));
         effects_.push_back(std::move(effect));
     }
     if (effects_.empty()) return; // a scene without the effect pays for nothing
@@ -135,7 +138,6 @@ AfterimagePass::AfterimagePass(const gpu::Context& ctx, const scene::Scene& scen
     arcDraw_ =
         trajectoryDrawProgram(ctx, "afterimage_arcs", TrajectoryShape::Triangles, samples, false);
     frame_ = sceneFrameBuffer(ctx, "afterimage frame");
-    ribbon_ = ribbonStyleBuffer(ctx, scene::RibbonLook{});
 }
 
 void AfterimagePass::beginFrame(const sim::SceneSimulation& simulation, bool reset) {
@@ -219,15 +221,21 @@ uint32_t AfterimagePass::draw(VkCommandBuffer cmd, const sim::SceneSimulation& s
     std::memcpy(frame_.mapped, &frame, sizeof frame);
     uint32_t draws = 0;
     const VkDeviceSize offset = 0;
-    for (const Effect& effect : effects_) {
+    for (size_t e = 0; e < effects_.size(); ++e) {
+        const Effect& effect = effects_[e];
         if (!effectShown(shown, effect.index)) continue;
         const scene::AfterimageVariant variant = effect.kind.variant;
-        // Every vertex is drawn at time 0 with sample time 0: no age fade (effect_common.glsl);
-        // the alpha along the push or the arc is in the vertex colour.
+        const scene::RibbonLook& look = effect.kind.ribbon;
+        // Every vertex is drawn at time 0: the alpha along the push or the arc is in the vertex
+        // colour. A speed-line's pushed end has sample time -1 (afterimage_smear.comp): with a
+        // lifetime of 1 its life u runs from 0 at the mesh to 1 there, for the ribbon's
+        // colour_over_life and width_over_life; without either no age fade (an endless lifetime).
+        const bool overLife = !look.colourOverLife.empty() || !look.widthOverLife.empty();
         shared::EffectDraw d{};
-        d.timing = glm::vec4(0.0f, 1.0f, effect.kind.width, 1.0f / scene.output.fps);
+        d.timing = glm::vec4(0.0f, overLife ? 1.0f : std::numeric_limits<float>::max(),
+                             effect.kind.width, 1.0f / scene.output.fps);
         d.tint = glm::vec4(1.0f);
-        setRibbonLook(d, scene::RibbonLook{});
+        setRibbonLook(d, look);
         if (variant == scene::AfterimageVariant::Smear) {
             smearDraw_.bind(cmd, {gpu::bindBuffer(0, frame_)});
             smearDraw_.push(cmd, d);
@@ -240,7 +248,7 @@ uint32_t AfterimagePass::draw(VkCommandBuffer cmd, const sim::SceneSimulation& s
             gpu::Program& program =
                 variant == scene::AfterimageVariant::SpeedLines ? lineDraw_ : arcDraw_;
             if (variant == scene::AfterimageVariant::SpeedLines)
-                program.bind(cmd, {gpu::bindBuffer(0, frame_), gpu::bindBuffer(1, ribbon_)});
+                program.bind(cmd, {gpu::bindBuffer(0, frame_), gpu::bindBuffer(1, ribbons_[e])});
             else
                 program.bind(cmd, {gpu::bindBuffer(0, frame_)});
             program.push(cmd, d);

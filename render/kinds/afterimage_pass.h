@@ -99,7 +99,8 @@ private:
                       Effect& effect, bool reset) override;
     gpu::Program record_, smear_, weld_, build_;
     gpu::Program smearDraw_, lineDraw_, arcDraw_;
-    gpu::Buffer ribbon_; // the speed-line variant's ribbon style: the default look
+    // Each effect's ribbon style, in the order of effects_ (the speed-line variant draws it).
+    std::vector<gpu::Buffer> ribbons_;
     void beginFrame(const sim::SceneSimulation& simulation, bool reset) override;
     glm::vec3 lastRoot_{0.0f}, characterMotion_{0.0f};
 };

@@ -64,5 +64,8 @@ void main() {
         uint base = atomicAdd(counters.vertexCount, 2u);
         outputVertices[base] = makeVertex(p, n, colour, 0.0);
         outputVertices[base + 1u] = makeVertex(p + push, n, colour, 1.0);
+        // Sample time -1 at the pushed end: the ribbon's life runs along the line
+        // (render/kinds/afterimage_pass.cpp draws it with a lifetime of 1 when it has a look).
+        outputVertices[base + 1u].normal.w = -1.0;
     }
 }

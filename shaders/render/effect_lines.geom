@@ -1,20 +1,46 @@
-// Speed-lines: each line piece becomes a ribbon facing the camera (a quad across the piece,
-// perpendicular to it and to the view direction), `width` * width_over_life(u) wide, or without
+// Speed-lines: each line piece becomes a ribbon `width` * width_over_life(u) wide, or without
 // that curve tapering along the segment and with age: width * (1 - 0.7 tau) * alpha.
+//   * flat, facing the camera: a quad across the piece, perpendicular to it and to the view;
+//   * flat, facing the blade: a quad in the plane of the surface the line comes from, through the
+//     motion (side = n x along, n the source's normal; its face is n made perpendicular to the
+//     motion), so a sword's lines lie in its slash plane; where n runs along the motion, as the
+//     camera's;
+//   * tube (Xu et al., Sec. 3.2.2: lines extended to tubes for more complex shading): the half of
+//     a round tube around the piece that faces the camera, in kTubeSteps facets, each vertex
+//     carrying the tube's normal for the key light (effect_lines.frag). The back half is left out:
+//     an opaque tube hides it, and a translucent or additive one would count the light twice.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "effect_common.glsl"
 #include "ribbon_style.glsl"
 
+const int kTubeSteps = 6;
+
 layout(lines) in;
-layout(triangle_strip, max_vertices = 4) out;
+layout(triangle_strip, max_vertices = 2 * (kTubeSteps + 1)) out;
 
 layout(location = 0) in vec4 vertexColour[];
 layout(location = 1) in float vertexTau[];
 layout(location = 2) in float vertexLife[];
+layout(location = 3) in vec3 vertexNormal[];
 
 layout(location = 0) out vec4 ribbonColour;
-layout(location = 1) out float across; // -1 .. 1 over the ribbon's width
+layout(location = 1) out float across; // -1 .. 1 over the ribbon's width (cos of the tube angle)
+layout(location = 2) out vec3 tubeNormal; // world; the tube's, or 0 on a flat ribbon
+
+float halfWidthAt(int k) {
+    return draw.ribbonFlags.y > 0.5
+               ? 0.5 * draw.timing.z * widthOverLife(vertexLife[k])
+               : 0.5 * draw.timing.z * (1.0 - 0.7 * vertexTau[k]) * max(vertexColour[k].a, 0.15);
+}
+
+void emit(int k, vec3 offset, float acrossValue, vec3 normal) {
+    ribbonColour = vertexColour[k];
+    across = acrossValue;
+    tubeNormal = normal;
+    gl_Position = frame.viewProjection * vec4(gl_in[k].gl_Position.xyz + offset, 1.0);
+    EmitVertex();
+}
 
 void main() {
     vec3 a = gl_in[0].gl_Position.xyz;
@@ -23,19 +49,27 @@ void main() {
     if (dot(along, along) < 1e-14) return; // no motion: no line
     vec3 view = normalize(frame.cameraPosition.xyz - 0.5 * (a + b));
     vec3 side = cross(along, view);
+    bool tube = draw.ribbonLight.z > 0.5;
+    if (draw.ribbonFlags.w > 0.5 && !tube) {
+        vec3 n = vertexNormal[0] + vertexNormal[1];
+        vec3 blade = cross(n, along);
+        // Not where the normal runs along the motion (within about half a degree).
+        if (dot(blade, blade) > 1e-4 * dot(n, n) * dot(along, along)) side = blade;
+    }
     if (dot(side, side) < 1e-14) return; // seen end-on
     side = normalize(side);
-    for (int k = 0; k < 2; ++k) {
-        vec3 p = k == 0 ? a : b;
-        float halfWidth = draw.ribbonFlags.y > 0.5
-                              ? 0.5 * draw.timing.z * widthOverLife(vertexLife[k])
-                              : 0.5 * draw.timing.z * (1.0 - 0.7 * vertexTau[k]) *
-                                    max(vertexColour[k].a, 0.15);
-        for (int s = -1; s <= 1; s += 2) {
-            ribbonColour = vertexColour[k];
-            across = float(s);
-            gl_Position = frame.viewProjection * vec4(p + float(s) * halfWidth * side, 1.0);
-            EmitVertex();
+    float halfWidth[2] = float[2](halfWidthAt(0), halfWidthAt(1));
+    if (!tube) {
+        for (int k = 0; k < 2; ++k)
+            for (int s = -1; s <= 1; s += 2)
+                emit(k, float(s) * halfWidth[k] * side, float(s), vec3(0.0));
+    } else {
+        vec3 toward = normalize(cross(side, along)); // towards the camera: side x along . view > 0
+        for (int j = 0; j <= kTubeSteps; ++j) {
+            float angle = 3.14159265 * float(j) / float(kTubeSteps);
+            vec3 d = cos(angle) * side + sin(angle) * toward;
+            for (int k = 0; k < 2; ++k)
+                emit(k, halfWidth[k] * d, cos(angle), d);
         }
     }
     EndPrimitive();

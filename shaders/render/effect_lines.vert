@@ -1,5 +1,5 @@
 // Speed-lines: trajectory vertices passed on to the geometry stage, which widens each piece of a
-// motion line into a camera-facing ribbon (effect_lines.geom). Each vertex's life u = age /
+// motion line into a ribbon or a tube (effect_lines.geom). Each vertex's life u = age /
 // lifetime; its colour is the ribbon's colour_over_life at u (times the segment's attenuation),
 // or without one the trail's colour faded with age (Xu et al., Algorithm 1).
 #version 450
@@ -14,6 +14,7 @@ layout(location = 2) in vec4 colour;
 layout(location = 0) out vec4 vertexColour;
 layout(location = 1) out float vertexTau;
 layout(location = 2) out float vertexLife;
+layout(location = 3) out vec3 vertexNormal; // the source's normal (blade facing)
 
 void main() {
     float fade = ageFade(normal.w);
@@ -26,5 +27,6 @@ void main() {
         vertexColour = vec4(colour.rgb * draw.tint.rgb, colour.a * draw.tint.a * fade);
     }
     vertexTau = position.w;
+    vertexNormal = normal.xyz;
     gl_Position = vec4(position.xyz, 1.0); // world space; projected in the geometry stage
 }

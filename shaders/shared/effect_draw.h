@@ -12,10 +12,11 @@ struct EffectDraw {
                  // units); w: the segment's dt (s), for the age of a sample along it
     vec4 tint;   // rgb multiplies the vertex colour; a multiplies its alpha
     // Speed-line ribbons (scene::RibbonLook): x 1 = colour over life, y 1 = width over life,
-    // z 1 = additive; w: unused. In push constants, not the style's uniform buffer, so that no
-    // branch depends on a uniform buffer (lavapipe compiles a shader variant per value of such).
+    // z 1 = additive; w 1 = facing the blade's plane. In push constants, not the style's uniform
+    // buffer, so that no branch depends on a uniform buffer (lavapipe compiles a shader variant
+    // per value of such).
     vec4 ribbonFlags;
-    vec4 ribbonLight; // x: intensity; y: core whiteness; zw: unused
+    vec4 ribbonLight; // x: intensity; y: core whiteness; z 1 = tube; w: unused
 };
 
 // How a speed-line ribbon looks over its life (scene::RibbonLook; uniform buffer, std140, binding

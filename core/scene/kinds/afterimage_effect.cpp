@@ -10,23 +10,26 @@ using detail::Object;
 
 // Smith 2016, Sec. 4.3 and 5.3: the smear's settings, and how it looks.
 std::vector<std::string> AfterimageSpec::keys() {
-    return {"stride",
-            "colour",
-            "alpha_start",
-            "alpha_end",
-            "alpha_power",
-            "width",
-            "variant",
-            "strength_character",
-            "strength_animation",
-            "random_min",
-            "random_max",
-            "random_threshold",
-            "taper",
-            "min_speed",
-            "relative_speed",
-            "afterimages",
-            "influence_power"};
+    std::vector<std::string> keys = {"stride",
+                                     "colour",
+                                     "alpha_start",
+                                     "alpha_end",
+                                     "alpha_power",
+                                     "width",
+                                     "variant",
+                                     "strength_character",
+                                     "strength_animation",
+                                     "random_min",
+                                     "random_max",
+                                     "random_threshold",
+                                     "taper",
+                                     "min_speed",
+                                     "relative_speed",
+                                     "afterimages",
+                                     "influence_power"};
+    for (const std::string& r : ribbonKeys())
+        keys.push_back(r);
+    return keys;
 }
 
 std::unique_ptr<EffectKindSpec> AfterimageSpec::parse(const Object& o) {
@@ -35,7 +38,9 @@ std::unique_ptr<EffectKindSpec> AfterimageSpec::parse(const Object& o) {
     a->variant = variant == "smear"         ? AfterimageVariant::Smear
                  : variant == "speed_lines" ? AfterimageVariant::SpeedLines
                                             : AfterimageVariant::Multi;
-    for (const char* key : {"width", "stride"})
+    std::vector<std::string> lineKeys = ribbonKeys();
+    lineKeys.insert(lineKeys.end(), {"width", "stride"});
+    for (const std::string& key : lineKeys)
         if (o.has(key) && a->variant != AfterimageVariant::SpeedLines)
             fail(o.at(key),
                  "only for \"variant\": \"speed_lines\" (the variant is \"" + variant + "\")");
@@ -58,6 +63,7 @@ std::unique_ptr<EffectKindSpec> AfterimageSpec::parse(const Object& o) {
     a->alphaEnd = float(o.number("alpha_end", a->alphaEnd, 0.0, 1.0));
     a->alphaPower = float(o.number("alpha_power", a->alphaPower, 0.0, 16.0, true));
     a->width = float(o.number("width", a->width, 0.0, 1.0, true));
+    readRibbon(o, a->ribbon);
 
     a->strengthCharacter = float(o.number("strength_character", a->strengthCharacter, 0.0, 1000.0));
     a->strengthAnimation = float(o.number("strength_animation", a->strengthAnimation, 0.0, 1000.0));

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "core/scene/effect_spec.h"
+#include "core/scene/kinds/trail_effects.h"
 
 namespace mfx::scene {
 
@@ -41,6 +42,7 @@ struct AfterimageSpec : EffectKind<AfterimageSpec> {
     float alphaPower = 1.0f;
     uint32_t stride = 1;
     float width = 0.008f;
+    RibbonLook ribbon; // the speed-line variant's ribbon (life u from the mesh to the pushed end)
 
     static std::vector<std::string> keys();
     static std::unique_ptr<EffectKindSpec> parse(const detail::Object& o);

@@ -41,7 +41,7 @@ void readTrail(const Object& o, TrailSpec& t) {
 }
 
 std::vector<std::string> ribbonKeys() {
-    return {"colour_over_life", "width_over_life", "intensity", "blend", "core"};
+    return {"colour_over_life", "width_over_life", "intensity", "blend", "core", "facing", "shape"};
 }
 
 namespace {
@@ -95,6 +95,9 @@ void readRibbon(const Object& o, RibbonLook& r) {
     r.additive =
         o.choice("blend", r.additive ? "additive" : "alpha", {"alpha", "additive"}) == "additive";
     r.core = float(o.number("core", r.core, 0.0, 1.0));
+    r.bladeFacing =
+        o.choice("facing", r.bladeFacing ? "blade" : "camera", {"camera", "blade"}) == "blade";
+    r.tube = o.choice("shape", r.tube ? "tube" : "flat", {"flat", "tube"}) == "tube";
 }
 
 glm::vec4 colourAt(const std::vector<GradientStop>& stops, float u) {

@@ -52,6 +52,11 @@ struct RibbonLook {
     float intensity = 1.0f; // HDR multiplier of the colour
     bool additive = false;  // add light instead of covering (alpha) what is behind
     float core = 0.5f;      // how far the ribbon's centre goes towards white, 0..1
+    // Camera: the ribbon turns its face to the camera. Blade: it lies in the plane of the surface
+    // the line comes from, through the motion (a sword's slash plane), seen edge-on from the side.
+    bool bladeFacing = false;
+    // A tube, round and lit by the key light, instead of a flat strip (Xu et al., Sec. 3.2.2).
+    bool tube = false;
 };
 // The ribbon keys and their reading (speed-lines; the afterimage's speed-line variant draws the
 // default look).
