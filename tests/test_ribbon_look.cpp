@@ -1,7 +1,8 @@
 // The speed-lines' ribbon look (scene::RibbonLook; shaders/render/ribbon_style.glsl): the keys, the
 // gradient and curve between their stops, and on the GPU a straight ribbon (one point sliding
 // along +x at 1.5 m/s, seen from the side) whose colour at its head and tail is the gradient's end
-// stops and whose width follows width_over_life along it.
+// stops and whose width follows width_over_life along it; facing, tubes, the afterimage's lines;
+// and the particles' share of the look (their size and colour over life).
 #include "core/scene/kinds/trail_effects.h"
 #include "render/frame_renderer.h"
 #include "tests/gpu_test.h"
@@ -123,7 +124,7 @@ protected:
         auto sim = sim::SceneSimulation::create(ctx(), s.value(), point);
         EXPECT_TRUE(sim) << (sim ? "" : sim.error().message);
         render::FrameRenderer renderer(ctx(), *sim.value(), kWidth, kHeight, VK_SAMPLE_COUNT_1_BIT);
-        playFrames(ctx(), renderer, *sim.value(), 0, 36);
+        playFrames(ctx(), renderer, *sim.value(), 0, sim.value()->frameCount());
         camera_ = renderer.camera();
         return render::readLinearColor(ctx(), renderer.sceneTarget());
     }
@@ -289,6 +290,71 @@ TEST_F(RibbonDrawTest, AfterimageLinesTakeTheGradientFromTheMeshToThePushedEnd) 
     for (int c = 0; c < 3; ++c) {
         EXPECT_NEAR(head[c], expectHead[c], 0.05f) << "at the mesh, channel " << c;
         EXPECT_NEAR(tail[c], expectTail[c], 0.05f) << "at the pushed end, channel " << c;
+    }
+}
+
+TEST(ParticleLook, ReadsItsKeysAndRefusesTheRibbonsOwn) {
+    Result<scene::Scene> s = pointScene(R"({"type": "motion_particles", "size": 0.1,
+        "colour_over_life": [{"at": 0, "colour": [1, 1, 1]}, {"at": 1, "colour": [1, 0, 0, 0]}],
+        "size_over_life": [{"at": 0, "size": 1}, {"at": 1, "size": 0.5}],
+        "intensity": 3, "blend": "additive"})");
+    ASSERT_TRUE(s) << s.error().message;
+    const scene::RibbonLook& look = s.value().effects.at(0).as<scene::MotionParticlesSpec>()->look;
+    EXPECT_EQ(look.colourOverLife.size(), 2u);
+    ASSERT_EQ(look.widthOverLife.size(), 2u);
+    EXPECT_FLOAT_EQ(look.widthOverLife[1].value, 0.5f);
+    EXPECT_FLOAT_EQ(look.intensity, 3.0f);
+    EXPECT_TRUE(look.additive);
+    Result<scene::Scene> bad = pointScene(R"({"type": "motion_particles", "shape": "tube"})");
+    ASSERT_FALSE(bad);
+    EXPECT_NE(bad.error().message.find("effects[0].shape: not a key of motion_particles effects"),
+              std::string::npos)
+        << bad.error().message;
+}
+
+// Particles of the sliding point at 10 fps, one every 0.15 m, living 4 frames: the dots at life
+// u = 0, 0.25, 0.5 and 0.75 are size * size_over_life(u) across and, at their centres, the colour
+// of colour_over_life(u).
+TEST_F(RibbonDrawTest, ParticlesTakeTheirSizeAndColourOverLife) {
+    Result<scene::Scene> s = scene::parseScene(R"({
+        "character": {"source": "point.gltf"},
+        "stage": {"floor": false, "backdrop": false},
+        "lights": [{"direction": [0, -1, 0], "shadow": false}],
+        "camera": {"position": [0, 0.6, 2], "target": [0, 0.6, 0], "fov_degrees": 40},
+        "output": {"fps": 10, "frames": 12},
+        "effects": [{"type": "motion_particles", "lifetime": 4, "stride": 1, "sub_samples": 1,
+            "size": 0.12, "alpha_start": 1, "alpha_end": 1,
+            "colour_over_life": [{"at": 0, "colour": [1, 0.8, 0.2]}, {"at": 1, "colour": [0.1, 0.3, 1]}],
+            "size_over_life": [{"at": 0, "size": 1}, {"at": 1, "size": 0.25}]}]})",
+                                               "particles.json");
+    const std::vector<float> rgba = draw(s, {0, 1, 0});
+    const int row = int(kHeight / 2);
+    const glm::vec4 background = at(rgba, 0, 0);
+    const float perMetre = column(1.0f) - column(0.0f);
+    for (int k = 0; k < 4; ++k) {
+        const float u = 0.25f * float(k);
+        const float x = 0.15f - 0.15f * float(k); // the head at t = 1.1 s, x = -1.5 + 1.5 t
+        const int centre = int(column(x));
+        // The dot's own run of covered columns through its centre (its neighbours are apart).
+        auto covered = [&](int x) {
+            const glm::vec4 d = glm::abs(at(rgba, x, row) - background);
+            return d.r + d.g + d.b > 0.004f;
+        };
+        int left = centre, right = centre;
+        while (left > 0 && covered(left - 1))
+            --left;
+        while (right + 1 < int(kWidth) && covered(right + 1))
+            ++right;
+        const int columns = covered(centre) ? right - left + 1 : 0;
+        const float expected = 0.12f * (1.0f - 0.75f * u) * perMetre;
+        const glm::vec4 c = at(rgba, centre, row);
+        const glm::vec4 want =
+            glm::mix(glm::vec4(1, 0.8f, 0.2f, 1), glm::vec4(0.1f, 0.3f, 1, 1), u);
+        std::cout << "u " << u << ": " << columns << " columns, expected " << expected
+                  << "; centre " << c.r << " " << c.g << " " << c.b << "\n";
+        EXPECT_NEAR(float(columns), expected, 1.5f) << "size at u = " << u;
+        for (int ch = 0; ch < 3; ++ch)
+            EXPECT_NEAR(c[ch], want[ch], 0.03f) << "colour at u = " << u << ", channel " << ch;
     }
 }
 

@@ -41,23 +41,26 @@ uint32_t EffectPass::draw(VkCommandBuffer cmd, const sim::SceneSimulation& simul
             const trajectory::Queue& queue = *effect.queue;
             const auto live = queue.liveSegments();
             if (live.empty()) continue;
-            // The ribbon's width and style, or the sprite's size (volumes have neither).
+            // The ribbon's width and look, or the sprite's size and look (volumes have neither).
             const auto* lines = effect.spec->as<scene::SpeedLinesSpec>();
-            if (lines) {
-                auto ribbon = ribbons_.find(index);
-                if (ribbon == ribbons_.end())
-                    ribbon = ribbons_.emplace(index, ribbonStyleBuffer(ctx_, lines->ribbon)).first;
-                program.bind(cmd, {gpu::bindBuffer(0, frame_), gpu::bindBuffer(1, ribbon->second)});
+            const auto* particles = effect.spec->as<scene::MotionParticlesSpec>();
+            const scene::RibbonLook* look = lines       ? &lines->ribbon
+                                            : particles ? &particles->look
+                                                        : nullptr;
+            if (look) {
+                auto style = styles_.find(index);
+                if (style == styles_.end())
+                    style = styles_.emplace(index, ribbonStyleBuffer(ctx_, *look)).first;
+                program.bind(cmd, {gpu::bindBuffer(0, frame_), gpu::bindBuffer(1, style->second)});
             } else {
                 program.bind(cmd, {gpu::bindBuffer(0, frame_)});
             }
             shared::EffectDraw d{};
-            const auto* particles = effect.spec->as<scene::MotionParticlesSpec>();
             const float width = lines ? lines->width : particles ? particles->size : 0.0f;
             d.timing = glm::vec4(now, float(effect.trail->lifetime) / simulation.scene().output.fps,
                                  width, 1.0f / simulation.scene().output.fps);
             d.tint = glm::vec4(1.0f);
-            if (lines) setRibbonLook(d, lines->ribbon);
+            if (look) setRibbonLook(d, *look);
             program.push(cmd, d);
             const VkBuffer vertices = queue.vertices().get();
             const VkDeviceSize offset = 0;

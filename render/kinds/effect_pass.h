@@ -3,7 +3,8 @@
 //   * motion volumes (blur): the swept side walls, lit with their stored normals;
 //   * speed-lines: each line piece widened into a camera-facing ribbon (geometry stage), tapering
 //     along the segment and with age, with a white-hot core;
-//   * motion particles: round camera-facing sprites (geometry stage).
+//   * motion particles: round soft camera-facing sprites (geometry stage), with colour and size
+//     over life.
 // Every sample's alpha is its attenuation along the segment times 1 - age / lifetime.
 #pragma once
 
@@ -49,7 +50,8 @@ private:
     const gpu::Context& ctx_;
     gpu::Program volumes_, lines_, particles_;
     gpu::Buffer frame_;
-    std::map<size_t, gpu::Buffer> ribbons_; // each speed-line effect's style, by effect index
+    // Each speed-line and particle effect's look (ribbon_style.glsl), by effect index.
+    std::map<size_t, gpu::Buffer> styles_;
 };
 
 } // namespace mfx::render

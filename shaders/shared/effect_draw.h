@@ -11,17 +11,18 @@ struct EffectDraw {
     vec4 timing; // x: the frame's time (s); y: the trail's lifetime (s); z: width or size (world
                  // units); w: the segment's dt (s), for the age of a sample along it
     vec4 tint;   // rgb multiplies the vertex colour; a multiplies its alpha
-    // Speed-line ribbons (scene::RibbonLook): x 1 = colour over life, y 1 = width over life,
-    // z 1 = additive; w 1 = facing the blade's plane. In push constants, not the style's uniform
-    // buffer, so that no branch depends on a uniform buffer (lavapipe compiles a shader variant
-    // per value of such).
+    // Speed-line ribbons and particles (scene::RibbonLook): x 1 = colour over life, y 1 = width
+    // (particles: size) over life, z 1 = additive; w 1 = facing the blade's plane. In push
+    // constants, not the style's uniform buffer, so that no branch depends on a uniform buffer
+    // (lavapipe compiles a shader variant per value of such).
     vec4 ribbonFlags;
     vec4 ribbonLight; // x: intensity; y: core whiteness; z 1 = tube; w: unused
 };
 
-// How a speed-line ribbon looks over its life (scene::RibbonLook; uniform buffer, std140, binding
-// 1 of the speed-line program). Stop i's position is colourAt[i / 4][i % 4], and so on; all
-// MFX_RIBBON_MAX_STOPS stops are filled, those past the last given repeating it at life 1.
+// How a speed-line ribbon or a particle looks over its life (scene::RibbonLook; uniform buffer,
+// std140, binding 1 of the speed-line and particle programs). Stop i's position is
+// colourAt[i / 4][i % 4], and so on; all MFX_RIBBON_MAX_STOPS stops are filled, those past the
+// last given repeating it at life 1.
 #define MFX_RIBBON_MAX_STOPS 8
 struct RibbonStyle {
     vec4 colours[MFX_RIBBON_MAX_STOPS]; // RGBA by life

@@ -81,19 +81,33 @@ Value valueOf(const std::vector<Stop>& stops, float u, Value Stop::*member, Mix 
     return stops.back().*member;
 }
 
-} // namespace
-
-void readRibbon(const Object& o, RibbonLook& r) {
+// The keys both ribbons and particles have: colour_over_life, <size>_over_life with its stops'
+// <size> values, intensity and blend.
+void readLook(const Object& o, RibbonLook& r, const char* size) {
     r.colourOverLife = readStops<GradientStop>(
         o, "colour_over_life", "colour",
         [](const Object& e, GradientStop& s) { s.colour = e.colour("colour", s.colour); });
-    r.widthOverLife =
-        readStops<CurveStop>(o, "width_over_life", "width", [](const Object& e, CurveStop& s) {
-            s.value = float(e.number("width", 1.0, 0.0, 100.0));
-        });
+    r.widthOverLife = readStops<CurveStop>(o, std::string(size) + "_over_life", size,
+                                           [size](const Object& e, CurveStop& s) {
+                                               s.value = float(e.number(size, 1.0, 0.0, 100.0));
+                                           });
     r.intensity = float(o.number("intensity", r.intensity, 0.0, 1000.0));
     r.additive =
         o.choice("blend", r.additive ? "additive" : "alpha", {"alpha", "additive"}) == "additive";
+}
+
+} // namespace
+
+std::vector<std::string> particleLookKeys() {
+    return {"colour_over_life", "size_over_life", "intensity", "blend"};
+}
+
+void readParticleLook(const Object& o, RibbonLook& r) {
+    readLook(o, r, "size");
+}
+
+void readRibbon(const Object& o, RibbonLook& r) {
+    readLook(o, r, "width");
     r.core = float(o.number("core", r.core, 0.0, 1.0));
     r.bladeFacing =
         o.choice("facing", r.bladeFacing ? "blade" : "camera", {"camera", "blade"}) == "blade";
@@ -124,6 +138,7 @@ std::unique_ptr<EffectKindSpec> MotionBlurSpec::parse(const Object& o) {
 std::unique_ptr<EffectKindSpec> MotionParticlesSpec::parse(const Object& o) {
     auto e = readTrailKind<MotionParticlesSpec>(o);
     e->size = float(o.number("size", e->size, 0.0, 1.0, true));
+    readParticleLook(o, e->look);
     return e;
 }
 

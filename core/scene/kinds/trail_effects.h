@@ -58,10 +58,13 @@ struct RibbonLook {
     // A tube, round and lit by the key light, instead of a flat strip (Xu et al., Sec. 3.2.2).
     bool tube = false;
 };
-// The ribbon keys and their reading (speed-lines; the afterimage's speed-line variant draws the
-// default look).
+// The ribbon keys and their reading (speed-lines and the afterimage's speed-line variant).
 std::vector<std::string> ribbonKeys();
 void readRibbon(const detail::Object& o, RibbonLook& r);
+// The particles' share of them: colour_over_life, size_over_life (read into widthOverLife: the
+// sprite's size factor), intensity and blend.
+std::vector<std::string> particleLookKeys();
+void readParticleLook(const detail::Object& o, RibbonLook& r);
 // The colour or the factor at life u.
 glm::vec4 colourAt(const std::vector<GradientStop>& stops, float u);
 float valueAt(const std::vector<CurveStop>& stops, float u);
@@ -98,8 +101,14 @@ struct MotionParticlesSpec : TrailEffect<MotionParticlesSpec> {
     static constexpr const char* kType = "motion_particles";
     MotionParticlesSpec() : TrailEffect(trajectory::Kind::Particles, 3, {0.6f, 0.9f, 1.0f, 1.0f}) {}
     float size = 0.02f; // particle size (world units)
+    RibbonLook look;    // colour and size over life, intensity, blend
 
-    static std::vector<std::string> keys() { return trailKeys({"size"}); }
+    static std::vector<std::string> keys() {
+        std::vector<std::string> k = trailKeys({"size"});
+        for (const std::string& l : particleLookKeys())
+            k.push_back(l);
+        return k;
+    }
     static std::unique_ptr<EffectKindSpec> parse(const detail::Object& o);
     StrideTarget strideTarget() const override { return StrideTarget::Particles; }
     std::vector<std::pair<const char*, float*>> lengths() override { return {{"size", &size}}; }
