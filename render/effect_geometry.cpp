@@ -89,7 +89,25 @@ void setRibbonLook(shared::EffectDraw& draw, const scene::RibbonLook& look) {
     draw.ribbonFlags = glm::vec4(look.colourOverLife.empty() ? 0.0f : 1.0f,
                                  look.widthOverLife.empty() ? 0.0f : 1.0f,
                                  look.additive ? 1.0f : 0.0f, look.bladeFacing ? 1.0f : 0.0f);
-    draw.ribbonLight = glm::vec4(look.intensity, look.core, look.tube ? 1.0f : 0.0f, 0.0f);
+    draw.ribbonLight =
+        glm::vec4(look.intensity, look.core, look.tube ? 1.0f : 0.0f, look.depthFade);
+}
+
+FadeDepthSource::FadeDepthSource(const gpu::Context& ctx)
+    : sampler_(gpu::createSampler(ctx, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE)) {
+    gpu::ImageDesc desc;
+    desc.format = kDepthFormat;
+    desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    desc.debugName = "far depth";
+    far_ = gpu::createImage(ctx, desc);
+    const float farPlane = 1.0f;
+    gpu::uploadImage(ctx, far_, std::as_bytes(std::span(&farPlane, 1)),
+                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+}
+
+gpu::DescriptorWrite FadeDepthSource::binding(const gpu::Image* sceneDepth) const {
+    return gpu::bindImage(2, sceneDepth ? *sceneDepth : far_,
+                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler_.get());
 }
 
 gpu::Buffer sceneFrameBuffer(const gpu::Context& ctx, const char* name) {

@@ -63,6 +63,19 @@ gpu::Buffer ribbonStyleBuffer(const gpu::Context& ctx, const scene::RibbonLook& 
 // The look's switches and light in a speed-line draw's push constants.
 void setRibbonLook(shared::EffectDraw& draw, const scene::RibbonLook& look);
 
+// What the speed-line and particle programs read at binding 2 (shaders/render/depth_fade.glsl):
+// the frame's copy of the scene's depth when it has one (EffectKindPass::setFadeDepth), else a
+// 1x1 depth image at the far plane.
+class FadeDepthSource {
+public:
+    explicit FadeDepthSource(const gpu::Context& ctx);
+    gpu::DescriptorWrite binding(const gpu::Image* sceneDepth) const;
+
+private:
+    gpu::Image far_;
+    gpu::UniqueSampler sampler_;
+};
+
 // A device-local storage buffer (at least 64 bytes, so an empty one is still valid) that can also
 // be copied to and from, with `extra` usage.
 gpu::Buffer effectStorage(const gpu::Context& ctx, VkDeviceSize bytes, VkBufferUsageFlags extra,

@@ -17,7 +17,8 @@
 
 namespace mfx::gpu {
 class Context;
-}
+struct Image;
+} // namespace mfx::gpu
 namespace mfx::sim {
 class SceneSimulation;
 }
@@ -37,6 +38,12 @@ public:
     virtual uint32_t draw(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
                           const SceneCamera& camera, float time,
                           std::span<const uint8_t> shown = {}) = 0;
+    // The scene's depth (single-sampled, shader-read-only while the effects draw) that soft
+    // effects fade against (shaders/render/depth_fade.glsl), or null: none this frame.
+    void setFadeDepth(const gpu::Image* depth) { fadeDepth_ = depth; }
+
+protected:
+    const gpu::Image* fadeDepth_ = nullptr;
 };
 
 // One registered kind of pass: the effect types it draws (scene "type" names) and how to make it

@@ -1,6 +1,27 @@
 #include "render/frame_renderer.h"
 
+#include "core/scene/kinds/afterimage_effect.h"
+#include "core/scene/kinds/trail_effects.h"
+
 namespace mfx::render {
+
+namespace {
+
+// Whether an effect of `scene` fades in front of the scene's surfaces (depth_fade > 0): then the
+// frame copies the depth between the scene and the effects.
+bool fadesAgainstDepth(const scene::Scene& scene) {
+    for (const scene::EffectSpec& effect : scene.effects) {
+        const scene::RibbonLook* look = nullptr;
+        if (const auto* lines = effect.as<scene::SpeedLinesSpec>()) look = &lines->ribbon;
+        if (const auto* particles = effect.as<scene::MotionParticlesSpec>())
+            look = &particles->look;
+        if (const auto* afterimage = effect.as<scene::AfterimageSpec>()) look = &afterimage->ribbon;
+        if (look && look->depthFade > 0.0f) return true;
+    }
+    return false;
+}
+
+} // namespace
 
 FrameRenderer::FrameRenderer(const gpu::Context& ctx, const sim::SceneSimulation& simulation,
                              uint32_t width, uint32_t height, VkSampleCountFlagBits wantedSamples)
@@ -12,7 +33,11 @@ FrameRenderer::FrameRenderer(const gpu::Context& ctx, const sim::SceneSimulation
       bloomPass_(ctx), toneMapPass_(ctx), post_(simulation.scene().post),
       camera_(makeCamera(simulation.scene().camera, float(width) / float(height))),
       timer_(ctx, uint32_t(std::size(kFramePassNames))),
-      shown_(simulation.scene().effects.size(), 1) {}
+      shown_(simulation.scene().effects.size(), 1),
+      fadesAgainstDepth_(fadesAgainstDepth(simulation.scene())) {
+    for (const auto& effects : effectPasses_)
+        effects->setFadeDepth(fadesAgainstDepth_ ? &target_.fadeDepth : nullptr);
+}
 
 void FrameRenderer::setShown(size_t effect, bool shown) {
     if (effect < shown_.size()) shown_[effect] = shown ? 1 : 0;
@@ -44,7 +69,7 @@ void FrameRenderer::recordFrame(VkCommandBuffer cmd, const sim::SceneSimulation&
     }
     {
         gpu::ScopedPass pass(timer_, cmd, "scene");
-        beginRendering(cmd, target_, kClearColour);
+        beginRendering(cmd, target_, kClearColour, fadesAgainstDepth_);
         scenePass_.draw(cmd, camera_);
     }
     if (scenePass_.hasOutline()) {
@@ -53,6 +78,11 @@ void FrameRenderer::recordFrame(VkCommandBuffer cmd, const sim::SceneSimulation&
     }
     {
         gpu::ScopedPass pass(timer_, cmd, "effects");
+        if (fadesAgainstDepth_) { // the scene's depth, for the soft effects to read
+            endRendering(cmd);
+            copyFadeDepth(cmd, target_);
+            resumeRendering(cmd, target_);
+        }
         draws_ = 0;
         for (const auto& effects : effectPasses_)
             draws_ += effects->draw(cmd, simulation, camera_, time, shown_);

@@ -85,6 +85,7 @@ private:
     SceneCamera camera_;
     gpu::GpuTimer timer_;
     std::vector<uint8_t> shown_;
+    bool fadesAgainstDepth_ = false; // an effect fades in front of the scene (depth_fade)
     uint32_t draws_ = 0;
 };
 

@@ -58,6 +58,9 @@ RenderTarget createRenderTarget(const gpu::Context& ctx, uint32_t width, uint32_
     target.depth = attachment(ctx, width, height, kDepthFormat,
                               VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | readable,
                               VK_SAMPLE_COUNT_1_BIT, "render target depth");
+    target.fadeDepth = attachment(ctx, width, height, kDepthFormat,
+                                  VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                                  VK_SAMPLE_COUNT_1_BIT, "render target fade depth");
     return target;
 }
 
@@ -71,18 +74,25 @@ RenderTarget createOutputTarget(const gpu::Context& ctx, uint32_t width, uint32_
     return target;
 }
 
-void beginRendering(VkCommandBuffer cmd, RenderTarget& target, const glm::vec4& clearColor) {
+namespace {
+
+// Begins rendering into the target's attachments: cleared (colour to `clearColor`, depth to 1) or
+// loaded; with MSAA resolved at the end, the multisampled images kept (stored) when `keep`.
+void startRendering(VkCommandBuffer cmd, RenderTarget& target, const glm::vec4* clearColor,
+                    bool keep) {
     const bool msaa = target.samples != VK_SAMPLE_COUNT_1_BIT;
     auto colorBarrier = [&](gpu::Image& image) {
         gpu::imageBarrier(cmd, image, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                          VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT,
+                          VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                          VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT,
                           VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                           VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT |
                               VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT);
     };
     auto depthBarrier = [&](gpu::Image& image) {
         gpu::imageBarrier(cmd, image, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-                          VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT,
+                          VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                          VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT,
                           VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT |
                               VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT |
                               VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
@@ -96,19 +106,22 @@ void beginRendering(VkCommandBuffer cmd, RenderTarget& target, const glm::vec4& 
         depthBarrier(target.msaaDepth);
     }
 
+    const VkAttachmentLoadOp load =
+        clearColor ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
+    const VkAttachmentStoreOp store =
+        msaa && !keep ? VK_ATTACHMENT_STORE_OP_DONT_CARE : VK_ATTACHMENT_STORE_OP_STORE;
     VkRenderingAttachmentInfo colorAttachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     colorAttachment.imageView = (msaa ? target.msaaColor : target.color).view.get();
     colorAttachment.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-    colorAttachment.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    colorAttachment.storeOp =
-        msaa ? VK_ATTACHMENT_STORE_OP_DONT_CARE : VK_ATTACHMENT_STORE_OP_STORE;
-    std::memcpy(colorAttachment.clearValue.color.float32, &clearColor, sizeof(float) * 4);
+    colorAttachment.loadOp = load;
+    colorAttachment.storeOp = store;
+    if (clearColor)
+        std::memcpy(colorAttachment.clearValue.color.float32, clearColor, sizeof(float) * 4);
     VkRenderingAttachmentInfo depthAttachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     depthAttachment.imageView = (msaa ? target.msaaDepth : target.depth).view.get();
     depthAttachment.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-    depthAttachment.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    depthAttachment.storeOp =
-        msaa ? VK_ATTACHMENT_STORE_OP_DONT_CARE : VK_ATTACHMENT_STORE_OP_STORE;
+    depthAttachment.loadOp = load;
+    depthAttachment.storeOp = store;
     depthAttachment.clearValue.depthStencil = {1.0f, 0};
     if (msaa) {
         colorAttachment.resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;
@@ -127,6 +140,38 @@ void beginRendering(VkCommandBuffer cmd, RenderTarget& target, const glm::vec4& 
     rendering.pDepthAttachment = &depthAttachment;
     vkCmdBeginRendering(cmd, &rendering);
     setWholeViewport(cmd, target);
+}
+
+} // namespace
+
+void beginRendering(VkCommandBuffer cmd, RenderTarget& target, const glm::vec4& clearColor,
+                    bool resumable) {
+    startRendering(cmd, target, &clearColor, resumable);
+}
+
+void resumeRendering(VkCommandBuffer cmd, RenderTarget& target) {
+    startRendering(cmd, target, nullptr, false);
+}
+
+void copyFadeDepth(VkCommandBuffer cmd, RenderTarget& target) {
+    gpu::imageBarrier(cmd, target.depth, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                      VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT |
+                          VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
+                          VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+    gpu::imageBarrier(cmd, target.fadeDepth, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                      VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_READ_BIT,
+                      VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    VkImageCopy region{};
+    region.srcSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 0, 1};
+    region.dstSubresource = region.srcSubresource;
+    region.extent = {target.width, target.height, 1};
+    vkCmdCopyImage(cmd, target.depth.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                   target.fadeDepth.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+    gpu::imageBarrier(cmd, target.fadeDepth, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                      VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_READ_BIT);
 }
 
 void setWholeViewport(VkCommandBuffer cmd, const RenderTarget& target) {

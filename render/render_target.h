@@ -21,6 +21,9 @@ struct RenderTarget {
     gpu::Image color; // single-sampled: what is read back (the resolve target with MSAA)
     gpu::Image depth; // single-sampled: sample 0 of each pixel with MSAA
     gpu::Image msaaColor, msaaDepth; // what is drawn into when samples > 1
+    // A copy of `depth` after the opaque scene, sampled by the effects that fade in front of it
+    // (copyFadeDepth).
+    gpu::Image fadeDepth;
     VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
     uint32_t width = 0;
     uint32_t height = 0;
@@ -41,9 +44,17 @@ VkSampleCountFlagBits supportedSamples(const gpu::Context& ctx, VkSampleCountFla
 
 // Transitions the images to attachment layouts and begins rendering, clearing colour to
 // `clearColor` (linear) and depth to 1; sets viewport and scissor to the whole target. With MSAA
-// the multisampled images are resolved into `color` and `depth` when rendering ends.
-void beginRendering(VkCommandBuffer cmd, RenderTarget& target, const glm::vec4& clearColor);
+// the multisampled images are resolved into `color` and `depth` when rendering ends, and kept
+// when `resumable` (for resumeRendering).
+void beginRendering(VkCommandBuffer cmd, RenderTarget& target, const glm::vec4& clearColor,
+                    bool resumable = false);
 void endRendering(VkCommandBuffer cmd);
+// After a resumable rendering has ended: copies the (resolved) depth into `fadeDepth`, left
+// shader-read-only for the passes that sample it.
+void copyFadeDepth(VkCommandBuffer cmd, RenderTarget& target);
+// Begins rendering again over what a resumable rendering left (colour and depth loaded), resolved
+// again at its end.
+void resumeRendering(VkCommandBuffer cmd, RenderTarget& target);
 
 // Begins rendering into the single-sampled colour alone (no depth), in the attachment layout
 // already, with `load` (LOAD keeps what it holds, DONT_CARE for a pass that writes every pixel);

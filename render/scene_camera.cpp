@@ -44,6 +44,7 @@ shared::SceneFrame sceneFrame(const scene::Scene& scene, const SceneCamera& came
     const bool shadow = shadowSize > 0 && key.shadow;
     f.shadow = glm::vec4(shadow ? 1.0f : 0.0f, 0.0015f,
                          shadowSize > 0 ? 1.0f / float(shadowSize) : 0.0f, 0.0f);
+    f.depthRange = glm::vec4(camera.nearPlane, camera.farPlane, 0.0f, 0.0f);
     return f;
 }
 

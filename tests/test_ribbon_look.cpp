@@ -10,6 +10,7 @@
 #include "tests/scene_render_util.h"
 
 #include <cmath>
+#include <optional>
 
 namespace mfx::test {
 namespace {
@@ -107,9 +108,10 @@ protected:
         return draw(lineScene(look), normal);
     }
     // With `triangle`, the point is a triangle a millimetre across (the afterimage draws from
-    // the vertices of triangles).
-    std::vector<float> draw(const Result<scene::Scene>& s, glm::vec3 normal,
-                            bool triangle = false) {
+    // the vertices of triangles). With `extra`, a second vertex at that offset from the point
+    // (on the same joint).
+    std::vector<float> draw(const Result<scene::Scene>& s, glm::vec3 normal, bool triangle = false,
+                            std::optional<glm::vec3> extra = std::nullopt) {
         EXPECT_TRUE(s) << (s ? "" : s.error().message);
         anim::Character point = movingPoint();
         anim::Primitive& p = point.meshes[0].primitives[0];
@@ -121,9 +123,15 @@ protected:
             p.weights.assign(3, glm::vec4(1, 0, 0, 0));
             p.indices = {0, 1, 2};
         }
+        if (extra) {
+            p.positions.push_back(*extra);
+            p.normals.push_back(normal);
+            p.joints.push_back(glm::uvec4(0));
+            p.weights.push_back(glm::vec4(1, 0, 0, 0));
+        }
         auto sim = sim::SceneSimulation::create(ctx(), s.value(), point);
         EXPECT_TRUE(sim) << (sim ? "" : sim.error().message);
-        render::FrameRenderer renderer(ctx(), *sim.value(), kWidth, kHeight, VK_SAMPLE_COUNT_1_BIT);
+        render::FrameRenderer renderer(ctx(), *sim.value(), kWidth, kHeight, samples_);
         playFrames(ctx(), renderer, *sim.value(), 0, sim.value()->frameCount());
         camera_ = renderer.camera();
         return render::readLinearColor(ctx(), renderer.sceneTarget());
@@ -132,6 +140,12 @@ protected:
     float column(float x) const {
         const glm::vec4 clip = camera_.viewProjection * glm::vec4(x, 0.6f, 0.0f, 1.0f);
         return (clip.x / clip.w * 0.5f + 0.5f) * float(kWidth);
+    }
+    // The pixel (column, row from the top) of world point `w`.
+    glm::ivec2 pixel(glm::vec3 w) const {
+        const glm::vec4 clip = camera_.viewProjection * glm::vec4(w, 1.0f);
+        return {int((clip.x / clip.w * 0.5f + 0.5f) * float(kWidth)),
+                int((0.5f - clip.y / clip.w * 0.5f) * float(kHeight))};
     }
     static glm::vec4 at(const std::vector<float>& rgba, int x, int y) {
         const size_t p = (size_t(y) * kWidth + size_t(x)) * 4;
@@ -148,6 +162,7 @@ protected:
         return rows;
     }
     render::SceneCamera camera_;
+    VkSampleCountFlagBits samples_ = VK_SAMPLE_COUNT_1_BIT;
     // The full width all along (no taper).
     inline static const std::string kEvenWidth =
         R"("width_over_life": [{"at": 0, "width": 1}, {"at": 1, "width": 1}], )";
@@ -290,6 +305,67 @@ TEST_F(RibbonDrawTest, AfterimageLinesTakeTheGradientFromTheMeshToThePushedEnd) 
     for (int c = 0; c < 3; ++c) {
         EXPECT_NEAR(head[c], expectHead[c], 0.05f) << "at the mesh, channel " << c;
         EXPECT_NEAR(tail[c], expectTail[c], 0.05f) << "at the pushed end, channel " << c;
+    }
+}
+
+// Depth fade: seen from above, a white ribbon 0.6 m over the floor has the floor a view depth g
+// behind it at its centre; with depth_fade f its alpha is scaled by min(g / f, 1), measured as its
+// contrast against the floor at that pixel, against the same ribbon with no fade; and the same for
+// the point's particles. (A second vertex,
+// a metre to the side and 0.6 m lower, puts the floor under the point's path.)
+TEST_F(RibbonDrawTest, DepthFadeScalesAlphaByTheGapToTheSurfaceBehind) {
+    auto fadedLine = [&](const std::string& type, const std::string& look) {
+        Result<scene::Scene> s = scene::parseScene(R"({
+            "character": {"source": "point.gltf"},
+            "stage": {"floor": true, "backdrop": false},
+            "lights": [{"direction": [0, -1, 0], "shadow": false}],
+            "camera": {"position": [0, 2.6, 0.5], "target": [0, 0.6, 0], "fov_degrees": 40},
+            "output": {"fps": 30, "frames": 36},
+            "effects": [{"type": ")" + type + R"(", "lifetime": 10, "stride": 1,
+                "alpha_start": 1, "alpha_end": 1, )" + look +
+                                                       R"(,
+                "colour_over_life": [{"at": 0, "colour": [1, 1, 1]}, {"at": 1, "colour": [1, 1, 1]}]}]})",
+                                                   "fade.json");
+        return draw(s, {0, 1, 0}, false, glm::vec3(0, -0.6f, -1.0f));
+    };
+    const glm::vec3 eye(0, 2.6f, 0.5f), centre(-0.05f, 0.6f, 0.0f);
+    // The floor (y = 0) behind the ribbon's centre, along the ray through it, in view depth.
+    const glm::vec3 ray = centre - eye;
+    const glm::vec3 floorHit = eye + ray * (eye.y / -ray.y);
+    const float gap = glm::dot(floorHit - centre, glm::normalize(glm::vec3(0, 0.6f, 0) - eye));
+    // Particles, and lines with one sample and with 4 (where the scene's rendering is resumed
+    // over its multisampled images).
+    const std::pair<const char*, VkSampleCountFlagBits> cases[] = {
+        {"speed_lines", VK_SAMPLE_COUNT_1_BIT},
+        {"motion_particles", VK_SAMPLE_COUNT_1_BIT},
+        {"speed_lines", VK_SAMPLE_COUNT_4_BIT}};
+    for (const auto& [type, samples] : cases) {
+        samples_ = samples;
+        SCOPED_TRACE(type);
+        SCOPED_TRACE(samples_);
+        const bool lines = std::string(type) == "speed_lines";
+        // Additive: overlapping pieces and sprites add, so the contrast is linear in alpha.
+        const std::string size =
+            std::string(lines ? R"("width": 0.2, "core": 0)" : R"("size": 0.2)") +
+            R"(, "blend": "additive")";
+        const std::vector<float> hard = fadedLine(type, size);
+        const glm::ivec2 p = pixel(centre);
+        // The floor alone at that pixel: the same effect adding no light.
+        const glm::vec4 floor = at(fadedLine(type, size + R"(, "intensity": 0)"), p.x, p.y);
+        auto contrast = [&](const std::vector<float>& rgba) {
+            const glm::vec4 c = at(rgba, p.x, p.y) - floor;
+            return c.r + c.g + c.b;
+        };
+        const float none = contrast(hard);
+        for (float fade : {0.3f, 1.2f}) {
+            const float ratio =
+                contrast(fadedLine(type, size + R"(, "depth_fade": )" + std::to_string(fade))) /
+                none;
+            const float expected = std::min(gap / fade, 1.0f);
+            std::cout << type << ", " << samples_ << " sample(s), gap " << gap << " m, depth_fade "
+                      << fade << ": alpha x " << ratio << ", expected " << expected << "\n";
+            EXPECT_NEAR(ratio, expected, 0.01f) << "depth_fade " << fade;
+        }
     }
 }
 

@@ -65,7 +65,7 @@ std::vector<uint32_t> afterimageCopies(const std::vector<shared::SkinVertexIn>& 
 
 AfterimagePass::AfterimagePass(const gpu::Context& ctx, const scene::Scene& scene,
                                const anim::Character& character, VkSampleCountFlagBits samples)
-    : MeshEffectPass(ctx, character) {
+    : MeshEffectPass(ctx, character), fadeDepthSource_(ctx) {
     for (Selected& selected : selectedEffects(scene)) {
         const Kind* kind = selected.kind;
         Effect effect(MeshEffect(ctx, selected.index, meshEffectColour(*kind),
@@ -248,7 +248,8 @@ uint32_t AfterimagePass::draw(VkCommandBuffer cmd, const sim::SceneSimulation& s
             gpu::Program& program =
                 variant == scene::AfterimageVariant::SpeedLines ? lineDraw_ : arcDraw_;
             if (variant == scene::AfterimageVariant::SpeedLines)
-                program.bind(cmd, {gpu::bindBuffer(0, frame_), gpu::bindBuffer(1, ribbons_[e])});
+                program.bind(cmd, {gpu::bindBuffer(0, frame_), gpu::bindBuffer(1, ribbons_[e]),
+                                   fadeDepthSource_.binding(fadeDepth_)});
             else
                 program.bind(cmd, {gpu::bindBuffer(0, frame_)});
             program.push(cmd, d);

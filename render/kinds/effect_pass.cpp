@@ -13,7 +13,8 @@
 
 namespace mfx::render {
 
-EffectPass::EffectPass(const gpu::Context& ctx, VkSampleCountFlagBits samples) : ctx_(ctx) {
+EffectPass::EffectPass(const gpu::Context& ctx, VkSampleCountFlagBits samples)
+    : ctx_(ctx), fadeDepthSource_(ctx) {
     volumes_ =
         trajectoryDrawProgram(ctx, "effect_volume", TrajectoryShape::Triangles, samples, false);
     lines_ = trajectoryDrawProgram(ctx, "effect_lines", TrajectoryShape::Ribbons, samples, false);
@@ -51,7 +52,8 @@ uint32_t EffectPass::draw(VkCommandBuffer cmd, const sim::SceneSimulation& simul
                 auto style = styles_.find(index);
                 if (style == styles_.end())
                     style = styles_.emplace(index, ribbonStyleBuffer(ctx_, *look)).first;
-                program.bind(cmd, {gpu::bindBuffer(0, frame_), gpu::bindBuffer(1, style->second)});
+                program.bind(cmd, {gpu::bindBuffer(0, frame_), gpu::bindBuffer(1, style->second),
+                                   fadeDepthSource_.binding(fadeDepth_)});
             } else {
                 program.bind(cmd, {gpu::bindBuffer(0, frame_)});
             }

@@ -13,6 +13,7 @@
 #include "core/gpu/program.h"
 #include "core/gpu/resources.h"
 #include "core/scene/kinds/trail_effects.h"
+#include "render/effect_geometry.h"
 #include "render/effect_kind_pass.h"
 #include "render/scene_camera.h"
 #include "sim/scene_simulation.h"
@@ -50,6 +51,7 @@ private:
     const gpu::Context& ctx_;
     gpu::Program volumes_, lines_, particles_;
     gpu::Buffer frame_;
+    FadeDepthSource fadeDepthSource_;
     // Each speed-line and particle effect's look (ribbon_style.glsl), by effect index.
     std::map<size_t, gpu::Buffer> styles_;
 };

@@ -16,7 +16,7 @@ struct EffectDraw {
     // constants, not the style's uniform buffer, so that no branch depends on a uniform buffer
     // (lavapipe compiles a shader variant per value of such).
     vec4 ribbonFlags;
-    vec4 ribbonLight; // x: intensity; y: core whiteness; z 1 = tube; w: unused
+    vec4 ribbonLight; // x: intensity; y: core whiteness; z 1 = tube; w: depth fade (world units)
 };
 
 // How a speed-line ribbon or a particle looks over its life (scene::RibbonLook; uniform buffer,

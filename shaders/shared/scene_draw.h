@@ -17,6 +17,7 @@ struct SceneFrame {
     vec4 ground;              // rgb: ambient colour from below; w: specular exponent
     mat4 lightViewProjection; // world to the key light's shadow map (clip space)
     vec4 shadow;              // x: 1 when the shadow map is used; y: depth bias; z: 1 / its size
+    vec4 depthRange;          // x, y: the camera's near and far planes (depth_fade.glsl)
 };
 
 // SceneObject::style.x values.
@@ -39,7 +40,8 @@ struct OutlineDraw {
 MFX_SHARED_END
 
 #ifdef __cplusplus
-MFX_CHECK_SIZE(SceneFrame, 224);
+MFX_CHECK_SIZE(SceneFrame, 240);
+MFX_CHECK_LAYOUT(SceneFrame, depthRange, 224);
 MFX_CHECK_LAYOUT(SceneFrame, lightViewProjection, 144);
 MFX_CHECK_LAYOUT(SceneFrame, shadow, 208);
 MFX_CHECK_LAYOUT(SceneFrame, cameraPosition, 64);

@@ -41,7 +41,10 @@ void readTrail(const Object& o, TrailSpec& t) {
 }
 
 std::vector<std::string> ribbonKeys() {
-    return {"colour_over_life", "width_over_life", "intensity", "blend", "core", "facing", "shape"};
+    return {"colour_over_life", "width_over_life",
+            "intensity",        "blend",
+            "depth_fade",       "core",
+            "facing",           "shape"};
 }
 
 namespace {
@@ -82,7 +85,7 @@ Value valueOf(const std::vector<Stop>& stops, float u, Value Stop::*member, Mix 
 }
 
 // The keys both ribbons and particles have: colour_over_life, <size>_over_life with its stops'
-// <size> values, intensity and blend.
+// <size> values, intensity, blend and depth_fade.
 void readLook(const Object& o, RibbonLook& r, const char* size) {
     r.colourOverLife = readStops<GradientStop>(
         o, "colour_over_life", "colour",
@@ -94,12 +97,13 @@ void readLook(const Object& o, RibbonLook& r, const char* size) {
     r.intensity = float(o.number("intensity", r.intensity, 0.0, 1000.0));
     r.additive =
         o.choice("blend", r.additive ? "additive" : "alpha", {"alpha", "additive"}) == "additive";
+    r.depthFade = float(o.number("depth_fade", r.depthFade, 0.0, 10.0));
 }
 
 } // namespace
 
 std::vector<std::string> particleLookKeys() {
-    return {"colour_over_life", "size_over_life", "intensity", "blend"};
+    return {"colour_over_life", "size_over_life", "intensity", "blend", "depth_fade"};
 }
 
 void readParticleLook(const Object& o, RibbonLook& r) {

@@ -52,6 +52,9 @@ struct RibbonLook {
     float intensity = 1.0f; // HDR multiplier of the colour
     bool additive = false;  // add light instead of covering (alpha) what is behind
     float core = 0.5f;      // how far the ribbon's centre goes towards white, 0..1
+    // World units in front of the scene's surfaces over which it fades out (0: a hard edge where
+    // it goes behind them; depth_fade.glsl).
+    float depthFade = 0.0f;
     // Camera: the ribbon turns its face to the camera. Blade: it lies in the plane of the surface
     // the line comes from, through the motion (a sword's slash plane), seen edge-on from the side.
     bool bladeFacing = false;
@@ -62,7 +65,7 @@ struct RibbonLook {
 std::vector<std::string> ribbonKeys();
 void readRibbon(const detail::Object& o, RibbonLook& r);
 // The particles' share of them: colour_over_life, size_over_life (read into widthOverLife: the
-// sprite's size factor), intensity and blend.
+// sprite's size factor), intensity, blend and depth_fade.
 std::vector<std::string> particleLookKeys();
 void readParticleLook(const detail::Object& o, RibbonLook& r);
 // The colour or the factor at life u.
