@@ -62,19 +62,23 @@ gpu::Program trajectoryDrawProgram(const gpu::Context& ctx, const char* name, Tr
     return gpu::createGraphicsProgram(ctx, desc);
 }
 
-gpu::Buffer ribbonStyleBuffer(const gpu::Context& ctx, const scene::RibbonLook& look) {
+namespace {
+
+gpu::Buffer styleBuffer(const gpu::Context& ctx,
+                        const std::vector<scene::GradientStop>& colourOverLife,
+                        const std::vector<scene::CurveStop>& widthOverLife) {
     // Every stop filled: past the last given, the last again at life 1 (ribbon_style.glsl).
     shared::RibbonStyle style{};
-    const size_t colours = look.colourOverLife.size(), widths = look.widthOverLife.size();
+    const size_t colours = colourOverLife.size(), widths = widthOverLife.size();
     for (size_t i = 0; i < MFX_RIBBON_MAX_STOPS; ++i) {
         const int lane = int(i % 4);
         if (colours > 0) {
-            const scene::GradientStop& c = look.colourOverLife[std::min(i, colours - 1)];
+            const scene::GradientStop& c = colourOverLife[std::min(i, colours - 1)];
             style.colours[i] = c.colour;
             style.colourAt[i / 4][lane] = i < colours ? c.at : 1.0f;
         }
         if (widths > 0) {
-            const scene::CurveStop& w = look.widthOverLife[std::min(i, widths - 1)];
+            const scene::CurveStop& w = widthOverLife[std::min(i, widths - 1)];
             style.widths[i / 4][lane] = w.value;
             style.widthAt[i / 4][lane] = i < widths ? w.at : 1.0f;
         }
@@ -83,6 +87,23 @@ gpu::Buffer ribbonStyleBuffer(const gpu::Context& ctx, const scene::RibbonLook& 
                                            gpu::MemoryUsage::Upload, "ribbon style");
     std::memcpy(buffer.mapped, &style, sizeof style);
     return buffer;
+}
+
+} // namespace
+
+gpu::Buffer ribbonStyleBuffer(const gpu::Context& ctx, const scene::RibbonLook& look) {
+    return styleBuffer(ctx, look.colourOverLife, look.widthOverLife);
+}
+
+gpu::Buffer volumeStyleBuffer(const gpu::Context& ctx, const scene::VolumeLook& look) {
+    return styleBuffer(ctx, look.colourOverLife, {});
+}
+
+void setVolumeLook(shared::EffectDraw& draw, const scene::VolumeLook& look, bool lifeFromPlace) {
+    draw.ribbonFlags = glm::vec4(look.colourOverLife.empty() ? 0.0f : 1.0f, 0.0f,
+                                 look.additive ? 1.0f : 0.0f, lifeFromPlace ? 1.0f : 0.0f);
+    draw.ribbonLight = glm::vec4(look.intensity, 0.0f, 0.0f, 0.0f);
+    draw.rimLight = glm::vec4(look.rim, look.rimColour);
 }
 
 void setRibbonLook(shared::EffectDraw& draw, const scene::RibbonLook& look) {
@@ -161,11 +182,13 @@ void MeshEffect::skin(VkCommandBuffer cmd, anim::SkinVertices& skinning,
 }
 
 void drawBuiltTriangles(VkCommandBuffer cmd, gpu::Program& program, const gpu::Buffer& frame,
-                        const gpu::Buffer& vertices, const gpu::Buffer& counters, float fps) {
+                        const gpu::Buffer& vertices, const gpu::Buffer& counters, float fps,
+                        const scene::VolumeLook& look, const gpu::Buffer& style) {
     shared::EffectDraw d{};
     d.timing = glm::vec4(0.0f, 1.0f, 0.0f, 1.0f / fps);
     d.tint = glm::vec4(1.0f);
-    program.bind(cmd, {gpu::bindBuffer(0, frame)});
+    setVolumeLook(d, look, true);
+    program.bind(cmd, {gpu::bindBuffer(0, frame), gpu::bindBuffer(1, style)});
     program.push(cmd, d);
     const VkBuffer vb = vertices.get();
     const VkDeviceSize offset = 0;

@@ -57,11 +57,14 @@ gpu::Program trajectoryDrawProgram(const gpu::Context& ctx, const char* name, Tr
 // The host-visible uniform a pass writes shared::SceneFrame into each draw.
 gpu::Buffer sceneFrameBuffer(const gpu::Context& ctx, const char* name);
 
-// The speed-line programs' ribbon style (binding 1, shaders/render/ribbon_style.glsl) of `look`,
-// in a host-visible uniform buffer.
+// The style (binding 1, shaders/render/ribbon_style.glsl) of the speed-line and particle programs
+// for `look`, and of the volume program for a volume's look, in a host-visible uniform buffer.
 gpu::Buffer ribbonStyleBuffer(const gpu::Context& ctx, const scene::RibbonLook& look);
-// The look's switches and light in a speed-line draw's push constants.
+gpu::Buffer volumeStyleBuffer(const gpu::Context& ctx, const scene::VolumeLook& look);
+// The look's switches and light in a draw's push constants: a speed-line or particle draw's, and
+// a volume's, whose life is the age or, with `lifeFromPlace`, the place along the sweep.
 void setRibbonLook(shared::EffectDraw& draw, const scene::RibbonLook& look);
+void setVolumeLook(shared::EffectDraw& draw, const scene::VolumeLook& look, bool lifeFromPlace);
 
 // What the speed-line and particle programs read at binding 2 (shaders/render/depth_fade.glsl):
 // the frame's copy of the scene's depth when it has one (EffectKindPass::setFadeDepth), else a
@@ -106,6 +109,7 @@ struct MeshEffect {
     trajectory::Source source;
     uint32_t vertexCount = 0;
     gpu::Buffer input, palette, skinned, colours, output, counters;
+    gpu::Buffer style; // the look's (ribbon_style.glsl): the pass makes it from its kind's look
     std::vector<gpu::DescriptorWrite> resources;
 };
 
@@ -116,10 +120,12 @@ std::optional<glm::vec4> meshEffectColour(const Kind& kind) {
 }
 
 // Records the unsorted, non-indexed draw of the triangles a build wrote into `vertices`, its
-// VkDrawIndirectCommand at the start of `counters`. Every vertex is drawn at time 0 with sample
-// time 0, so effect_common.glsl applies no age fade: the alpha is in the vertex colour.
+// VkDrawIndirectCommand at the start of `counters`, with `look` (its life the place along the
+// sweep) and its `style` buffer. Every vertex is drawn at time 0 with sample time 0, so
+// effect_common.glsl applies no age fade: the alpha is in the vertex colour.
 void drawBuiltTriangles(VkCommandBuffer cmd, gpu::Program& program, const gpu::Buffer& frame,
-                        const gpu::Buffer& vertices, const gpu::Buffer& counters, float fps);
+                        const gpu::Buffer& vertices, const gpu::Buffer& counters, float fps,
+                        const scene::VolumeLook& look, const gpu::Buffer& style);
 
 // The copies of a vertex at one bind-pose position (a seam: one point with several normals) welded
 // into one: each vertex's group, groups numbered in order of first appearance, exact positions.
@@ -142,7 +148,8 @@ uint32_t drawBuiltEffects(VkCommandBuffer cmd, const std::vector<Effect>& effect
     uint32_t draws = 0;
     for (const Effect& effect : effects) {
         if (!effectShown(shown, effect.index)) continue;
-        drawBuiltTriangles(cmd, program, frame, effect.output, effect.counters, scene.output.fps);
+        drawBuiltTriangles(cmd, program, frame, effect.output, effect.counters, scene.output.fps,
+                           effect.kind.look, effect.style);
         ++draws;
     }
     return draws;

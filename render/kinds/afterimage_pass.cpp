@@ -120,7 +120,9 @@ AfterimagePass::AfterimagePass(const gpu::Context& ctx, const scene::Scene& scen
         effect.resources = gpu::bindBuffers(
             {effect.skinned, effect.history, effect.colours, effect.pushed, effect.primitives,
              effect.output, effect.indices, effect.counters, effect.decided, effect.copies});
-        ribbons_.push_back(ribbonStyleBuffer(ctx, kind->ribbon));
+        effect.style = variant == scene::AfterimageVariant::SpeedLines
+                           ? ribbonStyleBuffer(ctx, kind->ribbon)
+                           : volumeStyleBuffer(ctx, kind->look);
         effects_.push_back(std::move(effect));
     }
     if (effects_.empty()) return; // a scene without the effect pays for nothing
@@ -221,23 +223,27 @@ uint32_t AfterimagePass::draw(VkCommandBuffer cmd, const sim::SceneSimulation& s
     std::memcpy(frame_.mapped, &frame, sizeof frame);
     uint32_t draws = 0;
     const VkDeviceSize offset = 0;
-    for (size_t e = 0; e < effects_.size(); ++e) {
-        const Effect& effect = effects_[e];
+    for (const Effect& effect : effects_) {
         if (!effectShown(shown, effect.index)) continue;
         const scene::AfterimageVariant variant = effect.kind.variant;
-        const scene::RibbonLook& look = effect.kind.ribbon;
+        const bool lines = variant == scene::AfterimageVariant::SpeedLines;
+        const scene::RibbonLook& ribbon = effect.kind.ribbon;
         // Every vertex is drawn at time 0: the alpha along the push or the arc is in the vertex
         // colour. A speed-line's pushed end has sample time -1 (afterimage_smear.comp): with a
         // lifetime of 1 its life u runs from 0 at the mesh to 1 there, for the ribbon's
         // colour_over_life and width_over_life; without either no age fade (an endless lifetime).
-        const bool overLife = !look.colourOverLife.empty() || !look.widthOverLife.empty();
+        // The smear's and the arcs' life is the place along the push or the arc (position.w).
+        const bool overLife = !ribbon.colourOverLife.empty() || !ribbon.widthOverLife.empty();
         shared::EffectDraw d{};
-        d.timing = glm::vec4(0.0f, overLife ? 1.0f : std::numeric_limits<float>::max(),
+        d.timing = glm::vec4(0.0f, lines && overLife ? 1.0f : std::numeric_limits<float>::max(),
                              effect.kind.width, 1.0f / scene.output.fps);
         d.tint = glm::vec4(1.0f);
-        setRibbonLook(d, look);
+        if (lines)
+            setRibbonLook(d, ribbon);
+        else
+            setVolumeLook(d, effect.kind.look, true);
         if (variant == scene::AfterimageVariant::Smear) {
-            smearDraw_.bind(cmd, {gpu::bindBuffer(0, frame_)});
+            smearDraw_.bind(cmd, {gpu::bindBuffer(0, frame_), gpu::bindBuffer(1, effect.style)});
             smearDraw_.push(cmd, d);
             VkBuffer vb = effect.pushed.get();
             vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
@@ -245,13 +251,12 @@ uint32_t AfterimagePass::draw(VkCommandBuffer cmd, const sim::SceneSimulation& s
             vkCmdDrawIndexedIndirect(cmd, effect.counters.get(), 0, 1,
                                      sizeof(VkDrawIndexedIndirectCommand));
         } else {
-            gpu::Program& program =
-                variant == scene::AfterimageVariant::SpeedLines ? lineDraw_ : arcDraw_;
-            if (variant == scene::AfterimageVariant::SpeedLines)
-                program.bind(cmd, {gpu::bindBuffer(0, frame_), gpu::bindBuffer(1, ribbons_[e]),
+            gpu::Program& program = lines ? lineDraw_ : arcDraw_;
+            if (lines)
+                program.bind(cmd, {gpu::bindBuffer(0, frame_), gpu::bindBuffer(1, effect.style),
                                    fadeDepthSource_.binding(fadeDepth_)});
             else
-                program.bind(cmd, {gpu::bindBuffer(0, frame_)});
+                program.bind(cmd, {gpu::bindBuffer(0, frame_), gpu::bindBuffer(1, effect.style)});
             program.push(cmd, d);
             VkBuffer vb = effect.output.get();
             vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);

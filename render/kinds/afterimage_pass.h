@@ -99,8 +99,6 @@ private:
                       Effect& effect, bool reset) override;
     gpu::Program record_, smear_, weld_, build_;
     gpu::Program smearDraw_, lineDraw_, arcDraw_;
-    // Each effect's ribbon style, in the order of effects_ (the speed-line variant draws it).
-    std::vector<gpu::Buffer> ribbons_;
     FadeDepthSource fadeDepthSource_;
     void beginFrame(const sim::SceneSimulation& simulation, bool reset) override;
     glm::vec3 lastRoot_{0.0f}, characterMotion_{0.0f};

@@ -42,27 +42,33 @@ uint32_t EffectPass::draw(VkCommandBuffer cmd, const sim::SceneSimulation& simul
             const trajectory::Queue& queue = *effect.queue;
             const auto live = queue.liveSegments();
             if (live.empty()) continue;
-            // The ribbon's width and look, or the sprite's size and look (volumes have neither).
+            // The ribbon's width and look, the sprite's size and look, or the volume's look.
             const auto* lines = effect.spec->as<scene::SpeedLinesSpec>();
             const auto* particles = effect.spec->as<scene::MotionParticlesSpec>();
+            const auto* blur = effect.spec->as<scene::MotionBlurSpec>();
             const scene::RibbonLook* look = lines       ? &lines->ribbon
                                             : particles ? &particles->look
                                                         : nullptr;
-            if (look) {
-                auto style = styles_.find(index);
-                if (style == styles_.end())
-                    style = styles_.emplace(index, ribbonStyleBuffer(ctx_, *look)).first;
+            auto style = styles_.find(index);
+            if (style == styles_.end())
+                style = styles_
+                            .emplace(index, look ? ribbonStyleBuffer(ctx_, *look)
+                                                 : volumeStyleBuffer(ctx_, blur->look))
+                            .first;
+            if (look)
                 program.bind(cmd, {gpu::bindBuffer(0, frame_), gpu::bindBuffer(1, style->second),
                                    fadeDepthSource_.binding(fadeDepth_)});
-            } else {
-                program.bind(cmd, {gpu::bindBuffer(0, frame_)});
-            }
+            else
+                program.bind(cmd, {gpu::bindBuffer(0, frame_), gpu::bindBuffer(1, style->second)});
             shared::EffectDraw d{};
             const float width = lines ? lines->width : particles ? particles->size : 0.0f;
             d.timing = glm::vec4(now, float(effect.trail->lifetime) / simulation.scene().output.fps,
                                  width, 1.0f / simulation.scene().output.fps);
             d.tint = glm::vec4(1.0f);
-            if (look) setRibbonLook(d, *look);
+            if (look)
+                setRibbonLook(d, *look);
+            else
+                setVolumeLook(d, blur->look, false);
             program.push(cmd, d);
             const VkBuffer vertices = queue.vertices().get();
             const VkDeviceSize offset = 0;

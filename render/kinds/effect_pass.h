@@ -1,6 +1,7 @@
 // The effect passes: what the trajectory queues hold, drawn over the scene (inside the same
 // rendering, after the opaque scene pass; depth test on, no depth write, premultiplied alpha):
-//   * motion volumes (blur): the swept side walls, lit with their stored normals;
+//   * motion volumes (blur): the swept side walls, lit with their stored normals, with a Fresnel
+//     rim and colour over life;
 //   * speed-lines: each line piece widened into a camera-facing ribbon (geometry stage), tapering
 //     along the segment and with age, with a white-hot core;
 //   * motion particles: round soft camera-facing sprites (geometry stage), with colour and size
@@ -52,7 +53,7 @@ private:
     gpu::Program volumes_, lines_, particles_;
     gpu::Buffer frame_;
     FadeDepthSource fadeDepthSource_;
-    // Each speed-line and particle effect's look (ribbon_style.glsl), by effect index.
+    // Each effect's look (ribbon_style.glsl), by effect index.
     std::map<size_t, gpu::Buffer> styles_;
 };
 

@@ -127,6 +127,7 @@ SilhouetteShellPass::SilhouetteShellPass(const gpu::Context& ctx, const scene::S
         effect.resources = gpu::bindBuffers(
             {effect.skinned, effect.adjacency, effect.triangles, effect.current, effect.last,
              effect.states, effect.history, effect.colours, effect.output, effect.counters});
+        effect.style = volumeStyleBuffer(ctx, kind->look);
         effects_.push_back(std::move(effect));
     }
     if (effects_.empty()) return; // a scene without the effect pays for nothing

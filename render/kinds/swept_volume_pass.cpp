@@ -100,6 +100,7 @@ SweptVolumePass::SweptVolumePass(const gpu::Context& ctx, const scene::Scene& sc
         effect.resources =
             gpu::bindBuffers({effect.skinned, effect.history, effect.colours, effect.triangles,
                               effect.edges, effect.output, effect.counters});
+        effect.style = volumeStyleBuffer(ctx, kind->look);
         effects_.push_back(std::move(effect));
     }
     if (effects_.empty()) return; // a scene without the effect pays for nothing

@@ -1,4 +1,8 @@
-// Motion volumes: Blinn-Phong with the key light (as the scene pass), premultiplied alpha.
+// Lit effect volumes: Phong illumination as Xu et al. give it for motion volumes (Sec. 4.4.1; the
+// Blinn-Phong of the scene pass), times the look's HDR intensity, plus a Fresnel rim light so the
+// volume reads as energy: Schlick's F = F0 + (1 - F0) (1 - |n.v|)^5 with F0 = 0.04, times the
+// rim's strength and colour, added as light where the volume covers (premultiplied). Additive
+// volumes add their light (alpha 0) instead of covering what is behind.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "effect_common.glsl"
@@ -19,6 +23,8 @@ void main() {
     vec3 ambient = frame.lightColor.w * mix(frame.ground.rgb, frame.sky.rgb, 0.5 + 0.5 * n.y);
     vec3 color = vertexColour.rgb * (ambient + diffuse * frame.lightColor.rgb) +
                  frame.sky.w * specular * frame.lightColor.rgb;
-    float a = vertexColour.a;
-    outColor = vec4(color * a, a);
+    float fresnel = 0.04 + 0.96 * pow(1.0 - abs(dot(n, v)), 5.0);
+    vec3 rim = draw.rimLight.x * fresnel * draw.rimLight.yzw;
+    float a = clamp(vertexColour.a, 0.0, 1.0);
+    outColor = vec4((color * draw.ribbonLight.x + rim) * a, draw.ribbonFlags.z > 0.5 ? 0.0 : a);
 }

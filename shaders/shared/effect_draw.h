@@ -11,12 +11,15 @@ struct EffectDraw {
     vec4 timing; // x: the frame's time (s); y: the trail's lifetime (s); z: width or size (world
                  // units); w: the segment's dt (s), for the age of a sample along it
     vec4 tint;   // rgb multiplies the vertex colour; a multiplies its alpha
-    // Speed-line ribbons and particles (scene::RibbonLook): x 1 = colour over life, y 1 = width
-    // (particles: size) over life, z 1 = additive; w 1 = facing the blade's plane. In push
-    // constants, not the style's uniform buffer, so that no branch depends on a uniform buffer
-    // (lavapipe compiles a shader variant per value of such).
+    // The look (scene::RibbonLook of speed-lines and particles, scene::VolumeLook of the lit
+    // volumes): x 1 = colour over life; y 1 = width (particles: size) over life; z 1 = additive;
+    // w: lines 1 = facing the blade's plane, volumes 1 = life is the place along the sweep
+    // (position.w) rather than the age. In push constants, not the style's uniform buffer, so
+    // that no branch depends on a uniform buffer (lavapipe compiles a shader variant per value of
+    // such).
     vec4 ribbonFlags;
     vec4 ribbonLight; // x: intensity; y: core whiteness; z 1 = tube; w: depth fade (world units)
+    vec4 rimLight;    // volumes: x the Fresnel rim's strength, yzw its colour (linear RGB)
 };
 
 // How a speed-line ribbon or a particle looks over its life (scene::RibbonLook; uniform buffer,
@@ -34,7 +37,8 @@ struct RibbonStyle {
 MFX_SHARED_END
 
 #ifdef __cplusplus
-MFX_CHECK_SIZE(EffectDraw, 64);
+MFX_CHECK_SIZE(EffectDraw, 80);
+MFX_CHECK_LAYOUT(EffectDraw, rimLight, 64);
 MFX_CHECK_LAYOUT(EffectDraw, ribbonLight, 48);
 MFX_CHECK_SIZE(RibbonStyle, 224);
 MFX_CHECK_LAYOUT(RibbonStyle, colourAt, 128);

@@ -2,6 +2,8 @@
 
 #include "core/scene/json_object.h"
 
+#include <algorithm>
+
 namespace mfx::scene {
 
 using detail::fail;
@@ -27,8 +29,10 @@ std::vector<std::string> AfterimageSpec::keys() {
                                      "relative_speed",
                                      "afterimages",
                                      "influence_power"};
-    for (const std::string& r : ribbonKeys())
-        keys.push_back(r);
+    // The ribbon's (speed_lines) and the volume's (smear, multi) look, each key once.
+    for (const std::vector<std::string>& look : {ribbonKeys(), volumeLookKeys()})
+        for (const std::string& k : look)
+            if (std::find(keys.begin(), keys.end(), k) == keys.end()) keys.push_back(k);
     return keys;
 }
 
@@ -38,12 +42,21 @@ std::unique_ptr<EffectKindSpec> AfterimageSpec::parse(const Object& o) {
     a->variant = variant == "smear"         ? AfterimageVariant::Smear
                  : variant == "speed_lines" ? AfterimageVariant::SpeedLines
                                             : AfterimageVariant::Multi;
+    const std::vector<std::string> volumeKeys = volumeLookKeys();
+    auto isVolumeKey = [&](const std::string& key) {
+        return std::find(volumeKeys.begin(), volumeKeys.end(), key) != volumeKeys.end();
+    };
     std::vector<std::string> lineKeys = ribbonKeys();
     lineKeys.insert(lineKeys.end(), {"width", "stride"});
     for (const std::string& key : lineKeys)
-        if (o.has(key) && a->variant != AfterimageVariant::SpeedLines)
+        if (o.has(key) && !isVolumeKey(key) && a->variant != AfterimageVariant::SpeedLines)
             fail(o.at(key),
                  "only for \"variant\": \"speed_lines\" (the variant is \"" + variant + "\")");
+    for (const std::string& key : volumeKeys)
+        if (o.has(key) && !std::count(lineKeys.begin(), lineKeys.end(), key) &&
+            a->variant == AfterimageVariant::SpeedLines)
+            fail(o.at(key), "only for the \"smear\" and \"multi\" variants (the variant is \"" +
+                                variant + "\")");
     for (const char* key : {"afterimages", "influence_power"})
         if (o.has(key) && a->variant != AfterimageVariant::Multi)
             fail(o.at(key), "only for \"variant\": \"multi\" (the variant is \"" + variant + "\")");
@@ -63,7 +76,10 @@ std::unique_ptr<EffectKindSpec> AfterimageSpec::parse(const Object& o) {
     a->alphaEnd = float(o.number("alpha_end", a->alphaEnd, 0.0, 1.0));
     a->alphaPower = float(o.number("alpha_power", a->alphaPower, 0.0, 16.0, true));
     a->width = float(o.number("width", a->width, 0.0, 1.0, true));
-    readRibbon(o, a->ribbon);
+    if (a->variant == AfterimageVariant::SpeedLines)
+        readRibbon(o, a->ribbon);
+    else
+        readVolumeLook(o, a->look);
 
     a->strengthCharacter = float(o.number("strength_character", a->strengthCharacter, 0.0, 1000.0));
     a->strengthAnimation = float(o.number("strength_animation", a->strengthAnimation, 0.0, 1000.0));

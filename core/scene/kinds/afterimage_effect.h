@@ -43,6 +43,7 @@ struct AfterimageSpec : EffectKind<AfterimageSpec> {
     uint32_t stride = 1;
     float width = 0.008f;
     RibbonLook ribbon; // the speed-line variant's ribbon (life u from the mesh to the pushed end)
+    VolumeLook look;   // the smear's and the arcs' (life u: the place along the push or the arc)
 
     static std::vector<std::string> keys();
     static std::unique_ptr<EffectKindSpec> parse(const detail::Object& o);

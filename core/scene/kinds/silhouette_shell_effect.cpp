@@ -6,7 +6,11 @@ namespace mfx::scene {
 
 // Jones 2004, Sec. 3.2.2, 3.2.4 and 3.3: the shell's settings.
 std::vector<std::string> SilhouetteShellSpec::keys() {
-    return {"colour", "subdivisions", "blur_time", "initial_alpha", "fade_out", "edge_rule"};
+    std::vector<std::string> keys = {"colour",        "subdivisions", "blur_time",
+                                     "initial_alpha", "fade_out",     "edge_rule"};
+    for (const std::string& l : volumeLookKeys())
+        keys.push_back(l);
+    return keys;
 }
 
 std::unique_ptr<EffectKindSpec> SilhouetteShellSpec::parse(const detail::Object& o) {
@@ -21,6 +25,7 @@ std::unique_ptr<EffectKindSpec> SilhouetteShellSpec::parse(const detail::Object&
         s->colour = o.colour("colour", s->colour);
         s->useMeshColour = false;
     }
+    readVolumeLook(o, s->look);
     return s;
 }
 

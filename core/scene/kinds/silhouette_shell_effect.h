@@ -3,6 +3,7 @@
 #pragma once
 
 #include "core/scene/effect_spec.h"
+#include "core/scene/kinds/trail_effects.h"
 
 namespace mfx::scene {
 
@@ -25,6 +26,7 @@ struct SilhouetteShellSpec : EffectKind<SilhouetteShellSpec> {
     glm::vec4 colour{1.0f}; // the mesh's without "colour"
     bool useMeshColour = true;
 
+    VolumeLook look; // colour over the place along it (0 at the live mesh), rim
     static std::vector<std::string> keys();
     static std::unique_ptr<EffectKindSpec> parse(const detail::Object& o);
 };

@@ -6,7 +6,10 @@ namespace mfx::scene {
 
 // Wloka and Zeleznik 1996, Sec. 3.4 and 4.2: the volume's settings.
 std::vector<std::string> SweptVolumeSpec::keys() {
-    return {"colour", "sub_samples", "filter", "segments", "alpha_floor"};
+    std::vector<std::string> keys = {"colour", "sub_samples", "filter", "segments", "alpha_floor"};
+    for (const std::string& l : volumeLookKeys())
+        keys.push_back(l);
+    return keys;
 }
 
 std::unique_ptr<EffectKindSpec> SweptVolumeSpec::parse(const detail::Object& o) {
@@ -23,6 +26,7 @@ std::unique_ptr<EffectKindSpec> SweptVolumeSpec::parse(const detail::Object& o) 
         v->colour = o.colour("colour", v->colour);
         v->useMeshColour = false;
     }
+    readVolumeLook(o, v->look);
     return v;
 }
 

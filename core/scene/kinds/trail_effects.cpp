@@ -84,23 +84,39 @@ Value valueOf(const std::vector<Stop>& stops, float u, Value Stop::*member, Mix 
     return stops.back().*member;
 }
 
-// The keys both ribbons and particles have: colour_over_life, <size>_over_life with its stops'
-// <size> values, intensity, blend and depth_fade.
+// The keys ribbons, particles and (without a size or a depth fade) volumes have:
+// colour_over_life, <size>_over_life with its stops' <size> values, intensity, blend and
+// depth_fade.
 void readLook(const Object& o, RibbonLook& r, const char* size) {
     r.colourOverLife = readStops<GradientStop>(
         o, "colour_over_life", "colour",
         [](const Object& e, GradientStop& s) { s.colour = e.colour("colour", s.colour); });
+    r.intensity = float(o.number("intensity", r.intensity, 0.0, 1000.0));
+    r.additive =
+        o.choice("blend", r.additive ? "additive" : "alpha", {"alpha", "additive"}) == "additive";
+    if (!size) return;
     r.widthOverLife = readStops<CurveStop>(o, std::string(size) + "_over_life", size,
                                            [size](const Object& e, CurveStop& s) {
                                                s.value = float(e.number(size, 1.0, 0.0, 100.0));
                                            });
-    r.intensity = float(o.number("intensity", r.intensity, 0.0, 1000.0));
-    r.additive =
-        o.choice("blend", r.additive ? "additive" : "alpha", {"alpha", "additive"}) == "additive";
     r.depthFade = float(o.number("depth_fade", r.depthFade, 0.0, 10.0));
 }
 
 } // namespace
+
+std::vector<std::string> volumeLookKeys() {
+    return {"colour_over_life", "intensity", "blend", "rim", "rim_colour"};
+}
+
+void readVolumeLook(const Object& o, VolumeLook& v) {
+    RibbonLook shared;
+    readLook(o, shared, nullptr);
+    v.colourOverLife = std::move(shared.colourOverLife);
+    v.intensity = shared.intensity;
+    v.additive = shared.additive;
+    v.rim = float(o.number("rim", v.rim, 0.0, 1000.0));
+    v.rimColour = glm::vec3(o.colour("rim_colour", glm::vec4(v.rimColour, 1.0f)));
+}
 
 std::vector<std::string> particleLookKeys() {
     return {"colour_over_life", "size_over_life", "intensity", "blend", "depth_fade"};
@@ -136,7 +152,9 @@ std::unique_ptr<EffectKindSpec> SpeedLinesSpec::parse(const Object& o) {
 }
 
 std::unique_ptr<EffectKindSpec> MotionBlurSpec::parse(const Object& o) {
-    return readTrailKind<MotionBlurSpec>(o);
+    auto e = readTrailKind<MotionBlurSpec>(o);
+    readVolumeLook(o, e->look);
+    return e;
 }
 
 std::unique_ptr<EffectKindSpec> MotionParticlesSpec::parse(const Object& o) {

@@ -61,6 +61,21 @@ struct RibbonLook {
     // A tube, round and lit by the key light, instead of a flat strip (Xu et al., Sec. 3.2.2).
     bool tube = false;
 };
+// How a lit effect surface looks (motion volumes, swept volumes, afterimage smears and arcs,
+// silhouette shells; shaders/render/effect_volume.*): its colour over its life, an HDR intensity,
+// the blend, and a Fresnel rim light so it reads as energy. Life u is the age over the lifetime for
+// motion volumes and the place along the sweep (0 at the live mesh, 1 at its far end) for the
+// mesh effects.
+struct VolumeLook {
+    std::vector<GradientStop> colourOverLife; // RGBA by life, 2-8 stops; empty: the effect's colour
+    float intensity = 1.0f;
+    bool additive = false;
+    float rim = 0.0f;          // the rim light's strength (HDR; 0: none)
+    glm::vec3 rimColour{1.0f}; // its colour
+};
+std::vector<std::string> volumeLookKeys();
+void readVolumeLook(const detail::Object& o, VolumeLook& v);
+
 // The ribbon keys and their reading (speed-lines and the afterimage's speed-line variant).
 std::vector<std::string> ribbonKeys();
 void readRibbon(const detail::Object& o, RibbonLook& r);
@@ -96,7 +111,13 @@ struct MotionBlurSpec : TrailEffect<MotionBlurSpec> {
         trail.lifetime = 6;
         trail.alphaStart = 0.55f;
     }
-    static std::vector<std::string> keys() { return trailKeys(); }
+    VolumeLook look;
+    static std::vector<std::string> keys() {
+        std::vector<std::string> k = trailKeys();
+        for (const std::string& l : volumeLookKeys())
+            k.push_back(l);
+        return k;
+    }
     static std::unique_ptr<EffectKindSpec> parse(const detail::Object& o);
 };
 

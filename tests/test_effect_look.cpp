@@ -1,8 +1,13 @@
-// The speed-lines' ribbon look (scene::RibbonLook; shaders/render/ribbon_style.glsl): the keys, the
-// gradient and curve between their stops, and on the GPU a straight ribbon (one point sliding
-// along +x at 1.5 m/s, seen from the side) whose colour at its head and tail is the gradient's end
-// stops and whose width follows width_over_life along it; facing, tubes, the afterimage's lines;
-// and the particles' share of the look (their size and colour over life).
+// How the effects look (scene::RibbonLook, scene::VolumeLook; shaders/render/ribbon_style.glsl,
+// effect_lines.*, effect_particles.*, effect_volume.*, depth_fade.glsl). The speed-lines' ribbons:
+// the keys, the gradient and curve between their stops, and on the GPU a straight ribbon (one point
+// sliding along +x at 1.5 m/s, seen from the side) whose colour at its head and tail is the
+// gradient's end stops and whose width follows width_over_life along it; facing, tubes, the
+// afterimage's lines; the particles' share of the look (their size and colour over life); the depth
+// fade; and the lit volumes' colour over life and Fresnel rim.
+#include "core/scene/kinds/afterimage_effect.h"
+#include "core/scene/kinds/silhouette_shell_effect.h"
+#include "core/scene/kinds/swept_volume_effect.h"
 #include "core/scene/kinds/trail_effects.h"
 #include "render/frame_renderer.h"
 #include "tests/gpu_test.h"
@@ -16,13 +21,14 @@ namespace mfx::test {
 namespace {
 
 // The point sliding along x, seen from the side, with one effect: speed-lines with `look`, or
-// the JSON of `effect`.
-Result<scene::Scene> pointScene(const std::string& effect) {
+// the JSON of `effect`, seen from `eye`.
+Result<scene::Scene> pointScene(const std::string& effect, const std::string& eye = "0, 0.6, 2") {
     return scene::parseScene(R"({
         "character": {"source": "point.gltf"},
         "stage": {"floor": false, "backdrop": false},
         "lights": [{"direction": [0, -1, 0], "shadow": false}],
-        "camera": {"position": [0, 0.6, 2], "target": [0, 0.6, 0], "fov_degrees": 40},
+        "camera": {"position": [)" +
+                                 eye + R"(], "target": [0, 0.6, 0], "fov_degrees": 40},
         "output": {"fps": 30, "frames": 36},
         "effects": [)" + effect + "]}",
                              "ribbon.json");
@@ -107,17 +113,17 @@ protected:
     std::vector<float> drawLine(const std::string& look, glm::vec3 normal = {0, 1, 0}) {
         return draw(lineScene(look), normal);
     }
-    // With `triangle`, the point is a triangle a millimetre across (the afterimage draws from
-    // the vertices of triangles). With `extra`, a second vertex at that offset from the point
-    // (on the same joint).
-    std::vector<float> draw(const Result<scene::Scene>& s, glm::vec3 normal, bool triangle = false,
+    // With `triangle` > 0, the point is a triangle that many metres across (the afterimage and the
+    // motion volumes draw from triangles). With `extra`, a second vertex at that offset from the
+    // point (on the same joint).
+    std::vector<float> draw(const Result<scene::Scene>& s, glm::vec3 normal, float triangle = 0.0f,
                             std::optional<glm::vec3> extra = std::nullopt) {
         EXPECT_TRUE(s) << (s ? "" : s.error().message);
         anim::Character point = movingPoint();
         anim::Primitive& p = point.meshes[0].primitives[0];
         p.normals[0] = normal;
         if (triangle) {
-            p.positions = {glm::vec3(0.0f), glm::vec3(0, 0.001f, 0), glm::vec3(0, 0, 0.001f)};
+            p.positions = {glm::vec3(0.0f), glm::vec3(0, triangle, 0), glm::vec3(0, 0, triangle)};
             p.normals.assign(3, normal);
             p.joints.assign(3, glm::uvec4(0));
             p.weights.assign(3, glm::vec4(1, 0, 0, 0));
@@ -282,7 +288,7 @@ TEST_F(RibbonDrawTest, AfterimageLinesTakeTheGradientFromTheMeshToThePushedEnd) 
         "random_min": 1, "random_max": 1, "alpha_end": 1,
         "colour_over_life": [{"at": 0, "colour": [1, 0.5, 0, 1]}, {"at": 1, "colour": [0, 0.2, 1, 1]}],
         "width_over_life": [{"at": 0, "width": 1}, {"at": 1, "width": 1}], "core": 0})"),
-                                         {-1, 0, 0}, true);
+                                         {-1, 0, 0}, 0.001f);
     // The covered run of the middle row: the pushed end on the left, the point on the right.
     const int row = int(kHeight / 2);
     const glm::vec4 background = at(rgba, 0, row);
@@ -326,7 +332,7 @@ TEST_F(RibbonDrawTest, DepthFadeScalesAlphaByTheGapToTheSurfaceBehind) {
                                                        R"(,
                 "colour_over_life": [{"at": 0, "colour": [1, 1, 1]}, {"at": 1, "colour": [1, 1, 1]}]}]})",
                                                    "fade.json");
-        return draw(s, {0, 1, 0}, false, glm::vec3(0, -0.6f, -1.0f));
+        return draw(s, {0, 1, 0}, 0.0f, glm::vec3(0, -0.6f, -1.0f));
     };
     const glm::vec3 eye(0, 2.6f, 0.5f), centre(-0.05f, 0.6f, 0.0f);
     // The floor (y = 0) behind the ribbon's centre, along the ray through it, in view depth.
@@ -432,6 +438,91 @@ TEST_F(RibbonDrawTest, ParticlesTakeTheirSizeAndColourOverLife) {
         for (int ch = 0; ch < 3; ++ch)
             EXPECT_NEAR(c[ch], want[ch], 0.03f) << "colour at u = " << u << ", channel " << ch;
     }
+}
+
+TEST(VolumeLook, ReadsItsKeysOnEveryLitVolumeKind) {
+    for (const char* type :
+         {"motion_blur", "swept_volume", "silhouette_shell", "afterimage_smear"}) {
+        SCOPED_TRACE(type);
+        Result<scene::Scene> s = pointScene(R"({"type": ")" + std::string(type) + R"(",
+            "colour_over_life": [{"at": 0, "colour": [1, 0, 0]}, {"at": 1, "colour": [0, 0, 1]}],
+            "intensity": 2, "blend": "additive", "rim": 3, "rim_colour": [0.2, 0.6, 1]})");
+        ASSERT_TRUE(s) << s.error().message;
+        const scene::EffectSpec& e = s.value().effects.at(0);
+        const scene::VolumeLook* look = nullptr;
+        if (const auto* k = e.as<scene::MotionBlurSpec>()) look = &k->look;
+        if (const auto* k = e.as<scene::SweptVolumeSpec>()) look = &k->look;
+        if (const auto* k = e.as<scene::SilhouetteShellSpec>()) look = &k->look;
+        if (const auto* k = e.as<scene::AfterimageSpec>()) look = &k->look;
+        ASSERT_NE(look, nullptr);
+        EXPECT_EQ(look->colourOverLife.size(), 2u);
+        EXPECT_FLOAT_EQ(look->intensity, 2.0f);
+        EXPECT_TRUE(look->additive);
+        EXPECT_FLOAT_EQ(look->rim, 3.0f);
+        EXPECT_EQ(look->rimColour, glm::vec3(0.2f, 0.6f, 1.0f));
+    }
+    Result<scene::Scene> lines =
+        pointScene(R"({"type": "afterimage_smear", "variant": "speed_lines", "rim": 1})");
+    ASSERT_FALSE(lines);
+    EXPECT_NE(lines.error().message.find("effects[0].rim: only for the \"smear\" and \"multi\""),
+              std::string::npos)
+        << lines.error().message;
+}
+
+// The motion volume a sliding triangle 0.1 m across sweeps, its colour over life from pure red at
+// its head to pure blue at its tail: whatever the lighting's tint, the red share r / (r + b) of
+// the light it adds falls from 1 at the head to 0 at the tail, monotonically.
+TEST_F(RibbonDrawTest, MotionVolumesTakeTheirColourOverLife) {
+    const std::string blur = R"({"type": "motion_blur", "lifetime": 10, "alpha_start": 1,
+        "alpha_end": 1, "blend": "additive",
+        "colour_over_life": [{"at": 0, "colour": [1, 0, 0]}, {"at": 1, "colour": [0, 0, 1]}])";
+    const std::vector<float> lit = draw(pointScene(blur + "}"), {0, 0, 1}, 0.1f);
+    const std::vector<float> dark =
+        draw(pointScene(blur + R"(, "intensity": 0})"), {0, 0, 1}, 0.1f);
+    const int row = pixel(glm::vec3(0, 0.65f, 0)).y; // halfway up the swept wall
+    const float head = column(kHead), tail = column(kTail);
+    float previous = 2.0f;
+    for (float u : {0.05f, 0.25f, 0.5f, 0.75f, 0.95f}) {
+        const int x = int(std::lround(head - u * (head - tail)));
+        const glm::vec4 added = at(lit, x, row) - at(dark, x, row);
+        const float share = added.r / std::max(added.r + added.b, 1e-6f);
+        std::cout << "u " << u << ": added " << added.r << " " << added.g << " " << added.b
+                  << ", red share " << share << "\n";
+        EXPECT_GT(added.r + added.b, 0.01f) << "the volume is there at u = " << u;
+        EXPECT_LT(share, previous + 1e-3f) << "at u = " << u;
+        EXPECT_NEAR(share, 1.0f - u, 0.05f) << "at u = " << u;
+        previous = share;
+    }
+}
+
+// The Fresnel rim on the same volume's wall (the plane z = 0, seen from behind at a point near the
+// tail, where no other wall is along the ray): the light the rim adds there, over Schlick's F for
+// the view, is the same seen at 70 degrees from the wall's normal (F about 0.16) and at a grazing
+// 85 degrees (F about 0.65).
+TEST_F(RibbonDrawTest, TheRimFollowsSchlicksFresnel) {
+    const std::string blur = R"({"type": "motion_blur", "lifetime": 10, "alpha_start": 1,
+        "alpha_end": 1, "blend": "additive", "rim_colour": [1, 1, 1], "rim": )";
+    const glm::vec3 point(-0.15f, 0.65f, 0.0f); // on the wall, 0.8 of the way to the tail
+    float perF[2];
+    int k = 0;
+    for (const float degrees : {70.0f, 85.0f}) {
+        const float angle = glm::radians(degrees);
+        const glm::vec3 eye = point + 2.0f * glm::vec3(std::sin(angle), 0.0f, -std::cos(angle));
+        const std::string at3 =
+            std::to_string(eye.x) + ", " + std::to_string(eye.y) + ", " + std::to_string(eye.z);
+        const std::vector<float> none = draw(pointScene(blur + "0}", at3), {0, 0, 1}, 0.1f);
+        const std::vector<float> rim = draw(pointScene(blur + "4}", at3), {0, 0, 1}, 0.1f);
+        const glm::ivec2 p = pixel(point);
+        const glm::vec4 added = at(rim, p.x, p.y) - at(none, p.x, p.y);
+        const float fresnel = 0.04f + 0.96f * std::pow(1.0f - std::cos(angle), 5.0f);
+        perF[k] = added.r / fresnel;
+        std::cout << "view at " << degrees << " degrees: rim adds " << added.r << ", F " << fresnel
+                  << ", over F " << perF[k] << "\n";
+        EXPECT_NEAR(added.r, added.b, 1e-3f) << "white";
+        ++k;
+    }
+    EXPECT_GT(perF[0], 0.2f) << "the rim is there";
+    EXPECT_NEAR(perF[1] / perF[0], 1.0f, 0.1f);
 }
 
 } // namespace
