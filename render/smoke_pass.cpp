@@ -38,7 +38,7 @@ shared::SmokeStyle smokeStyle(const scene::SmokeShading& shading, const scene::L
                          : shading.preset == P::Energy ? MFX_SMOKE_PRESET_ENERGY
                                                        : MFX_SMOKE_PRESET_SMOKE;
     style.params = glm::vec4(shading.glow, float(shading.celBands), key.intensity, preset);
-    style.light = glm::vec4(key.colour, 0.0f);
+    style.light = glm::vec4(key.colour, shading.anisotropy);
     return style;
 }
 

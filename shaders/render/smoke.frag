@@ -12,13 +12,20 @@
 // other, so that along a silhouette both the near and the far surface have texels marched for
 // them (the checkerboard min/max depth downsample common in mixed-resolution rendering).
 //
-// Shading (the volume's SmokeStyle, scene::SmokeShading): each sample scatters the key light (its
-// colour and intensity) towards the eye, isotropically, weighted by the light's transmittance
-// exp(-sum density * ds) over four samples two cells apart towards the light (self-shadowing),
-// plus a constant 0.35 of it as ambient; with cel bands that transmittance is stepped. Its albedo
-// is the pigment's colour (smoke) or the preset's ramp at the sample's pigment alpha (fire,
-// energy), and fire and energy add their own light, glow * ramp * alpha (fire: hotter where
-// denser), which may exceed 1: the bloom spreads it.
+// Shading (the volume's SmokeStyle, scene::SmokeShading): single scattering. Each sample, of
+// opacity a = 1 - exp(-density ds), seen through the transmittance T_v of the samples before it,
+// scatters the key light (its colour and intensity L) towards the eye:
+//   colour += T_v a (albedo L (kAmbient + (1 - kAmbient) T_l p(cos theta)) + emitted),
+// where T_l = exp(-integral of density towards the light) is the light's transmittance to the
+// sample (self-shadowing), integrated by the midpoint rule over kShadowSamples from the sample to
+// where its ray towards the light leaves the pigment's box, so the whole depth of smoke shadows;
+// p is the Henyey-Greenstein phase function normalised to 1 for even scattering,
+//   p = (1 - g^2) / (1 + g^2 - 2 g cos theta)^(3/2),  cos theta = dot(towards the light, ray),
+// with the style's anisotropy g (forwards scattering makes smoke between the eye and the light
+// glow); kAmbient of the light reaches every sample unshadowed (the sky). With cel bands, T_l is
+// stepped. The albedo is the pigment's colour (smoke) or the preset's ramp at the sample's pigment
+// alpha (fire, energy), and fire and energy add their own light, glow * ramp * alpha (fire: hotter
+// where denser), which may exceed 1: the bloom spreads it.
 //
 // The ray is marched only inside the box of cells that hold pigment (shaders/render/smoke.vert), with
 // its samples at the same places as a march over the whole grid would put them, so the box moving
@@ -55,6 +62,27 @@ vec3 rampAt(float x) {
     return c;
 }
 
+const float kAmbient = 0.35;
+const int kShadowSamples = 8;
+
+// Henyey-Greenstein, 1 for g = 0.
+float phase(float g, float cosTheta) {
+    return (1.0 - g * g) / pow(max(1.0 + g * g - 2.0 * g * cosTheta, 1e-4), 1.5);
+}
+
+// The light's transmittance to p: the pigment's density integrated towards the light (unit
+// vector `light`, inverse `lightInv`) up to where that ray leaves the pigment's box.
+float lightTransmittance(vec3 p, vec3 light, vec3 lightInv, float scale) {
+    vec3 t0 = (boxLow - p) * lightInv, t1 = (boxHigh - p) * lightInv;
+    vec3 far = max(t0, t1);
+    float reach = max(min(min(far.x, far.y), far.z), 0.0);
+    float ds = reach / float(kShadowSamples);
+    float optical = 0.0;
+    for (int k = 0; k < kShadowSamples; ++k)
+        optical += max(sampleGrid(p + light * ((float(k) + 0.5) * ds)).a, 0.0);
+    return exp(-optical * scale * ds);
+}
+
 void main() {
     ivec2 texel = ivec2(gl_FragCoord.xy);
     ivec2 size = textureSize(sceneDepth, 0);
@@ -89,7 +117,10 @@ void main() {
     int first = max(int((box.x - gridEnter) / step), 0);
     int end = min(int((tExit - gridEnter) / step) + 1, first + 512);
     vec3 light = normalize(draw.light.xyz);
+    // An axis the light runs across has no exit along it (a large t, not 0 * inf).
+    vec3 lightInv = 1.0 / mix(light, vec3(1e-6), lessThan(abs(light), vec3(1e-6)));
     float scale = draw.light.w;
+    float scatter = phase(style.light.w, dot(light, dir));
     vec3 colour = vec3(0.0);
     float transmittance = 1.0;
     for (int i = first; i < end && transmittance > 0.01; ++i) {
@@ -101,11 +132,7 @@ void main() {
         // Behind the scene surface by d: faded linearly to nothing at d = b.
         float visible = clamp(1.0 - (t - sceneDistance) / fade, 0.0, 1.0);
         float a = (1.0 - exp(-density * step)) * visible;
-        // Light reaching this sample: absorption along a few steps towards the light.
-        float shadow = 0.0;
-        for (int k = 1; k <= 4; ++k)
-            shadow += max(sampleGrid(p + light * (float(k) * 2.0 * draw.gridOrigin.w)).a, 0.0);
-        float lit = exp(-shadow * scale * 2.0 * draw.gridOrigin.w);
+        float lit = lightTransmittance(p, light, lightInv, scale);
         float bands = max(style.params.y, 1.0);
         lit = mix(lit, floor(lit * bands + 0.5) / bands, float(style.params.y > 0.5));
         float density01 = clamp(s.a, 0.0, 1.0);
@@ -114,7 +141,8 @@ void main() {
         vec3 albedo = mix(s.rgb / max(s.a, 1e-4), ramp, ramped);
         vec3 keyLight = style.light.rgb * style.params.z;
         vec3 emitted = ramped * style.params.x * ramp * density01;
-        colour += transmittance * a * (albedo * keyLight * (0.35 + 0.65 * lit) + emitted);
+        colour += transmittance * a *
+                  (albedo * keyLight * (kAmbient + (1.0 - kAmbient) * lit * scatter) + emitted);
         transmittance *= 1.0 - a;
     }
     outColor = vec4(colour, 1.0 - transmittance);

@@ -52,7 +52,7 @@ struct SmokeStyle {
     vec4 ramp[4]; // rgb: the colour at pigment alpha w (rising); used by fire and energy
     vec4 params;  // x: glow (emitted light at full density); y: cel bands (0: smooth); z: key
                   // light intensity; w: MFX_SMOKE_PRESET_*
-    vec4 light;   // rgb: the key light's colour
+    vec4 light;   // rgb: the key light's colour; w: the phase function's anisotropy g
 };
 
 MFX_SHARED_END

@@ -7,9 +7,13 @@ namespace mfx::scene {
 using detail::Object;
 
 std::vector<std::string> SmokeSpec::keys() {
-    return trailKeys({"grid", "cell_size", "jacobi", "fade", "drag", "steps_per_second", "buoyancy",
-                      "vorticity", "impulse_k", "radius", "strength", "emission", "surface_step",
-                      "max_emitters", "sleep_threshold", "follow", "look", "glow", "cel_bands"});
+    return trailKeys({"grid",         "cell_size",    "jacobi",
+                      "fade",         "drag",         "steps_per_second",
+                      "buoyancy",     "vorticity",    "impulse_k",
+                      "radius",       "strength",     "emission",
+                      "surface_step", "max_emitters", "sleep_threshold",
+                      "follow",       "look",         "glow",
+                      "cel_bands",    "anisotropy"});
 }
 
 SmokeShading smokeShading(SmokePreset preset) {
@@ -55,6 +59,7 @@ std::unique_ptr<EffectKindSpec> SmokeSpec::parse(const Object& o) {
                                                  : SmokePreset::Smoke);
     e->shading.glow = float(o.number("glow", e->shading.glow, 0.0, 1000.0));
     if (o.has("cel_bands")) e->shading.celBands = o.integer("cel_bands", 0, 2, 4);
+    e->shading.anisotropy = float(o.number("anisotropy", e->shading.anisotropy, -0.9, 0.9));
     return e;
 }
 

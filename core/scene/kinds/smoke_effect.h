@@ -22,6 +22,9 @@ struct SmokeShading {
     SmokePreset preset = SmokePreset::Smoke;
     float glow = 0.0f;     // emitted light (HDR) at full density; default by preset: 0, 3, 4
     uint32_t celBands = 0; // 0: smooth light; 2-4: the key light's share in that many steps
+    // g of the Henyey-Greenstein phase function: > 0 scatters forwards (smoke lit from behind
+    // glows), < 0 backwards, 0 evenly.
+    float anisotropy = 0.3f;
 };
 // The preset's defaults (glow) for `preset`.
 SmokeShading smokeShading(SmokePreset preset);
