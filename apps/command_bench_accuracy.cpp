@@ -165,7 +165,7 @@ int runBenchAccuracy(const cli::ParsedArgs& parsed) {
     // mapped onto its own domain.
     std::optional<sim::SceneImpulses> kick;
     if (std::find(scenarios.begin(), scenarios.end(), kKick) != scenarios.end()) {
-        scene::Scene scene = scene::defaultScene();
+        scene::Scene scene = scene::kickScene();
         // The scenario as it has been measured: the default camera and stage (floor at y = 0),
         // not the framed ones, so the grid's placement, and the impulses in it, stay the same.
         scene.camera.automatic = false;

@@ -18,7 +18,7 @@ using CharacterPassTest = GpuTest;
 
 TEST_F(CharacterPassTest, FighterLandsWhereItsVerticesProject) {
     const anim::Character fighter = anim::makeFighter();
-    const scene::Scene s = scene::defaultScene();
+    const scene::Scene s = scene::kickScene();
     const uint32_t width = 320, height = 180;
     render::RenderTarget target = render::createRenderTarget(ctx(), width, height);
     render::CharacterPass pass(ctx(), fighter, s);
@@ -74,7 +74,7 @@ TEST_F(CharacterPassTest, FighterLandsWhereItsVerticesProject) {
 // picture otherwise (the resolved depth is sample 0's).
 TEST_F(CharacterPassTest, MultisamplingSmoothsTheEdges) {
     const anim::Character fighter = anim::makeFighter();
-    const scene::Scene s = scene::defaultScene();
+    const scene::Scene s = scene::kickScene();
     const uint32_t width = 160, height = 90;
     const render::SceneCamera camera = render::makeCamera(s.camera, 16.0f / 9.0f);
     const anim::Pose pose =
@@ -125,7 +125,7 @@ TEST_F(CharacterPassTest, MultisamplingSmoothsTheEdges) {
 // from a body point along the light to the floor) is darker than the same spot without shadows.
 TEST_F(CharacterPassTest, KeyLightCastsTheCharactersShadowOnTheFloor) {
     const anim::Character fighter = anim::makeFighter();
-    scene::Scene s = scene::defaultScene();
+    scene::Scene s = scene::kickScene();
     s.camera.position = glm::vec3(0.0f, 4.0f, 4.0f); // looking down at the floor around the feet
     s.camera.target = glm::vec3(0.0f, 0.0f, 0.0f);
     const uint32_t width = 160, height = 120;

@@ -21,7 +21,8 @@ namespace mfx::test {
 namespace {
 
 // The point sliding along x, seen from the side, with one effect: speed-lines with `look`, or
-// the JSON of `effect`, seen from `eye`.
+// the JSON of `effect`, seen from `eye`. No bloom: the tests read the linear picture, whose light
+// it would spread.
 Result<scene::Scene> pointScene(const std::string& effect, const std::string& eye = "0, 0.6, 2") {
     return scene::parseScene(R"({
         "character": {"source": "point.gltf"},
@@ -29,7 +30,7 @@ Result<scene::Scene> pointScene(const std::string& effect, const std::string& ey
         "lights": [{"direction": [0, -1, 0], "shadow": false}],
         "camera": {"position": [)" +
                                  eye + R"(], "target": [0, 0.6, 0], "fov_degrees": 40},
-        "output": {"fps": 30, "frames": 36},
+        "output": {"fps": 30, "frames": 36}, "post": {"bloom": 0},
         "effects": [)" + effect + "]}",
                              "ribbon.json");
 }
@@ -326,7 +327,7 @@ TEST_F(RibbonDrawTest, DepthFadeScalesAlphaByTheGapToTheSurfaceBehind) {
             "stage": {"floor": true, "backdrop": false},
             "lights": [{"direction": [0, -1, 0], "shadow": false}],
             "camera": {"position": [0, 2.6, 0.5], "target": [0, 0.6, 0], "fov_degrees": 40},
-            "output": {"fps": 30, "frames": 36},
+            "output": {"fps": 30, "frames": 36}, "post": {"bloom": 0},
             "effects": [{"type": ")" + type + R"(", "lifetime": 10, "stride": 1,
                 "alpha_start": 1, "alpha_end": 1, )" + look +
                                                        R"(,
@@ -403,7 +404,7 @@ TEST_F(RibbonDrawTest, ParticlesTakeTheirSizeAndColourOverLife) {
         "stage": {"floor": false, "backdrop": false},
         "lights": [{"direction": [0, -1, 0], "shadow": false}],
         "camera": {"position": [0, 0.6, 2], "target": [0, 0.6, 0], "fov_degrees": 40},
-        "output": {"fps": 10, "frames": 12},
+        "output": {"fps": 10, "frames": 12}, "post": {"bloom": 0},
         "effects": [{"type": "motion_particles", "lifetime": 4, "stride": 1, "sub_samples": 1,
             "size": 0.12, "alpha_start": 1, "alpha_end": 1,
             "colour_over_life": [{"at": 0, "colour": [1, 0.8, 0.2]}, {"at": 1, "colour": [0.1, 0.3, 1]}],

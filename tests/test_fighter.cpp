@@ -36,6 +36,7 @@ TEST(Fighter, IsAValidCharacterOfTheAdvertisedShape) {
         EXPECT_GE(clip->duration, 0.4f) << name;
         EXPECT_LE(clip->duration, 1.5f) << name;
     }
+    ASSERT_NE(c.findClip("kick_slash"), nullptr);
 }
 
 TEST(Fighter, IsDeterministic) {
@@ -144,6 +145,23 @@ TEST(Fighter, ClipsStrike) {
                     for (const anim::SkinnedVertex& v : anim::skinPrimitive(c, p, pose))
                         ASSERT_TRUE(std::isfinite(v.position.x + v.position.y + v.position.z))
                             << clip.name;
+        }
+}
+
+// The combo plays the roundhouse kick, then the sword slash from where the kick ended: every joint
+// where the one clip or the other puts it, at their own times.
+TEST(Fighter, TheComboIsTheKickThenTheSlash) {
+    const anim::Character c = anim::makeFighter();
+    const anim::Clip* combo = c.findClip("kick_slash");
+    ASSERT_NE(combo, nullptr);
+    const float kick = c.findClip("roundhouse_kick")->duration;
+    EXPECT_FLOAT_EQ(combo->duration, kick + c.findClip("sword_slash")->duration);
+    for (const char* joint : {"hips", "foot_r", "hand_r", "head", "toe_l"})
+        for (float t = 0.0f; t <= combo->duration; t += 0.05f) {
+            const glm::vec3 expected = t < kick ? jointWorld(c, "roundhouse_kick", t, joint)
+                                                : jointWorld(c, "sword_slash", t - kick, joint);
+            const glm::vec3 got = jointWorld(c, "kick_slash", t, joint);
+            EXPECT_LT(glm::length(got - expected), 1e-4f) << joint << " at " << t << " s";
         }
 }
 

@@ -96,8 +96,30 @@ TEST(SceneFile, EveryKeyIsRead) {
     EXPECT_NEAR(scene::clipTimeAt(s, fighter, 1.4f), 0.2f, 1e-5f);
 }
 
-TEST(SceneFile, DefaultSceneIsTheKickWithLinesBlurAndSmoke) {
+// The built-in default is docs/scenes/hero.json: the combo, toon, its three effects, post on.
+TEST(SceneFile, DefaultSceneIsTheHeroCombo) {
     const scene::Scene s = scene::defaultScene();
+    Result<scene::Scene> file =
+        scene::loadScene(std::string(MFX_SOURCE_DIR) + "/docs/scenes/hero.json");
+    ASSERT_TRUE(file) << file.error().message;
+    ASSERT_EQ(s.effects.size(), 3u);
+    ASSERT_EQ(file.value().effects.size(), 3u);
+    for (size_t e = 0; e < 3; ++e)
+        EXPECT_EQ(s.effects[e].name, file.value().effects[e].name);
+    EXPECT_EQ(s.effects[0].name, "kick lines");
+    EXPECT_EQ(s.effects[1].name, "slash arc");
+    EXPECT_TRUE(s.effects[1].as<scene::SpeedLinesSpec>()->ribbon.bladeFacing);
+    EXPECT_EQ(s.effects[2].as<scene::SmokeSpec>()->shading.preset, scene::SmokePreset::Energy);
+    EXPECT_EQ(scene::characterStyle(s.character), scene::CharacterStyle::Toon);
+    EXPECT_GT(s.post.bloom, 0.0f);
+    EXPECT_EQ(s.post.toneMap, scene::ToneMap::Aces);
+    const Result<anim::Character> c = scene::loadCharacter(s);
+    ASSERT_TRUE(c.ok()) << c.error().message;
+    EXPECT_EQ(scene::sceneClip(s, c.value()).name, "kick_slash");
+}
+
+TEST(SceneFile, KickSceneIsTheKickWithLinesBlurAndSmoke) {
+    const scene::Scene s = scene::kickScene();
     ASSERT_EQ(s.effects.size(), 3u);
     EXPECT_TRUE(s.effects[0].is<scene::SpeedLinesSpec>());
     EXPECT_TRUE(s.effects[1].is<scene::MotionBlurSpec>());

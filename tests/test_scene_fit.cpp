@@ -70,14 +70,14 @@ TEST(ScaleCharacter, EveryVertexOfEveryPoseMovesByTheFactor) {
 }
 
 TEST(CharacterScale, TheFighterIsLeftAlone) {
-    const scene::Scene s = scene::defaultScene();
+    const scene::Scene s = scene::kickScene();
     std::string note = "unset";
     EXPECT_EQ(scene::chooseCharacterScale(s, anim::makeFighter(), "fighter", &note), 1.0f);
     EXPECT_EQ(note, "");
 }
 
 TEST(CharacterScale, OutliersAreBroughtToAHumanHeightWithANote) {
-    const scene::Scene s = scene::defaultScene();
+    const scene::Scene s = scene::kickScene();
     for (float factor : {0.01f, 0.2f, 3.0f, 50.0f}) {
         anim::Character c = anim::makeFighter();
         anim::scaleCharacter(c, factor);

@@ -21,7 +21,7 @@ protected:
     static void SetUpTestSuite() {
         GpuTest::SetUpTestSuite();
         if (!hasContext()) return; // SetUp reports why
-        const scene::Scene scene = scene::defaultScene();
+        const scene::Scene scene = scene::kickScene();
         Result<anim::Character> character = scene::loadCharacter(scene);
         if (!character) {
             recordingError_ = character.error().message;
@@ -225,11 +225,11 @@ TEST_F(SceneScenarioTest, FollowingGridIsRecordedWhereItWasPlaced) {
 
 TEST_F(SceneScenarioTest, BadInputsAreErrors) {
     EXPECT_FALSE(sim::makeSceneScenario(*impulses_, glm::uvec3(16, 0, 16)).ok());
-    const scene::Scene kick = scene::defaultScene();
+    const scene::Scene kick = scene::kickScene();
     Result<anim::Character> fighter = scene::loadCharacter(kick);
     ASSERT_TRUE(fighter.ok());
     EXPECT_FALSE(sim::recordSceneImpulses(ctx(), kick, fighter.value(), 0).ok());
-    scene::Scene noSmoke = scene::defaultScene();
+    scene::Scene noSmoke = scene::kickScene();
     std::erase_if(noSmoke.effects,
                   [](const scene::EffectSpec& e) { return e.is<scene::SmokeSpec>(); });
     Result<anim::Character> character = scene::loadCharacter(noSmoke);

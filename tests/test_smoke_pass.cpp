@@ -48,7 +48,7 @@ Shot shoot(gpu::Context& ctx, const fluid::SmokeSolver* smoke, glm::vec3 centre,
            const render::SmokeLook& look, const std::string& png,
            const scene::SmokeShading& shading = {}, float keyLight = 1.0f) {
     const anim::Character fighter = anim::makeFighter();
-    scene::Scene s = scene::defaultScene();
+    scene::Scene s = scene::kickScene();
     s.camera.position = glm::vec3(0.0f, 1.0f, 4.0f);
     s.camera.target = glm::vec3(0.0f, 0.8f, 0.0f);
     // Lit: the chest a mid tone that white smoke in front visibly brightens (the toon style's lit
@@ -153,7 +153,7 @@ TEST_F(SmokePassTest, SmokeMeetsTheFloorSoftly) {
     const Shot plain = shootLit(nullptr, 0.1f, "floor_plain.png");
     const Shot soft = shootLit(block.get(), 0.15f, "floor_soft.png");
     const Shot hard = shootLit(block.get(), 0.0005f, "floor_hard.png");
-    scene::Scene s = scene::defaultScene();
+    scene::Scene s = scene::kickScene();
     s.camera.position = glm::vec3(0.0f, 1.0f, 4.0f);
     s.camera.target = glm::vec3(0.0f, 0.8f, 0.0f);
     const render::SceneCamera camera = render::makeCamera(s.camera, float(kWidth) / kHeight);
@@ -238,7 +238,7 @@ std::vector<float> blockColumn(gpu::Context& ctx, const scene::SmokeShading& sha
         state.pigment[c] = 0.25f; // white (colour x alpha), alpha 0.25
     block->setState(state);
     const glm::vec3 centre(0.0f, 1.0f, 0.0f);
-    scene::Scene s = scene::defaultScene();
+    scene::Scene s = scene::kickScene();
     s.camera.position = centre + glm::vec3(0.0f, 0.0f, 32.0f);
     s.camera.target = centre;
     s.camera.fovDegrees = 2.5f;

@@ -78,7 +78,9 @@ TEST_F(ToneMapPassTest, AcesIsNarkowiczsFit) {
 
 TEST_F(ToneMapPassTest, WithoutAToneMapTheColourIsClamped) {
     std::vector<float> values;
-    const std::vector<uint8_t> out = mapRamp(scene::PostSpec{}, &values);
+    scene::PostSpec clamped; // the defaults turn the curve on
+    clamped.toneMap = scene::ToneMap::None;
+    const std::vector<uint8_t> out = mapRamp(clamped, &values);
     for (uint32_t x = 0; x < kWidth; ++x)
         ASSERT_NEAR(out[x], render::encodeSrgb8(values[x]), 1) << "at " << values[x];
 }
@@ -86,6 +88,7 @@ TEST_F(ToneMapPassTest, WithoutAToneMapTheColourIsClamped) {
 TEST_F(ToneMapPassTest, OneStopOfExposureDoublesTheColour) {
     scene::PostSpec brighter;
     brighter.exposure = 1.0f;
+    brighter.toneMap = scene::ToneMap::None;
     std::vector<float> values;
     const std::vector<uint8_t> out = mapRamp(brighter, &values);
     for (uint32_t x = 0; x < kWidth; ++x)

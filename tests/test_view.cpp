@@ -241,8 +241,8 @@ TEST_F(ViewTest, KeysPauseStepToggleAndQuit) {
     ASSERT_TRUE(press("Right", "paused at frame 2")) << readFile(outPath());
     ASSERT_TRUE(press("Right", "paused at frame 3")) << readFile(outPath());
     ASSERT_TRUE(press("Left", "paused at frame 2")) << readFile(outPath());
-    ASSERT_TRUE(press("2", "effect 2 (leg blur) hidden")) << readFile(outPath());
-    ASSERT_TRUE(press("2", "effect 2 (leg blur) shown")) << readFile(outPath());
+    ASSERT_TRUE(press("2", "effect 2 (slash arc) hidden")) << readFile(outPath());
+    ASSERT_TRUE(press("2", "effect 2 (slash arc) shown")) << readFile(outPath());
     ASSERT_TRUE(press("space", "playing at frame 2")) << readFile(outPath());
     ASSERT_EQ(windowTool("keys \"motionfx view\" Escape"), 0);
     EXPECT_EQ(view->waitFor(60s), 0) << readFile(errPath());

@@ -455,6 +455,41 @@ Clip spin() {
     return b.build();
 }
 
+// Clips played one after another, each from where the one before ended (every clip starts and
+// ends in the stance, so they join without a jump): per channel, the keys of each clip that has
+// it, shifted by the durations before it; the first key of a clip that repeats the last one (the
+// stance at the seam) is dropped. A channel a clip lacks holds its last key through it (and one a
+// first clip lacks holds its first: sampling clamps).
+Clip sequence(const std::string& name, const std::vector<Clip>& clips) {
+    Clip out;
+    out.name = name;
+    float start = 0.0f;
+    for (const Clip& clip : clips) {
+        for (const Channel& c : clip.channels) {
+            auto same =
+                std::find_if(out.channels.begin(), out.channels.end(), [&](const Channel& o) {
+                    return o.node == c.node && o.path == c.path;
+                });
+            if (same == out.channels.end()) {
+                Channel shifted = c;
+                shifted.times.clear();
+                out.channels.push_back(shifted);
+                same = out.channels.end() - 1;
+                same->values.clear();
+            }
+            for (size_t k = 0; k < c.times.size(); ++k) {
+                const float t = start + c.times[k];
+                if (!same->times.empty() && t <= same->times.back()) continue; // the seam's repeat
+                same->times.push_back(t);
+                same->values.push_back(c.values[k]);
+            }
+        }
+        start += clip.duration;
+    }
+    out.duration = start;
+    return out;
+}
+
 } // namespace
 
 Character makeFighter() {
@@ -476,6 +511,7 @@ Character makeFighter() {
     c.meshes.push_back(makeBody());
     c.meshes.push_back(makeSword());
     c.clips = {idle(), roundhouseKick(), straightPunch(), swordSlash(), spin()};
+    c.clips.push_back(sequence("kick_slash", {roundhouseKick(), swordSlash()}));
     return c;
 }
 

@@ -3,6 +3,7 @@
 #include "core/anim/bone_groups.h"
 #include "core/anim/fighter.h"
 #include "core/anim/gltf_import.h"
+#include "core/scene/default_scene_json.h"
 #include "core/scene/effect_kinds.h"
 #include "core/scene/json_object.h"
 #include "core/scene/kinds/smoke_effect.h"
@@ -16,6 +17,7 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 
 namespace mfx::scene {
 
@@ -185,9 +187,9 @@ Result<Scene> loadScene(const std::filesystem::path& file) {
     return parseScene(text.str(), file.string());
 }
 
-Scene defaultScene() {
+Scene kickScene() {
     Scene s;
-    s.file = "(built-in default scene)";
+    s.file = "(built-in kick scene)";
     s.camera.automatic = true;
     SpeedLinesSpec lines;
     lines.trail.stride = 10;
@@ -207,8 +209,16 @@ Scene defaultScene() {
     return s;
 }
 
+Scene defaultScene() {
+    // docs/scenes/hero.json, embedded at build time; a test keeps it parsing.
+    Result<Scene> s =
+        parseScene(kDefaultSceneJson, "(built-in default scene: docs/scenes/hero.json)");
+    if (!s) throw std::logic_error(s.error().message);
+    return std::move(s).value();
+}
+
 Scene previewScene(const std::string& file) {
-    Scene s = defaultScene();
+    Scene s = kickScene();
     s.file = "(preview of " + file + ")";
     s.character.source = file; // the preview's "file" is no folder: read from the working one
     s.effects[0].name = "speed lines";

@@ -97,10 +97,12 @@ enum class ToneMap {
     None, // clamp to [0, 1]
     Aces, // the ACES filmic curve (K. Narkowicz's fit of the RRT and ODT), per channel
 };
+// On by default (a little bloom and the filmic curve), as a renderer's picture is; "bloom": 0 and
+// "tone_map": "none" turn them off.
 struct PostSpec {
     float exposure = 0.0f;           // stops: the picture is scaled by 2^exposure (0: unchanged)
-    float bloom = 0.0f;              // share of the blurred picture in the result (0: no bloom)
-    ToneMap toneMap = ToneMap::None; // None: no tone map
+    float bloom = 0.1f;              // share of the blurred picture in the result (0: no bloom)
+    ToneMap toneMap = ToneMap::Aces; // None: no tone map (a clamp)
 };
 
 struct Scene {
@@ -118,12 +120,16 @@ struct Scene {
 Result<Scene> parseScene(const std::string& text, const std::string& where);
 // Reads and parses a scene file.
 Result<Scene> loadScene(const std::filesystem::path& file);
-// The built-in default: the fighter's roundhouse kick with speed-lines, a blur volume on the
-// kicking leg and smoke from the kicking foot.
+// The built-in default (docs/scenes/hero.json): the fighter's roundhouse kick into the sword
+// slash, toon-shaded, with glowing kick lines, a crescent slash arc on the sword, energy smoke
+// from the kicking foot, bloom and the filmic tone map.
 Scene defaultScene();
+// The plain kick: the fighter's roundhouse kick with speed-lines, a blur volume on the kicking
+// leg and smoke from the kicking foot (what the tests and the character preview build on).
+Scene kickScene();
 
 // What `motionfx render CHARACTER.glb` plays: the file's first clip (or character.clip, once
-// set), framed by fitScene, with the default scene's speed-lines, blur volume and smoke bound to
+// set), framed by fitScene, with the kick scene's speed-lines, blur volume and smoke bound to
 // the fastest limb at automatic strides. `file` is named as given (relative to the working
 // directory).
 Scene previewScene(const std::string& file);
