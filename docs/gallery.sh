@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
-# Makes the README's gallery (docs/images/gallery/*.png) with the program itself: one frame of
-# each scene in docs/scenes/gallery/ and of the default scene (docs/scenes/hero.json), at
-# 400x225. Look at every picture before committing it.
+# Makes the README's pictures of scenes with the program itself: the gallery
+# (docs/images/gallery/*.png: one frame of each scene in docs/scenes/gallery/ and of the default
+# scene, docs/scenes/hero.json, at 400x225), the default scene's frame at the top (640x360) and
+# the one-effect scenes of "The effects, one at a time" (docs/images/effect_*.png, 480x270). Look
+# at every picture before committing it.
 #   docs/gallery.sh [path/to/motionfx]   (default: build/apps/motionfx)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -28,9 +30,17 @@ shots=(
     "volume_rim docs/scenes/gallery/volume_rim.json 12"
     "particles_life docs/scenes/gallery/particles_life.json 42"
 )
-for shot in "${shots[@]}"; do
-    read -r name scene frame <<<"$shot"
-    "$MOTIONFX" render "$scene" --size 400x225 --frames $((frame + 1)) --out "$work/$name" >/dev/null
-    cp "$work/$name/$(printf 'frame_%04d.png' "$frame")" "$out/$name.png"
-    echo "$out/$name.png <- $scene, frame $frame"
+# picture, scene file, frame, size
+shot() {
+    "$MOTIONFX" render "$2" --size "$4" --frames $(($3 + 1)) --out "$work/$1" >/dev/null
+    cp "$work/$1/$(printf 'frame_%04d.png' "$3")" "$1.png"
+    echo "$1.png <- $2, frame $3"
+}
+for entry in "${shots[@]}"; do
+    read -r name scene frame <<<"$entry"
+    shot "$out/$name" "$scene" "$frame" 400x225
+done
+shot docs/images/default_scene_frame40 docs/scenes/hero.json 40 640x360
+for effect in lines:20 blur:20 particles:20 smoke:20 afterimage:20 swept:12 shell:16; do
+    shot "docs/images/effect_${effect%%:*}" "docs/scenes/${effect%%:*}.json" "${effect##*:}" 480x270
 done

@@ -63,7 +63,9 @@ vec3 rampAt(float x) {
 }
 
 const float kAmbient = 0.35;
-const int kShadowSamples = 8;
+// Six: on lavapipe the march (docs/scenes/all.json, 960x540) costs 57 ms with four, 70 with six
+// and 114 with eight; four fit the shadow's decay down a uniform block 6% off, six 4.5%.
+const int kShadowSamples = 6;
 
 // Henyey-Greenstein, 1 for g = 0.
 float phase(float g, float cosTheta) {
