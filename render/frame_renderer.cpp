@@ -1,24 +1,16 @@
 #include "render/frame_renderer.h"
 
-#include "core/scene/kinds/afterimage_effect.h"
-#include "core/scene/kinds/trail_effects.h"
+#include <algorithm>
 
 namespace mfx::render {
 
 namespace {
 
-// Whether an effect of `scene` fades in front of the scene's surfaces (depth_fade > 0): then the
-// frame copies the depth between the scene and the effects.
+// Whether an effect of `scene` fades in front of the scene's surfaces: then the frame copies the
+// depth between the scene and the effects.
 bool fadesAgainstDepth(const scene::Scene& scene) {
-    for (const scene::EffectSpec& effect : scene.effects) {
-        const scene::RibbonLook* look = nullptr;
-        if (const auto* lines = effect.as<scene::SpeedLinesSpec>()) look = &lines->ribbon;
-        if (const auto* particles = effect.as<scene::MotionParticlesSpec>())
-            look = &particles->look;
-        if (const auto* afterimage = effect.as<scene::AfterimageSpec>()) look = &afterimage->ribbon;
-        if (look && look->depthFade > 0.0f) return true;
-    }
-    return false;
+    return std::any_of(scene.effects.begin(), scene.effects.end(),
+                       [](const scene::EffectSpec& e) { return e.kind().fadesAgainstDepth(); });
 }
 
 } // namespace

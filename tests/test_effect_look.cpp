@@ -419,8 +419,8 @@ TEST_F(RibbonDrawTest, ParticlesTakeTheirSizeAndColourOverLife) {
         const float x = 0.15f - 0.15f * float(k); // the head at t = 1.1 s, x = -1.5 + 1.5 t
         const int centre = int(column(x));
         // The dot's own run of covered columns through its centre (its neighbours are apart).
-        auto covered = [&](int x) {
-            const glm::vec4 d = glm::abs(at(rgba, x, row) - background);
+        auto covered = [&](int px) {
+            const glm::vec4 d = glm::abs(at(rgba, px, row) - background);
             return d.r + d.g + d.b > 0.004f;
         };
         int left = centre, right = centre;

@@ -284,30 +284,30 @@ TEST_F(SmokePassTest, SelfShadowingReachesThroughTheWholeDepth) {
     const std::vector<float> column = blockColumn(ctx(), {}, &depths);
     ASSERT_GT(column.size(), 40u) << "rows through the block";
     // Least squares of P + Q e^(-sigma d) over sigma in steps of 0.01 (P and Q in closed form).
-    float bestSigma = 0.0f, bestError = 1e30f;
+    double bestSigma = 0.0, bestError = 1e30;
     for (int step = 50; step <= 800; ++step) {
-        const float sigma = 0.01f * float(step);
+        const double sigma = 0.01 * step;
+        std::vector<double> e(column.size()), v(column.begin(), column.end());
+        for (size_t i = 0; i < column.size(); ++i)
+            e[i] = std::exp(-sigma * double(depths[i]));
         double me = 0.0, mv = 0.0;
         for (size_t i = 0; i < column.size(); ++i) {
-            me += std::exp(-sigma * depths[i]);
-            mv += column[i];
+            me += e[i];
+            mv += v[i];
         }
         me /= double(column.size());
         mv /= double(column.size());
         double see = 0.0, sev = 0.0;
         for (size_t i = 0; i < column.size(); ++i) {
-            const double e = std::exp(-sigma * depths[i]) - me;
-            see += e * e;
-            sev += e * (column[i] - mv);
+            see += (e[i] - me) * (e[i] - me);
+            sev += (e[i] - me) * (v[i] - mv);
         }
         const double q = sev / see, p = mv - q * me;
         double error = 0.0;
-        for (size_t i = 0; i < column.size(); ++i) {
-            const double r = p + q * std::exp(-sigma * depths[i]) - column[i];
-            error += r * r;
-        }
+        for (size_t i = 0; i < column.size(); ++i)
+            error += (p + q * e[i] - v[i]) * (p + q * e[i] - v[i]);
         if (error < bestError) {
-            bestError = float(error);
+            bestError = error;
             bestSigma = sigma;
         }
     }
@@ -317,7 +317,7 @@ TEST_F(SmokePassTest, SelfShadowingReachesThroughTheWholeDepth) {
                 std::sqrt(double(bestError) / double(column.size())));
     for (size_t i = 1; i < column.size(); ++i)
         ASSERT_LE(column[i], column[i - 1] + 1e-3f) << "deeper is darker, at " << depths[i] << " m";
-    EXPECT_NEAR(bestSigma, 2.0f, 0.1f);
+    EXPECT_NEAR(bestSigma, 2.0, 0.1);
 }
 
 // Cel smoke: with 3 bands the light's transmittance takes the levels k / 3, so down the block the

@@ -471,11 +471,11 @@ Clip sequence(const std::string& name, const std::vector<Clip>& clips) {
                     return o.node == c.node && o.path == c.path;
                 });
             if (same == out.channels.end()) {
-                Channel shifted = c;
-                shifted.times.clear();
-                out.channels.push_back(shifted);
-                same = out.channels.end() - 1;
-                same->values.clear();
+                Channel fresh;
+                fresh.node = c.node;
+                fresh.path = c.path;
+                fresh.interpolation = c.interpolation;
+                same = out.channels.insert(out.channels.end(), fresh);
             }
             for (size_t k = 0; k < c.times.size(); ++k) {
                 const float t = start + c.times[k];

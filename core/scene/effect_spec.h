@@ -57,6 +57,9 @@ public:
     // Whether the effect shows something while its vertices stand still (motionlessEffects does
     // not warn about it).
     virtual bool showsAtRest() const { return false; }
+    // Whether it fades out in front of the scene's surfaces (a depth_fade above 0): the frame then
+    // copies the scene's depth for it (render/frame_renderer.cpp).
+    virtual bool fadesAgainstDepth() const { return false; }
     // For an effect emitted from the surface: the UV-space step its points are sampled at
     // (core/scene/effect_source.h).
     virtual std::optional<float> surfaceSampling() const { return std::nullopt; }

@@ -53,6 +53,8 @@ struct AfterimageSpec : EffectKind<AfterimageSpec> {
                                                         : StrideTarget::EveryVertex;
     }
     std::vector<std::pair<const char*, float*>> lengths() override { return {{"width", &width}}; }
+    // The speed-line variant's ribbon (the others never read it: its depth_fade is refused).
+    bool fadesAgainstDepth() const override { return ribbon.depthFade > 0.0f; }
     // The smear draws the mesh itself.
     bool showsAtRest() const override { return variant == AfterimageVariant::Smear; }
 };

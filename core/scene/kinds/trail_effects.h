@@ -102,6 +102,7 @@ struct SpeedLinesSpec : TrailEffect<SpeedLinesSpec> {
     static std::unique_ptr<EffectKindSpec> parse(const detail::Object& o);
     StrideTarget strideTarget() const override { return StrideTarget::Lines; }
     std::vector<std::pair<const char*, float*>> lengths() override { return {{"width", &width}}; }
+    bool fadesAgainstDepth() const override { return ribbon.depthFade > 0.0f; }
 };
 
 struct MotionBlurSpec : TrailEffect<MotionBlurSpec> {
@@ -136,6 +137,7 @@ struct MotionParticlesSpec : TrailEffect<MotionParticlesSpec> {
     static std::unique_ptr<EffectKindSpec> parse(const detail::Object& o);
     StrideTarget strideTarget() const override { return StrideTarget::Particles; }
     std::vector<std::pair<const char*, float*>> lengths() override { return {{"size", &size}}; }
+    bool fadesAgainstDepth() const override { return look.depthFade > 0.0f; }
 };
 
 } // namespace mfx::scene
