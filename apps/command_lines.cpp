@@ -34,7 +34,11 @@ std::string stageNameList() {
 const char* const kViewKeysHelp =
     "keys: space play/pause; right/left (or . and ,) one frame forward/back; page down/up ten "
     "frames forward/back; home or r restart; 1-9 show/hide the scene's effects by their order; "
-    "escape or q quit";
+    "left drag orbits the camera, middle or shift + left drag pans it, the wheel zooms; f frames "
+    "the character, c goes back to the scene's camera, p prints the camera as a scene \"camera\" "
+    "block; s writes a screenshot (to the --screenshot file, else motionfx_view.png); escape or q "
+    "quit. The scene file (and the character file it names) is watched: a "
+    "saved change plays at once, from the frame shown";
 
 namespace {
 
@@ -248,7 +252,8 @@ CommandLine viewCommandLine() {
         .samples()
         .option("paused", "", "start paused on the first frame")
         .option("quit-after", "N", "close by itself after presenting N frames")
-        .option("screenshot", "FILE", "on closing, write the window's last picture as PNG");
+        .option("screenshot", "FILE",
+                "on closing (and whenever s is pressed), write the window's picture as PNG");
     return command;
 }
 

@@ -1,11 +1,16 @@
 // motionfx view: a window playing a scene in real time, drawn by the same passes as `motionfx
-// render` (render/frame_renderer.h) and copied to a swapchain, with a status line drawn on top
-// (frame, frame time, state) and keys to pause, step, scrub, restart and toggle effects. Needs an
-// X server (under CI: Xvfb); built only when GLFW is found.
+// render` (render/frame_renderer.h) and copied to a swapchain, with status lines drawn on top
+// (frame, frame time, state, camera, effects), keys to pause, step, scrub, restart and toggle
+// effects, a mouse-driven orbit camera (apps/view_input.h), and the scene read again whenever its
+// files change (apps/file_watch.h, ViewSession::reload). Needs an X server (under CI: Xvfb);
+// built only when GLFW is found.
 #include "apps/commands.h"
 
 #ifdef MFX_HAVE_GLFW
 
+#include "apps/file_watch.h"
+#include "apps/view_input.h"
+#include "apps/view_session.h"
 #include "core/gpu/check.h"
 #include "core/gpu/commands.h"
 #include "core/gpu/resources.h"
@@ -35,106 +40,6 @@ void onGlfwError(int, const char* description) {
     glfwProblem = description ? description : "unknown GLFW error";
 }
 
-// What the keys asked for since the last frame.
-struct Input {
-    bool togglePause = false;
-    int step = 0; // frames forward (+) or back (-)
-    bool restart = false;
-    std::vector<int> toggles; // effect indices
-};
-
-void onKey(GLFWwindow* window, int key, int, int action, int) {
-    if (action != GLFW_PRESS && action != GLFW_REPEAT) return;
-    Input& in = *static_cast<Input*>(glfwGetWindowUserPointer(window));
-    switch (key) {
-    case GLFW_KEY_ESCAPE:
-    case GLFW_KEY_Q:
-        glfwSetWindowShouldClose(window, GLFW_TRUE);
-        break;
-    case GLFW_KEY_SPACE:
-        in.togglePause = true;
-        break;
-    case GLFW_KEY_RIGHT:
-    case GLFW_KEY_PERIOD:
-        in.step += 1;
-        break;
-    case GLFW_KEY_LEFT:
-    case GLFW_KEY_COMMA:
-        in.step -= 1;
-        break;
-    case GLFW_KEY_PAGE_DOWN:
-        in.step += 10;
-        break;
-    case GLFW_KEY_PAGE_UP:
-        in.step -= 10;
-        break;
-    case GLFW_KEY_HOME:
-    case GLFW_KEY_R:
-        in.restart = true;
-        break;
-    default:
-        if (key >= GLFW_KEY_1 && key <= GLFW_KEY_9) in.toggles.push_back(key - GLFW_KEY_1);
-    }
-}
-
-// The viewer's state: a simulation that can only run forwards, so going back re-simulates.
-class Viewer {
-public:
-    Viewer(const gpu::Context& ctx, const SceneArgument& scene, VkSampleCountFlagBits samples)
-        : ctx_(ctx), scene_(scene), samples_(samples) {}
-
-    Status start() {
-        auto created = sim::SceneSimulation::create(ctx_, scene_.scene, scene_.character);
-        if (!created) return created.error();
-        sim_ = std::move(created).value();
-        if (!player_)
-            player_ = std::make_unique<render::ScenePlayer>(ctx_, *sim_, scene_.scene.output.width,
-                                                            scene_.scene.output.height, samples_);
-        else
-            player_->setSimulation(*sim_);
-        shown_ = -1;
-        return Ok{};
-    }
-
-    // Brings the simulation to frame `target` (simulating without drawing the frames before it,
-    // from the start when going back); the frame itself is simulated by the next record().
-    Status seek(uint32_t target) {
-        target = std::min(target, sim_->frameCount() - 1);
-        if (shown_ >= 0 && target <= uint32_t(shown_)) {
-            if (Status ok = start(); !ok) return ok;
-        }
-        for (uint32_t f = uint32_t(shown_ + 1); f < target; ++f)
-            sim_->runFrame(f);
-        shown_ = int(target) - 1;
-        return Ok{};
-    }
-
-    // Records frame shown()+1 when `advance`, else the shown frame again.
-    void record(VkCommandBuffer cmd, bool advance) {
-        if (advance || shown_ < 0) {
-            ++shown_;
-            player_->record(cmd, uint32_t(shown_));
-        } else {
-            player_->recordRedraw(cmd, sim_->frameTime(uint32_t(shown_)));
-        }
-    }
-    void finish() { player_->finish(); }
-
-    int shown() const { return shown_; }
-    uint32_t frameCount() const { return sim_->frameCount(); }
-    float fps() const { return float(scene_.scene.output.fps); }
-    render::FrameRenderer& renderer() { return player_->renderer(); }
-    const scene::Scene& scene() const { return scene_.scene; }
-
-private:
-    const gpu::Context& ctx_;
-    const SceneArgument& scene_;
-    VkSampleCountFlagBits samples_;
-    std::unique_ptr<sim::SceneSimulation> sim_;
-    std::unique_ptr<render::ScenePlayer> player_;
-    int shown_ = -1;
-};
-
 void say(const std::string& line) {
     std::printf("%s\n", line.c_str());
     std::fflush(stdout);
@@ -143,6 +48,16 @@ void say(const std::string& line) {
 std::string formatMs(double ms) {
     char text[32];
     std::snprintf(text, sizeof text, "%.1f", ms);
+    return text;
+}
+
+// The camera's status line: where it looks from, about its target, or that it is the scene's.
+std::string cameraStatus(const ViewSession& view) {
+    const render::OrbitCamera orbit = render::OrbitCamera::from(view.camera());
+    char text[96];
+    std::snprintf(text, sizeof text, "CAMERA YAW %.0f PITCH %.0f DIST %.2f%s",
+                  double(glm::degrees(orbit.yaw())), double(glm::degrees(orbit.pitch())),
+                  double(orbit.distance()), view.cameraMoved() ? "" : " (SCENE)");
     return text;
 }
 
@@ -206,9 +121,7 @@ int runView(const cli::ParsedArgs& parsed) {
         GLFWwindow* w;
         ~WindowOwner() { glfwDestroyWindow(w); }
     } windowOwner{window};
-    Input input;
-    glfwSetWindowUserPointer(window, &input);
-    glfwSetKeyCallback(window, onKey);
+    ViewControls controls(window);
     VkSurfaceKHR surface = VK_NULL_HANDLE;
     if (glfwCreateWindowSurface(ctx.instance(), window, nullptr, &surface) != VK_SUCCESS) {
         printError("cannot make a Vulkan surface for the window: " + glfwProblem);
@@ -221,14 +134,24 @@ int runView(const cli::ParsedArgs& parsed) {
     }
     gpu::Swapchain& swapchain = *swapchainResult.value();
 
-    Viewer viewer(ctx, argument, VkSampleCountFlagBits(samples.value()));
+    const std::string viewedFile = s.file;
+    ViewSession viewer(ctx, parsed, "960x540", std::move(argument),
+                       VkSampleCountFlagBits(samples.value()));
     if (Status started = viewer.start(); !started) {
         printError(started.error().message);
         return kExitFailure;
     }
-    std::printf("viewing %s on %s at %ux%u, %u frames at %g fps\n%s\n", s.file.c_str(),
-                ctx.info().name.c_str(), s.output.width, s.output.height, viewer.frameCount(),
-                double(s.output.fps), kViewKeysHelp);
+    std::printf("viewing %s on %s at %ux%u, %u frames at %g fps\n%s\n", viewedFile.c_str(),
+                ctx.info().name.c_str(), viewer.scene().output.width, viewer.scene().output.height,
+                viewer.frameCount(), double(viewer.scene().output.fps), kViewKeysHelp);
+    FileWatch watch;
+    watch.watch(viewer.files());
+    if (!watch.files().empty()) {
+        std::string names;
+        for (const auto& file : watch.files())
+            names += (names.empty() ? "" : " and ") + file.string();
+        std::printf("watching %s: a saved change is played at once\n", names.c_str());
+    }
     std::fflush(stdout);
 
     gpu::CommandBuffer commands = gpu::CommandBuffer::create(ctx, ctx.graphicsQueue());
@@ -241,25 +164,59 @@ int runView(const cli::ParsedArgs& parsed) {
     auto lastAdvance = std::chrono::steady_clock::now();
     bool resized = false;
     bool lastFrame = false;
+    bool shotWanted = false; // a screenshot asked for and not yet taken
+    const std::string shotFile = screenshot.empty() ? "motionfx_view.png" : screenshot;
+    std::string reloadError; // the last reload's error, shown until a reload succeeds
+    float pictureHeight = float(viewer.scene().output.height); // on screen, for the pan
     while (!lastFrame) {
         glfwPollEvents();
         lastFrame = glfwWindowShouldClose(window) ||
                     (quitAfter.value() > 0 && presented + 1 >= quitAfter.value());
+        const ViewInput input = controls.take();
         // Keys, each answered with a line on stdout as well as on screen.
         if (input.togglePause) {
             paused = !paused;
             say(std::string(paused ? "paused" : "playing") + " at frame " +
                 std::to_string(viewer.shown() + 1));
         }
+        const std::vector<scene::EffectSpec>& effects = viewer.scene().effects;
         for (int e : input.toggles)
-            if (size_t(e) < s.effects.size()) {
+            if (size_t(e) < effects.size()) {
                 const bool show = !viewer.renderer().shown(size_t(e));
                 viewer.renderer().setShown(size_t(e), show);
-                say("effect " + std::to_string(e + 1) + " (" + s.effects[size_t(e)].name + ") " +
+                say("effect " + std::to_string(e + 1) + " (" + effects[size_t(e)].name + ") " +
                     (show ? "shown" : "hidden"));
             }
+        // The camera.
+        if (input.sceneCamera) {
+            viewer.useSceneCamera();
+            say("the scene's camera");
+        }
+        if (input.frameCharacter) {
+            viewer.frameCharacter();
+            say("framed the character");
+        }
+        if (input.orbit != glm::vec2(0.0f)) viewer.orbit(input.orbit.x, input.orbit.y);
+        if (input.pan != glm::vec2(0.0f)) viewer.pan(input.pan.x, input.pan.y, pictureHeight);
+        if (input.zoom != 0.0f) viewer.zoom(input.zoom);
+        if (input.printCamera) say(render::cameraBlock(viewer.camera()));
         bool advance = false;
         Status moved = Ok{};
+        // The scene's files, saved since: read again, and on to the frame shown.
+        if (watch.poll()) {
+            std::vector<std::string> notes;
+            if (Status reloaded = viewer.reload(&notes); reloaded) {
+                for (const std::string& note : notes)
+                    say(note);
+                say("reloaded " + viewedFile + " at frame " + std::to_string(viewer.shown() + 2));
+                reloadError.clear();
+                advance = true;
+                watch.watch(viewer.files());
+            } else if (reloaded.error().message != reloadError) {
+                reloadError = reloaded.error().message;
+                say("reload failed, playing the last good scene: " + reloadError);
+            }
+        }
         if (input.restart) {
             moved = viewer.start();
             say("restarted");
@@ -287,8 +244,6 @@ int runView(const cli::ParsedArgs& parsed) {
             printError(moved.error().message);
             return kExitFailure;
         }
-        input = Input{};
-        glfwSetWindowUserPointer(window, &input);
 
         int width = 0, height = 0;
         glfwGetFramebufferSize(window, &width, &height);
@@ -306,7 +261,8 @@ int runView(const cli::ParsedArgs& parsed) {
             swapchain.recreate(uint32_t(width), uint32_t(height));
             continue;
         }
-        const bool capture = lastFrame && !screenshot.empty() && swapchain.readable();
+        shotWanted = shotWanted || input.screenshot || (lastFrame && !screenshot.empty());
+        const bool capture = shotWanted && swapchain.readable();
         const VkExtent2D extent = swapchain.extent();
         const auto start = std::chrono::steady_clock::now();
         VkCommandBuffer cmd = commands.begin();
@@ -324,6 +280,7 @@ int runView(const cli::ParsedArgs& parsed) {
         const int32_t w = std::max(1, int32_t(float(target.width) * scale));
         const int32_t h = std::max(1, int32_t(float(target.height) * scale));
         const int32_t x0 = (int32_t(extent.width) - w) / 2, y0 = (int32_t(extent.height) - h) / 2;
+        pictureHeight = float(h);
         VkClearColorValue black{{0.0f, 0.0f, 0.0f, 1.0f}};
         VkImageSubresourceRange whole{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
         vkCmdClearColorImage(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &black, 1, &whole);
@@ -368,14 +325,22 @@ int runView(const cli::ParsedArgs& parsed) {
             (paused ? "  PAUSED" : "");
         const glm::vec4 white(1.0f), shade(0.0f, 0.0f, 0.0f, 1.0f);
         const int margin = int(4 * textScale);
+        const int lineHeight = int(10 * textScale);
         render::drawText(cmd, status, {margin, margin}, textScale, white, shade, extent);
-        int line = 1;
-        for (size_t e = 0; e < s.effects.size() && e < 9; ++e, ++line) {
-            const std::string label = std::to_string(e + 1) + " " + s.effects[e].name + " " +
+        render::drawText(cmd, cameraStatus(viewer), {margin, margin + lineHeight}, textScale,
+                         viewer.cameraMoved() ? white : glm::vec4(0.6f), shade, extent);
+        int line = 2;
+        const std::vector<scene::EffectSpec>& shownEffects = viewer.scene().effects;
+        for (size_t e = 0; e < shownEffects.size() && e < 9; ++e, ++line) {
+            const std::string label = std::to_string(e + 1) + " " + shownEffects[e].name + " " +
                                       (viewer.renderer().shown(e) ? "ON" : "OFF");
-            render::drawText(cmd, label, {margin, margin + line * int(10 * textScale)}, textScale,
+            render::drawText(cmd, label, {margin, margin + line * lineHeight}, textScale,
                              viewer.renderer().shown(e) ? white : glm::vec4(0.6f), shade, extent);
         }
+        if (!reloadError.empty()) // at the bottom, in red, until the file is mended
+            render::drawText(cmd, "RELOAD FAILED: " + reloadError,
+                             {margin, int(extent.height) - margin - lineHeight}, textScale,
+                             glm::vec4(1.0f, 0.25f, 0.2f, 1.0f), shade, extent);
         vkCmdEndRendering(cmd);
         if (capture) {
             const VkDeviceSize bytes = VkDeviceSize(extent.width) * extent.height * 4;
@@ -425,14 +390,17 @@ int runView(const cli::ParsedArgs& parsed) {
                 swapchain.format() == VK_FORMAT_B8G8R8A8_UNORM)
                 for (size_t p = 0; p < rgba.size(); p += 4)
                     std::swap(rgba[p], rgba[p + 2]);
-            if (Status written = render::writePng(screenshot, extent.width, extent.height, rgba);
+            shotWanted = false;
+            if (Status written = render::writePng(shotFile, extent.width, extent.height, rgba);
                 !written) {
                 printError(written.error().message);
-                return kExitFailure;
+                if (lastFrame) return kExitFailure; // else the viewer plays on
+            } else {
+                say("screenshot of the window (" + std::to_string(extent.width) + "x" +
+                    std::to_string(extent.height) + ") in " + shotFile);
             }
-            std::printf("screenshot of the window (%ux%u) in %s\n", extent.width, extent.height,
-                        screenshot.c_str());
-        } else if (lastFrame && !screenshot.empty()) {
+        } else if (shotWanted) {
+            shotWanted = false;
             printError("no screenshot: this window's images cannot be read back");
         }
     }

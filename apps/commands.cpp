@@ -43,40 +43,15 @@ bool openOutputFile(const std::string& path, std::ofstream& file) {
 
 bool loadSceneArgument(const cli::ParsedArgs& parsed, SceneArgument& out, int& exitCode,
                        const char* defaultSize) {
-    const bool preview = !parsed.positional.empty() && scene::isCharacterFile(parsed.positional[0]);
-    Result<scene::Scene> loaded =
-        parsed.positional.empty() ? Result<scene::Scene>(scene::defaultScene())
-        : preview                 ? Result<scene::Scene>(scene::previewScene(parsed.positional[0]))
-                                  : scene::loadScene(parsed.positional[0]);
-    if (!loaded) {
-        printError(loaded.error().message);
-        exitCode = kExitFailure;
-        return false;
-    }
-    out.scene = std::move(loaded).value();
-    if (parsed.has("character")) {
-        const std::string file = parsed.value("character");
-        if (file.empty()) {
-            printError("--character needs a .gltf/.glb file or \"fighter\"");
+    // The options first: their errors are the command line's (exit status 2).
+    for (const char* name : {"character", "clip"})
+        if (parsed.has(name) && parsed.value(name).empty()) {
+            printError(std::string(name) == "character"
+                           ? "--character needs a .gltf/.glb file or \"fighter\""
+                           : "--clip needs a clip name");
             exitCode = kExitUsage;
             return false;
         }
-        // Relative to where the command runs, not to the scene file.
-        out.scene.character.source =
-            file == "fighter" ? file : std::filesystem::absolute(file).string();
-        if (!parsed.has("clip")) out.scene.character.clip.clear();
-    }
-    if (parsed.has("clip")) {
-        if (parsed.value("clip").empty()) {
-            printError("--clip needs a clip name");
-            exitCode = kExitUsage;
-            return false;
-        }
-        out.scene.character.clip = parsed.value("clip");
-    }
-    // --size, --frames and --fps, where given (and the command has them), over the scene's; a
-    // value not given is read as a valid placeholder and not applied.
-    const bool sized = parsed.has("size") || defaultSize;
     const Result<std::pair<uint32_t, uint32_t>> size =
         cli::parseSize(parsed.value("size", defaultSize ? defaultSize : "1x1"), 16384);
     const Result<uint32_t> frames =
@@ -86,43 +61,79 @@ bool loadSceneArgument(const cli::ParsedArgs& parsed, SceneArgument& out, int& e
         exitCode = kExitUsage;
         return false;
     }
-    scene::OutputSpec& output = out.scene.output;
-    if (sized) {
-        output.width = size.value().first;
-        output.height = size.value().second;
+    std::vector<std::string> lines;
+    Result<SceneArgument> read = readSceneArgument(parsed, defaultSize, &lines);
+    if (!read) {
+        printError(read.error().message);
+        exitCode = kExitFailure;
+        return false;
     }
-    if (parsed.has("frames")) output.frames = frames.value();
-    if (parsed.has("fps")) output.fps = float(fps.value());
+    out = std::move(read).value();
+    for (const std::string& line : lines)
+        std::printf("%s\n", line.c_str());
+    std::fflush(stdout);
+    return true;
+}
+
+Result<SceneArgument> readSceneArgument(const cli::ParsedArgs& parsed, const char* defaultSize,
+                                        std::vector<std::string>* lines) {
+    const bool preview = !parsed.positional.empty() && scene::isCharacterFile(parsed.positional[0]);
+    Result<scene::Scene> loaded =
+        parsed.positional.empty() ? Result<scene::Scene>(scene::defaultScene())
+        : preview                 ? Result<scene::Scene>(scene::previewScene(parsed.positional[0]))
+                                  : scene::loadScene(parsed.positional[0]);
+    if (!loaded) return loaded.error();
+    SceneArgument out;
+    out.scene = std::move(loaded).value();
+    if (parsed.has("character") && !parsed.value("character").empty()) {
+        const std::string file = parsed.value("character");
+        // Relative to where the command runs, not to the scene file.
+        out.scene.character.source =
+            file == "fighter" ? file : std::filesystem::absolute(file).string();
+        if (!parsed.has("clip")) out.scene.character.clip.clear();
+    }
+    if (parsed.has("clip") && !parsed.value("clip").empty())
+        out.scene.character.clip = parsed.value("clip");
+    // --size, --frames and --fps, where given (and the command has them), over the scene's (the
+    // values are checked by loadSceneArgument; one that does not parse is not applied).
+    scene::OutputSpec& output = out.scene.output;
+    if (parsed.has("size") || defaultSize) {
+        if (auto size = cli::parseSize(parsed.value("size", defaultSize), 16384)) {
+            output.width = size.value().first;
+            output.height = size.value().second;
+        }
+    }
+    if (parsed.has("frames"))
+        if (auto frames = cli::parseUnsigned(parsed.value("frames"), 1, 100000, "--frames"))
+            output.frames = frames.value();
+    if (parsed.has("fps"))
+        if (auto fps = cli::parseNumber(parsed.value("fps"), 1.0, 240.0, "--fps"))
+            output.fps = float(fps.value());
     std::string scaleNote;
     Result<anim::Character> character = scene::loadCharacter(out.scene, &scaleNote);
-    if (!character) {
-        printError(character.error().message);
-        exitCode = kExitFailure;
-        return false;
-    }
+    if (!character) return character.error();
     out.character = std::move(character).value();
     std::vector<std::string> notes;
-    if (Status fitted = scene::fitScene(out.scene, out.character, &notes); !fitted) {
-        printError(fitted.error().message);
-        exitCode = kExitFailure;
-        return false;
-    }
-    if (!scaleNote.empty()) std::printf("%s\n", scaleNote.c_str());
+    if (Status fitted = scene::fitScene(out.scene, out.character, &notes); !fitted)
+        return fitted.error();
+    if (!lines) return out;
+    if (!scaleNote.empty()) lines->push_back(scaleNote);
     if (preview) {
         // One line: the clip, the size and the bones the preview's effects were bound to.
         const anim::Clip& clip = scene::sceneClip(out.scene, out.character);
         std::string bones = notes.empty() ? std::string() : notes.front();
         const size_t bound = bones.find("\": ");
         if (bound != std::string::npos) bones = bones.substr(bound + 3);
-        std::printf("preview of %s: clip \"%s\" (%.3g s), %.2f m tall; effects %s\n",
-                    parsed.positional[0].c_str(), clip.name.c_str(), double(clip.duration),
-                    double(scene::characterHeight(out.scene, out.character)), bones.c_str());
+        char text[512];
+        std::snprintf(text, sizeof text,
+                      "preview of %s: clip \"%s\" (%.3g s), %.2f m tall; effects ",
+                      parsed.positional[0].c_str(), clip.name.c_str(), double(clip.duration),
+                      double(scene::characterHeight(out.scene, out.character)));
+        lines->push_back(text + bones);
     } else {
-        for (const std::string& note : notes)
-            std::printf("%s\n", note.c_str());
+        lines->insert(lines->end(), notes.begin(), notes.end());
     }
-    std::fflush(stdout);
-    return true;
+    return out;
 }
 
 std::vector<cli::OptionSpec> characterOptions() {

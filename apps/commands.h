@@ -42,6 +42,11 @@ struct SceneArgument {
 };
 bool loadSceneArgument(const cli::ParsedArgs& parsed, SceneArgument& out, int& exitCode,
                        const char* defaultSize = nullptr);
+// What loadSceneArgument reads once the options have been checked, without printing: the scene
+// and character, or the error; `lines` (when not null) gets the notes it would print (the
+// character's scaling, the choices fitScene made). A viewer reloads its scene through it.
+Result<SceneArgument> readSceneArgument(const cli::ParsedArgs& parsed, const char* defaultSize,
+                                        std::vector<std::string>* lines);
 
 // The --character and --clip options of the commands that take a scene or a character file.
 std::vector<cli::OptionSpec> characterOptions();

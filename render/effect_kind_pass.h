@@ -41,9 +41,13 @@ public:
     // The scene's depth (single-sampled, shader-read-only while the effects draw) that soft
     // effects fade against (shaders/render/depth_fade.glsl), or null: none this frame.
     void setFadeDepth(const gpu::Image* depth) { fadeDepth_ = depth; }
+    // The frame's camera (the renderer's, which outlives the pass), for the work advance() does
+    // from the eye's point of view (the swept volume's silhouette edges); null: the scene's camera.
+    void setCamera(const SceneCamera* camera) { camera_ = camera; }
 
 protected:
     const gpu::Image* fadeDepth_ = nullptr;
+    const SceneCamera* camera_ = nullptr;
 };
 
 // One registered kind of pass: the effect types it draws (scene "type" names) and how to make it

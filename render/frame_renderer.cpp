@@ -27,8 +27,14 @@ FrameRenderer::FrameRenderer(const gpu::Context& ctx, const sim::SceneSimulation
       timer_(ctx, uint32_t(std::size(kFramePassNames))),
       shown_(simulation.scene().effects.size(), 1),
       fadesAgainstDepth_(fadesAgainstDepth(simulation.scene())) {
-    for (const auto& effects : effectPasses_)
+    for (const auto& effects : effectPasses_) {
         effects->setFadeDepth(fadesAgainstDepth_ ? &target_.fadeDepth : nullptr);
+        effects->setCamera(&camera_);
+    }
+}
+
+void FrameRenderer::setCamera(const scene::CameraSpec& camera) {
+    camera_ = makeCamera(camera, float(target_.width) / float(target_.height));
 }
 
 void FrameRenderer::setShown(size_t effect, bool shown) {

@@ -67,6 +67,8 @@ public:
         return nullptr;
     }
     const SceneCamera& camera() const { return camera_; }
+    // Draws from `camera` from now on instead of the scene's camera (a viewer's orbit camera).
+    void setCamera(const scene::CameraSpec& camera);
 
 private:
     // recordDraw; with `frame`, the effect passes also advance to that simulation frame.

@@ -48,6 +48,12 @@ void OrbitCamera::pan(float dx, float dy, float fovDegrees, float viewportHeight
     target_ += (-dx * right + dy * up) * perPixel;
 }
 
+void OrbitCamera::frame(glm::vec3 centre, float radius, float fovDegrees) {
+    target_ = centre;
+    const float half = 0.5f * glm::radians(std::clamp(fovDegrees, 1.0f, 179.0f));
+    distance_ = std::clamp(1.05f * std::max(radius, 1e-3f) / std::sin(half), 1e-3f, 1e4f);
+}
+
 std::string cameraBlock(const scene::CameraSpec& camera) {
     char text[256];
     std::snprintf(text, sizeof text,

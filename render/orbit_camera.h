@@ -33,6 +33,9 @@ public:
     // A pan drag of (dx, dy) pixels in a view `viewportHeight` pixels tall with a vertical field
     // of view of `fovDegrees`.
     void pan(float dx, float dy, float fovDegrees, float viewportHeight);
+    // Aims at `centre` from the distance at which a sphere of `radius` about it just fits the
+    // vertical field of view `fovDegrees`, with 5% to spare; the direction is kept.
+    void frame(glm::vec3 centre, float radius, float fovDegrees);
 
     glm::vec3 target() const { return target_; }
     glm::vec3 position() const;

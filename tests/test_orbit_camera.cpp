@@ -92,5 +92,17 @@ TEST(OrbitCamera, ItsCameraBlockReadsBackAsTheSameCamera) {
     EXPECT_FLOAT_EQ(s.value().camera.fovDegrees, 40.0f);
 }
 
+TEST(OrbitCamera, FramingFitsTheSphereInTheFieldOfViewFromTheSameDirection) {
+    render::OrbitCamera orbit = render::OrbitCamera::from(sceneCamera());
+    const glm::vec3 before = glm::normalize(orbit.position() - orbit.target());
+    const glm::vec3 centre(0.3f, 1.0f, -0.2f);
+    orbit.frame(centre, 0.9f, 40.0f);
+    expectNear(orbit.target(), centre, 1e-6f, "target");
+    expectNear(glm::normalize(orbit.position() - orbit.target()), before, 1e-5f, "direction");
+    // The sphere's silhouette subtends half the field of view, less the 5% to spare.
+    const float halfAngle = std::asin(0.9f / orbit.distance());
+    EXPECT_NEAR(std::sin(halfAngle) * 1.05f, std::sin(glm::radians(20.0f)), 1e-5f);
+}
+
 } // namespace
 } // namespace mfx::test

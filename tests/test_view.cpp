@@ -2,7 +2,9 @@
 // status line drawn on them, answers keys, and closes when the window manager asks it to
 // (WM_DELETE_WINDOW, sent by tests/x11_window_tool.cpp) or after --quit-after frames.
 #include <chrono>
+#include <cmath>
 #include <csignal>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fcntl.h>
@@ -246,6 +248,195 @@ TEST_F(ViewTest, KeysPauseStepToggleAndQuit) {
     ASSERT_TRUE(press("space", "playing at frame 2")) << readFile(outPath());
     ASSERT_EQ(windowTool("keys \"motionfx view\" Escape"), 0);
     EXPECT_EQ(view->waitFor(60s), 0) << readFile(errPath());
+}
+
+// The camera block `p` printed last after the first `from` characters of `out`: position and
+// target; false when there is none.
+struct PrintedCamera {
+    double position[3], target[3], fov;
+    double distance() const {
+        return std::sqrt(std::pow(position[0] - target[0], 2) +
+                         std::pow(position[1] - target[1], 2) +
+                         std::pow(position[2] - target[2], 2));
+    }
+    double yaw() const { return std::atan2(position[0] - target[0], position[2] - target[2]); }
+    double pitch() const { return std::asin((position[1] - target[1]) / distance()); }
+};
+bool lastCamera(const std::string& out, size_t from, PrintedCamera& c) {
+    const size_t at = out.rfind("\"camera\": {\"position\": [");
+    if (at == std::string::npos || at < from) return false;
+    return std::sscanf(out.c_str() + at,
+                       "\"camera\": {\"position\": [%lf, %lf, %lf], \"target\": [%lf, %lf, %lf], "
+                       "\"fov_degrees\": %lf}",
+                       &c.position[0], &c.position[1], &c.position[2], &c.target[0], &c.target[1],
+                       &c.target[2], &c.fov) == 7;
+}
+
+TEST_F(ViewTest, DragOrbitsWheelZoomsAndShiftDragPansTheCamera) {
+    auto view = startView({"--size", "320x180", "--samples", "1", "--paused"});
+    ASSERT_TRUE(view->started());
+    ASSERT_TRUE(waitForOutput("first frame presented", 300s)) << readFile(errPath());
+    const std::string title = "\"motionfx view\"";
+    // Sends `words` to the window, then `p`, and reads the camera block printed after them.
+    auto cameraAfter = [&](const std::string& words, PrintedCamera& camera) {
+        const size_t before = outputSoFar();
+        if (!words.empty()) {
+            EXPECT_EQ(windowTool(words), 0);
+        }
+        EXPECT_EQ(windowTool("keys " + title + " p"), 0);
+        return waitForOutput("\"fov_degrees\"", 60s, before) &&
+               lastCamera(readFile(outPath()), before, camera);
+    };
+    PrintedCamera start{}, orbited{}, zoomed{}, panned{}, back{};
+    ASSERT_TRUE(cameraAfter("", start)) << readFile(outPath());
+    // 60 pixels right and 20 down: 0.3 radians of yaw the other way, 0.1 of pitch up.
+    ASSERT_TRUE(cameraAfter("drag " + title + " 1 100 80 160 100", orbited)) << readFile(outPath());
+    constexpr double perPixel = 0.005;
+    EXPECT_NEAR(orbited.yaw(), start.yaw() - 60 * perPixel, 1e-3);
+    EXPECT_NEAR(orbited.pitch(), start.pitch() + 20 * perPixel, 1e-3);
+    EXPECT_NEAR(orbited.distance(), start.distance(), 1e-3) << "orbiting keeps the distance";
+    // Three wheel steps towards the target: 0.9^3 of the distance.
+    ASSERT_TRUE(cameraAfter("wheel " + title + " 3", zoomed)) << readFile(outPath());
+    EXPECT_NEAR(zoomed.distance(), start.distance() * 0.729, 2e-3);
+    EXPECT_NEAR(zoomed.yaw(), orbited.yaw(), 1e-3);
+    // A shift drag of 40 pixels moves the target by 40 pixels' world size at its distance, in a
+    // picture 180 pixels tall, and keeps the direction.
+    ASSERT_TRUE(cameraAfter("drag " + title + " 1 100 80 140 80 shift", panned))
+        << readFile(outPath());
+    const double moved = std::sqrt(std::pow(panned.target[0] - zoomed.target[0], 2) +
+                                   std::pow(panned.target[1] - zoomed.target[1], 2) +
+                                   std::pow(panned.target[2] - zoomed.target[2], 2));
+    const double expected =
+        40.0 * 2.0 * zoomed.distance() * std::tan(zoomed.fov * 3.14159265358979 / 360.0) / 180.0;
+    EXPECT_NEAR(moved, expected, 2e-3 + 0.01 * expected);
+    EXPECT_NEAR(panned.yaw(), zoomed.yaw(), 1e-3);
+    EXPECT_NEAR(panned.distance(), zoomed.distance(), 1e-3);
+    // c: the scene's camera again; f: framed on the character (target in its middle).
+    ASSERT_TRUE(cameraAfter("keys " + title + " c", back)) << readFile(outPath());
+    for (int i = 0; i < 3; ++i) {
+        EXPECT_NEAR(back.position[i], start.position[i], 1e-4);
+        EXPECT_NEAR(back.target[i], start.target[i], 1e-4);
+    }
+    PrintedCamera framed{};
+    ASSERT_TRUE(cameraAfter("keys " + title + " f", framed)) << readFile(outPath());
+    EXPECT_NE(readFile(outPath()).find("framed the character"), std::string::npos);
+    EXPECT_GT(framed.target[1], 0.5) << "the middle of a standing fighter is above the floor";
+    EXPECT_LT(framed.target[1], 1.4);
+    EXPECT_NEAR(framed.yaw(), start.yaw(), 1e-3) << "framing keeps the direction";
+    ASSERT_EQ(windowTool("keys " + title + " Escape"), 0);
+    EXPECT_EQ(view->waitFor(60s), 0) << readFile(errPath());
+}
+
+// A scene of the kick with one wide speed-line effect of colour `colour` ("[r, g, b, a]").
+std::string kickLinesScene(const std::string& colour) {
+    return R"({
+  "character": {"source": "fighter", "clip": "roundhouse_kick"},
+  "camera": {"position": [2.0, 1.35, 2.7], "target": [0.05, 0.88, 0], "fov_degrees": 40},
+  "output": {"width": 320, "height": 180, "fps": 30, "frames": 21},
+  "post": {"bloom": 0, "tone_map": "none"},
+  "effects": [
+    {"type": "speed_lines", "name": "kick lines", "meshes": ["body"],
+     "bones": ["shin_r", "foot_r", "toe_r"], "stride": 4, "lifetime": 12, "width": 0.05,
+     "colour": )" +
+           colour + R"(}
+  ]
+}
+)";
+}
+
+void writeText(const std::string& path, const std::string& text) {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out << text;
+}
+
+// Pixels of the screenshot at `path` whose colour leans to `lean` (0 red, 1 green, 2 blue: that
+// channel over each other one by 60), in rows [y0, y1).
+size_t leaning(const std::string& path, int lean, int y0 = 0, int y1 = 100000) {
+    int w = 0, h = 0, channels = 0;
+    stbi_uc* pixels = stbi_load(path.c_str(), &w, &h, &channels, 4);
+    if (!pixels) return 0;
+    size_t count = 0;
+    for (int y = std::max(0, y0); y < std::min(h, y1); ++y)
+        for (int x = 0; x < w; ++x) {
+            const stbi_uc* p = pixels + (size_t(y) * w + x) * 4;
+            count += p[lean] > p[(lean + 1) % 3] + 60 && p[lean] > p[(lean + 2) % 3] + 60;
+        }
+    stbi_image_free(pixels);
+    return count;
+}
+TEST_F(ViewTest, ASavedSceneChangePlaysAtOnceAndABrokenOneKeepsTheLastGoodScene) {
+    const std::string dir = outputDir() + "/" + testName();
+    std::filesystem::create_directories(dir);
+    const std::string file = dir + "/scene.json", shot = dir + "/shot.png";
+    const std::string green = "[0.05, 1, 0.05, 1]", blue = "[0.05, 0.2, 1, 1]";
+    constexpr int kRed = 0, kGreen = 1, kBlue = 2;
+    writeText(file, kickLinesScene(green));
+    auto view =
+        startView({file, "--size", "320x180", "--samples", "1", "--paused", "--screenshot", shot});
+    ASSERT_TRUE(view->started());
+    ASSERT_TRUE(waitForOutput("first frame presented", 300s)) << readFile(errPath());
+    const std::string title = "\"motionfx view\"";
+    auto send = [&](const std::string& words, const std::string& answer) {
+        const size_t before = outputSoFar();
+        EXPECT_EQ(windowTool(words), 0);
+        return waitForOutput(answer, 120s, before);
+    };
+    auto screenshot = [&] { return send("keys " + title + " s", "screenshot of the window"); };
+    // The error line's rows, at the bottom of the window (font scale 1 below 400 pixels).
+    constexpr int kErrorTop = 180 - 16;
+    // Frame 13, in the middle of the kick, where the lines are long.
+    ASSERT_TRUE(send("keys " + title + " Next", "paused at frame 11")) << readFile(outPath());
+    ASSERT_TRUE(send("keys " + title + " Right Right", "paused at frame 13"));
+    ASSERT_TRUE(screenshot()) << readFile(outPath());
+    const size_t green0 = leaning(shot, kGreen);
+    EXPECT_GT(green0, 200u) << "green lines drawn";
+    EXPECT_LT(leaning(shot, kBlue), green0 / 10) << "and no blue ones";
+    const size_t redBottom0 = leaning(shot, kRed, kErrorTop, 180);
+
+    // Saved in place, blue: the next screenshot has blue lines and no green ones, at frame 13.
+    size_t before = outputSoFar();
+    writeText(file, kickLinesScene(blue));
+    ASSERT_TRUE(waitForOutput("reloaded", 120s, before)) << readFile(outPath());
+    EXPECT_NE(readFile(outPath()).find("at frame 13", before), std::string::npos)
+        << readFile(outPath());
+    ASSERT_TRUE(screenshot());
+    const size_t blue1 = leaning(shot, kBlue);
+    EXPECT_GT(blue1, green0 / 2) << "blue lines where the green ones were";
+    EXPECT_LT(leaning(shot, kGreen), blue1 / 10);
+
+    // Broken: the error on stdout and in red at the bottom of the window; the blue scene plays on.
+    before = outputSoFar();
+    writeText(file, "{\"effects\": [");
+    ASSERT_TRUE(waitForOutput("reload failed, playing the last good scene: ", 120s, before))
+        << readFile(outPath());
+    EXPECT_NE(readFile(outPath()).find(file + ": not valid JSON", before), std::string::npos)
+        << "names the file and what is wrong";
+    ASSERT_TRUE(screenshot());
+    const size_t redBottom = leaning(shot, kRed, kErrorTop, 180);
+    EXPECT_GT(redBottom, redBottom0 + 50) << "the error line";
+    EXPECT_GT(leaning(shot, kBlue), blue1 / 2) << "still the blue scene";
+    EXPECT_EQ(view->waitFor(0s), -1) << "still running";
+
+    // Mended by an editor's save: written to a temporary file and renamed over it.
+    before = outputSoFar();
+    writeText(dir + "/.scene.json.tmp", kickLinesScene(green));
+    std::filesystem::rename(dir + "/.scene.json.tmp", file);
+    ASSERT_TRUE(waitForOutput("reloaded", 120s, before)) << readFile(outPath());
+    ASSERT_TRUE(screenshot());
+    EXPECT_GT(leaning(shot, kGreen), green0 / 2) << "green again";
+    EXPECT_LE(leaning(shot, kRed, kErrorTop, 180), redBottom0 + 5) << "the error line is gone";
+
+    // Deleted, then written again: the new file is read.
+    before = outputSoFar();
+    std::filesystem::remove(file);
+    std::this_thread::sleep_for(500ms);
+    writeText(file, kickLinesScene(blue));
+    ASSERT_TRUE(waitForOutput("reloaded", 120s, before)) << readFile(outPath());
+    EXPECT_EQ(readFile(outPath()).find("reload failed", before), std::string::npos)
+        << "a file being replaced is waited for";
+    ASSERT_TRUE(send("keys " + title + " Escape", "closed after"));
+    EXPECT_EQ(view->waitFor(60s), 0) << readFile(errPath());
+    EXPECT_GT(leaning(shot, kBlue), blue1 / 2) << "blue again, in the screenshot on closing";
 }
 
 } // namespace

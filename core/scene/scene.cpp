@@ -240,15 +240,20 @@ bool isCharacterFile(const std::string& path) {
     return extension == ".gltf" || extension == ".glb";
 }
 
+std::filesystem::path characterFile(const Scene& scene) {
+    if (scene.character.source == "fighter") return {};
+    std::filesystem::path path(scene.character.source);
+    if (path.is_relative() && !scene.file.empty() && scene.file[0] != '(')
+        path = std::filesystem::path(scene.file).parent_path() / path;
+    return path;
+}
+
 Result<anim::Character> loadCharacter(const Scene& scene, std::string* note) {
     anim::Character character;
     if (scene.character.source == "fighter") {
         character = anim::makeFighter();
     } else {
-        std::filesystem::path path(scene.character.source);
-        if (path.is_relative() && !scene.file.empty() && scene.file[0] != '(')
-            path = std::filesystem::path(scene.file).parent_path() / path;
-        Result<anim::Character> imported = anim::importGltf(path);
+        Result<anim::Character> imported = anim::importGltf(characterFile(scene));
         if (!imported) return Error{scene.file + ": character.source: " + imported.error().message};
         character = std::move(imported).value();
     }

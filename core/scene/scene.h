@@ -141,6 +141,9 @@ bool isCharacterFile(const std::string& path);
 // gets the line saying so) and checks the clip and every effect's bone and mesh names against it
 // (checkNames).
 Result<anim::Character> loadCharacter(const Scene& scene, std::string* note = nullptr);
+// The character file loadCharacter reads (relative paths against the scene file's folder); empty
+// for the built-in fighter.
+std::filesystem::path characterFile(const Scene& scene);
 // Checks that the character has the scene's clip and that playback starts inside it.
 Status checkClip(const Scene& scene, const anim::Character& character);
 // checkClip, then every effect's bone (plain names, groups and patterns) and mesh names.

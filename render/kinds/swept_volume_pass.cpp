@@ -129,7 +129,7 @@ void SweptVolumePass::recordEffect(VkCommandBuffer cmd, const sim::SceneSimulati
 
     const scene::SweptVolumeSpec& e = effect.kind;
     shared::SweptVolumeConstants c{};
-    c.cameraPosition = glm::vec4(scene.camera.position, 1.0f);
+    c.cameraPosition = glm::vec4(camera_ ? camera_->eye : scene.camera.position, 1.0f);
     c.vertexCount = effect.vertexCount;
     c.triangleCount = effect.triangleCount;
     c.edgeCount = effect.edgeCount;
