@@ -98,7 +98,7 @@ Result<SceneArgument> readSceneArgument(const cli::ParsedArgs& parsed, const cha
     // values are checked by loadSceneArgument; one that does not parse is not applied).
     scene::OutputSpec& output = out.scene.output;
     if (parsed.has("size") || defaultSize) {
-        if (auto size = cli::parseSize(parsed.value("size", defaultSize), 16384)) {
+        if (auto size = cli::parseSize(parsed.value("size", defaultSize ? defaultSize : ""), 16384)) {
             output.width = size.value().first;
             output.height = size.value().second;
         }

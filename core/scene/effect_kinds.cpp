@@ -2,6 +2,9 @@
 
 #include "core/scene/effect_kind_headers.h" // generated: every header of core/scene/kinds
 #include "core/scene/json_object.h"
+#include "core/scene/scene_params.h"
+
+#include <stdexcept>
 
 namespace mfx::scene {
 
@@ -35,10 +38,42 @@ const std::vector<std::string>& commonEffectKeys() {
 
 namespace detail {
 
-EffectSpec readEffect(const Object& o, size_t index) {
+namespace {
+
+// The keys every effect has.
+struct CommonKeys {
+    std::string name;
+    std::vector<std::string> bones, meshes;
+    float minBoneWeight = 0.5f;
+    float start = 0.0f;
+    std::optional<float> end;
+};
+
+CommonKeys readCommonKeys(const Object& o, const std::string& type, size_t index) {
+    CommonKeys c;
+    c.name = o.string("name", type + "#" + std::to_string(index));
+    c.bones = o.strings("bones");
+    c.meshes = o.strings("meshes");
+    c.minBoneWeight = float(o.number("min_bone_weight", 0.5, 0.0, 1.0, true));
+    c.start = float(o.number("start", 0.0, 0.0, 1e5));
+    if (const std::optional<double> end = o.optionalNumber("end", 0.0, 1e5)) c.end = float(*end);
+    if (c.end && *c.end <= c.start)
+        fail(o.at("end"),
+             formatNumber(*c.end) + " is not after start (" + formatNumber(c.start) + ")");
+    return c;
+}
+
+std::vector<std::string> typeNames() {
     std::vector<std::string> types;
     for (const EffectKindEntry& kind : effectKinds())
         types.push_back(kind.type);
+    return types;
+}
+
+} // namespace
+
+EffectSpec readEffect(const Object& o, size_t index) {
+    const std::vector<std::string> types = typeNames();
     if (!o.has("type")) {
         std::string listed;
         for (size_t i = 0; i < types.size(); ++i)
@@ -60,28 +95,37 @@ EffectSpec readEffect(const Object& o, size_t index) {
     o.onlyKeys(allowed, elsewhere, "not a key of " + type + " effects");
 
     // The common keys first (their errors come first), then the kind's own.
-    std::string name = o.string("name", type + "#" + std::to_string(index));
-    std::vector<std::string> bones = o.strings("bones");
-    std::vector<std::string> meshes = o.strings("meshes");
-    const float minBoneWeight = float(o.number("min_bone_weight", 0.5, 0.0, 1.0, true));
-    const float start = float(o.number("start", 0.0, 0.0, 1e5));
-    const std::optional<float> end = o.optionalNumber("end", 0.0, 1e5);
-    if (end && *end <= start)
-        fail(o.at("end"), formatNumber(*end) + " is not after start (" + formatNumber(start) + ")");
-
+    const CommonKeys common = readCommonKeys(o, type, index);
     EffectSpec e(kind.parse(o));
-    e.name = std::move(name);
-    e.bones = std::move(bones);
-    e.meshes = std::move(meshes);
+    e.name = common.name;
+    e.bones = common.bones;
+    e.meshes = common.meshes;
     e.automaticBones = !o.has("bones") && !o.has("meshes");
     e.automaticStride = !o.has("stride");
     e.givenKeys = o.keys();
-    e.minBoneWeight = minBoneWeight;
-    e.start = start;
-    e.end = end;
+    e.minBoneWeight = common.minBoneWeight;
+    e.start = common.start;
+    e.end = common.end;
     return e;
 }
 
 } // namespace detail
+
+std::vector<ParamInfo> effectParams(const std::string& type, const nlohmann::json& effect) {
+    const auto kind = std::find_if(effectKinds().begin(), effectKinds().end(),
+                                   [&](const EffectKindEntry& k) { return type == k.type; });
+    if (kind == effectKinds().end()) throw std::invalid_argument("no effect type \"" + type + "\"");
+    std::vector<ParamInfo> described;
+    ParamInfo typeKey;
+    typeKey.key = "type";
+    typeKey.type = ParamInfo::Type::Choice;
+    typeKey.choices = detail::typeNames();
+    typeKey.fallback = type;
+    described.push_back(typeKey);
+    const detail::Object o(described, effect);
+    detail::readCommonKeys(o, type, 0);
+    kind->parse(o);
+    return detail::uniqueParams(std::move(described));
+}
 
 } // namespace mfx::scene

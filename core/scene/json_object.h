@@ -1,7 +1,14 @@
 // Reading a scene file's JSON (internal to core/scene): one object at a time with its key path,
 // so that every refusal names where it is (`effects[2].bones[0]: ...`). The readers throw
 // SceneError, which parseScene turns into one Error.
+//
+// The same readers describe what they read: an Object made with a ParamInfo list reads nothing
+// (every key "is there" and reads as its default) and records each key it is asked for with its
+// type, range, choices and default. That record is the parameter table (core/scene/scene_params.h)
+// the viewer's panel and the scene writer use, so the table and the validation are one code.
 #pragma once
+
+#include "core/scene/scene_params.h"
 
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
@@ -49,6 +56,18 @@ inline std::string formatNumber(double v) {
     return s.str();
 }
 
+using ParamInfo = scene::ParamInfo;
+
+// `params` with each key once (where a reader asks for a key twice, its first reading).
+inline std::vector<ParamInfo> uniqueParams(std::vector<ParamInfo> params) {
+    std::vector<ParamInfo> out;
+    for (ParamInfo& p : params)
+        if (std::none_of(out.begin(), out.end(),
+                         [&](const ParamInfo& q) { return q.key == p.key; }))
+            out.push_back(std::move(p));
+    return out;
+}
+
 // One JSON object being read, with its key path for errors.
 class Object {
 public:
@@ -56,6 +75,14 @@ public:
         if (!j_.is_object())
             fail(path_.empty() ? "scene" : path_, "expected an object, got " + typeOf(j_));
     }
+    // Describe mode: records into `described` every key read (keys prefixed by `prefix`). Every
+    // key is there (has() is true), and reads as `context` has it (checked as usual), else as its
+    // default: a context of {"variant": "multi"} describes what that variant reads.
+    explicit Object(std::vector<ParamInfo>& described, const json& context = emptyObject(),
+                    std::string prefix = {})
+        : j_(context.is_object() ? context : emptyObject()), described_(&described),
+          prefix_(std::move(prefix)) {}
+    bool describing() const { return described_ != nullptr; }
 
     // Refuses keys outside `allowed`; `elsewhere` are keys that exist for other effect types.
     void onlyKeys(const std::vector<std::string>& allowed,
@@ -69,7 +96,11 @@ public:
         }
     }
 
-    bool has(const std::string& key) const { return j_.contains(key); }
+    bool has(const std::string& key) const { return described_ || j_.contains(key); }
+    // Whether the file (in describe mode: the context) gives `key`: for checks between keys.
+    bool given(const std::string& key) const { return j_.contains(key); }
+    // Whether the file gives `key` as null.
+    bool null(const std::string& key) const { return given(key) && j_.at(key).is_null(); }
     std::vector<std::string> keys() const {
         std::vector<std::string> out;
         for (auto it = j_.begin(); it != j_.end(); ++it)
@@ -81,25 +112,45 @@ public:
 
     double number(const std::string& key, double fallback, double low, double high,
                   bool lowOpen = false) const {
+        if (described_) {
+            record(key, ParamInfo::Type::Number, fallback, low, high).lowOpen = lowOpen;
+            if (!given(key)) return fallback;
+        }
         if (!has(key)) return fallback;
         return checkNumber(j_.at(key), at(key), low, high, lowOpen);
     }
     std::optional<double> optionalNumber(const std::string& key, double low, double high,
                                          bool lowOpen = false) const {
+        if (described_) {
+            record(key, ParamInfo::Type::Number, nullptr, low, high).lowOpen = lowOpen;
+            if (!given(key)) return std::nullopt;
+        }
         if (!has(key) || j_.at(key).is_null()) return std::nullopt;
         return checkNumber(j_.at(key), at(key), low, high, lowOpen);
     }
     uint32_t integer(const std::string& key, uint32_t fallback, uint32_t low, uint32_t high) const {
+        if (described_) {
+            record(key, ParamInfo::Type::Integer, fallback, low, high);
+            if (!given(key)) return fallback;
+        }
         if (!has(key)) return fallback;
         return checkInteger(j_.at(key), at(key), low, high);
     }
     bool boolean(const std::string& key, bool fallback) const {
+        if (described_) {
+            record(key, ParamInfo::Type::Boolean, fallback);
+            if (!given(key)) return fallback;
+        }
         if (!has(key)) return fallback;
         const json& v = j_.at(key);
         if (!v.is_boolean()) fail(at(key), "expected true or false, got " + typeOf(v));
         return v.get<bool>();
     }
     std::string string(const std::string& key, const std::string& fallback) const {
+        if (described_) {
+            record(key, ParamInfo::Type::String, fallback);
+            if (!given(key)) return fallback;
+        }
         if (!has(key)) return fallback;
         const json& v = j_.at(key);
         if (!v.is_string()) fail(at(key), "expected a string, got " + typeOf(v));
@@ -107,25 +158,49 @@ public:
     }
     std::string choice(const std::string& key, const std::string& fallback,
                        const std::vector<std::string>& choices) const {
-        const std::string v = string(key, fallback);
+        if (described_) {
+            record(key, ParamInfo::Type::Choice, fallback).choices = choices;
+            if (!given(key))
+                return fallback.empty() && !choices.empty() ? choices.front() : fallback;
+        }
+        const json value = j_.contains(key) ? j_.at(key) : json(fallback);
+        if (!value.is_string()) fail(at(key), "expected a string, got " + typeOf(value));
+        const std::string v = value.get<std::string>();
         if (std::find(choices.begin(), choices.end(), v) == choices.end())
             fail(at(key), "\"" + v + "\" is not one of: " + join(choices));
         return v;
     }
     glm::vec3 vec3(const std::string& key, glm::vec3 fallback, double low = -1e6,
                    double high = 1e6) const {
+        if (described_) {
+            record(key, ParamInfo::Type::Vec3, json::array({fallback.x, fallback.y, fallback.z}),
+                   low, high);
+            if (!given(key)) return fallback;
+        }
         if (!has(key)) return fallback;
         const std::vector<double> v = numbers(key, 3, 3, low, high);
         return {float(v[0]), float(v[1]), float(v[2])};
     }
     // An RGB or RGBA colour in [0, 1].
     glm::vec4 colour(const std::string& key, glm::vec4 fallback) const {
+        if (described_) {
+            ParamInfo& p =
+                record(key, ParamInfo::Type::Colour,
+                       json::array({fallback.r, fallback.g, fallback.b, fallback.a}), 0.0, 1.0);
+            p.minCount = 3;
+            p.maxCount = 4;
+            if (!given(key)) return fallback;
+        }
         if (!has(key)) return fallback;
         const std::vector<double> v = numbers(key, 3, 4, 0.0, 1.0);
         return {float(v[0]), float(v[1]), float(v[2]), v.size() == 4 ? float(v[3]) : 1.0f};
     }
     std::vector<std::string> strings(const std::string& key) const {
         std::vector<std::string> out;
+        if (described_) {
+            record(key, ParamInfo::Type::Strings, json::array());
+            if (!given(key)) return out;
+        }
         if (!has(key)) return out;
         const json& v = j_.at(key);
         if (!v.is_array()) fail(at(key), "expected an array of names, got " + typeOf(v));
@@ -138,7 +213,19 @@ public:
         return out;
     }
     // The objects of an array of `minCount` to `maxCount` objects, each named by its index.
+    // Described: one object, whose keys are recorded as "key[].<its key>".
     std::vector<Object> objects(const std::string& key, size_t minCount, size_t maxCount) const {
+        if (described_) {
+            ParamInfo& p = record(key, ParamInfo::Type::Objects, nullptr);
+            p.minCount = minCount;
+            p.maxCount = maxCount;
+            const json* first = given(key) && j_.at(key).is_array() && !j_.at(key).empty()
+                                    ? &j_.at(key)[0]
+                                    : &emptyObject();
+            std::vector<Object> one;
+            one.push_back(Object(*described_, *first, prefix_ + key + "[]."));
+            return one;
+        }
         const json& v = j_.at(key);
         if (!v.is_array() || v.size() < minCount || v.size() > maxCount)
             fail(at(key),
@@ -152,6 +239,13 @@ public:
     }
     std::vector<double> numbers(const std::string& key, size_t minCount, size_t maxCount,
                                 double low, double high) const {
+        if (described_) {
+            ParamInfo& p = record(key, ParamInfo::Type::Numbers, nullptr, low, high);
+            p.minCount = minCount;
+            p.maxCount = maxCount;
+            if (!given(key))
+                return std::vector<double>(minCount, std::max(low, std::min(high, 1.0)));
+        }
         const json& v = j_.at(key);
         const std::string count =
             minCount == maxCount ? std::to_string(minCount)
@@ -167,6 +261,17 @@ public:
     }
 
 private:
+    static const json& emptyObject() {
+        static const json empty = json::object();
+        return empty;
+    }
+    ParamInfo& record(const std::string& key, ParamInfo::Type type, json fallback, double low = 0.0,
+                      double high = 0.0) const {
+        described_->push_back(
+            ParamInfo{prefix_ + key, type, low, high, false, 0, 0, {}, std::move(fallback)});
+        return described_->back();
+    }
+
     static double checkNumber(const json& v, const std::string& path, double low, double high,
                               bool lowOpen = false) {
         if (!v.is_number()) fail(path, "expected a number, got " + typeOf(v));
@@ -190,6 +295,8 @@ private:
 
     const json& j_;
     std::string path_;
+    std::vector<ParamInfo>* described_ = nullptr;
+    std::string prefix_;
 };
 
 } // namespace mfx::scene::detail

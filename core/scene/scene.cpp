@@ -9,6 +9,7 @@
 #include "core/scene/kinds/smoke_effect.h"
 #include "core/scene/kinds/trail_effects.h"
 #include "core/scene/scene_fit.h"
+#include "core/scene/scene_params.h"
 
 #include <nlohmann/json.hpp>
 
@@ -41,7 +42,7 @@ void readCharacter(const Object& o, CharacterSpec& c) {
     c.loop = o.boolean("loop", c.loop);
     c.position = o.vec3("position", c.position);
     c.yawDegrees = float(o.number("yaw_degrees", c.yawDegrees, -3600.0, 3600.0));
-    if (o.has("height") && o.has("scale"))
+    if (o.given("height") && o.given("scale"))
         fail(o.at("scale"), "give height or scale, not both (height: the metres to scale the "
                             "character to; scale: the factor to scale it by)");
     if (const std::optional<double> h = o.optionalNumber("height", 1e-4, 1e4)) c.height = *h;
@@ -91,8 +92,7 @@ void readOutput(const Object& o, OutputSpec& out) {
     out.width = o.integer("width", out.width, 16, 8192);
     out.height = o.integer("height", out.height, 16, 8192);
     out.fps = float(o.number("fps", out.fps, 1.0, 240.0));
-    if (o.has("frames") && !o.raw("frames").is_null())
-        out.frames = o.integer("frames", 1, 1, 100000);
+    if (o.has("frames") && !o.null("frames")) out.frames = o.integer("frames", 1, 1, 100000);
 }
 
 void readPost(const Object& o, PostSpec& post) {
@@ -155,6 +155,45 @@ std::string parseMessage(const std::string& what) {
 }
 
 } // namespace
+
+const std::vector<std::string>& sceneSections() {
+    static const std::vector<std::string> sections = {"character", "camera", "lights",
+                                                      "stage",     "output", "post"};
+    return sections;
+}
+
+std::vector<ParamInfo> sectionParams(const std::string& section) {
+    std::vector<ParamInfo> described;
+    const Object o(described);
+    if (section == "character") {
+        CharacterSpec c;
+        readCharacter(o, c);
+    } else if (section == "camera") {
+        CameraSpec c;
+        readCamera(o, c);
+    } else if (section == "lights") {
+        LightSpec l;
+        readLight(o, l);
+    } else if (section == "stage") {
+        StageSpec s;
+        readStage(o, s);
+    } else if (section == "output") {
+        OutputSpec out;
+        readOutput(o, out);
+    } else if (section == "post") {
+        PostSpec post;
+        readPost(o, post);
+    } else {
+        throw std::invalid_argument("no scene section \"" + section + "\"");
+    }
+    return uniqueParams(std::move(described));
+}
+
+const ParamInfo* findParam(const std::vector<ParamInfo>& params, const std::string& key) {
+    for (const ParamInfo& p : params)
+        if (p.key == key) return &p;
+    return nullptr;
+}
 
 CharacterStyle characterStyle(const CharacterSpec& character) {
     if (character.style) return *character.style;

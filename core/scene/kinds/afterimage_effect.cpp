@@ -49,16 +49,16 @@ std::unique_ptr<EffectKindSpec> AfterimageSpec::parse(const Object& o) {
     std::vector<std::string> lineKeys = ribbonKeys();
     lineKeys.insert(lineKeys.end(), {"width", "stride"});
     for (const std::string& key : lineKeys)
-        if (o.has(key) && !isVolumeKey(key) && a->variant != AfterimageVariant::SpeedLines)
+        if (o.given(key) && !isVolumeKey(key) && a->variant != AfterimageVariant::SpeedLines)
             fail(o.at(key),
                  "only for \"variant\": \"speed_lines\" (the variant is \"" + variant + "\")");
     for (const std::string& key : volumeKeys)
-        if (o.has(key) && !std::count(lineKeys.begin(), lineKeys.end(), key) &&
+        if (o.given(key) && !std::count(lineKeys.begin(), lineKeys.end(), key) &&
             a->variant == AfterimageVariant::SpeedLines)
             fail(o.at(key), "only for the \"smear\" and \"multi\" variants (the variant is \"" +
                                 variant + "\")");
     for (const char* key : {"afterimages", "influence_power"})
-        if (o.has(key) && a->variant != AfterimageVariant::Multi)
+        if (o.given(key) && a->variant != AfterimageVariant::Multi)
             fail(o.at(key), "only for \"variant\": \"multi\" (the variant is \"" + variant + "\")");
 
     // Per-variant defaults: the smear is the mesh itself, opaque; lines and arcs fade out behind.
@@ -71,15 +71,16 @@ std::unique_ptr<EffectKindSpec> AfterimageSpec::parse(const Object& o) {
         a->colour = o.colour("colour", a->colour);
         a->useMeshColour = false;
     }
-    a->stride = o.integer("stride", a->stride, 1, 1000);
     a->alphaStart = float(o.number("alpha_start", a->alphaStart, 0.0, 1.0));
     a->alphaEnd = float(o.number("alpha_end", a->alphaEnd, 0.0, 1.0));
     a->alphaPower = float(o.number("alpha_power", a->alphaPower, 0.0, 16.0, true));
-    a->width = float(o.number("width", a->width, 0.0, 1.0, true));
-    if (a->variant == AfterimageVariant::SpeedLines)
+    if (a->variant == AfterimageVariant::SpeedLines) {
+        a->stride = o.integer("stride", a->stride, 1, 1000);
+        a->width = float(o.number("width", a->width, 0.0, 1.0, true));
         readRibbon(o, a->ribbon);
-    else
+    } else {
         readVolumeLook(o, a->look);
+    }
 
     a->strengthCharacter = float(o.number("strength_character", a->strengthCharacter, 0.0, 1000.0));
     a->strengthAnimation = float(o.number("strength_animation", a->strengthAnimation, 0.0, 1000.0));
@@ -92,8 +93,10 @@ std::unique_ptr<EffectKindSpec> AfterimageSpec::parse(const Object& o) {
     a->taper = float(o.number("taper", a->taper, 0.0, 64.0));
     a->minSpeed = float(o.number("min_speed", a->minSpeed, 0.0, 1e4));
     a->relativeSpeed = float(o.number("relative_speed", a->relativeSpeed, 0.0, 1.0));
-    a->afterimages = o.integer("afterimages", a->afterimages, 1, 16);
-    a->influencePower = float(o.number("influence_power", a->influencePower, 0.0, 64.0));
+    if (a->variant == AfterimageVariant::Multi) {
+        a->afterimages = o.integer("afterimages", a->afterimages, 1, 16);
+        a->influencePower = float(o.number("influence_power", a->influencePower, 0.0, 64.0));
+    }
     return a;
 }
 
