@@ -47,6 +47,7 @@ struct CommonKeys {
     float minBoneWeight = 0.5f;
     float start = 0.0f;
     std::optional<float> end;
+    bool automaticBones = false, automaticStride = false; // what fitScene chooses
 };
 
 CommonKeys readCommonKeys(const Object& o, const std::string& type, size_t index) {
@@ -54,6 +55,9 @@ CommonKeys readCommonKeys(const Object& o, const std::string& type, size_t index
     c.name = o.string("name", type + "#" + std::to_string(index));
     c.bones = o.strings("bones");
     c.meshes = o.strings("meshes");
+    const bool bones = o.has("bones"), meshes = o.has("meshes");
+    c.automaticBones = !bones && !meshes;
+    c.automaticStride = !o.has("stride");
     c.minBoneWeight = float(o.number("min_bone_weight", 0.5, 0.0, 1.0, true));
     c.start = float(o.number("start", 0.0, 0.0, 1e5));
     if (const std::optional<double> end = o.optionalNumber("end", 0.0, 1e5)) c.end = float(*end);
@@ -100,8 +104,8 @@ EffectSpec readEffect(const Object& o, size_t index) {
     e.name = common.name;
     e.bones = common.bones;
     e.meshes = common.meshes;
-    e.automaticBones = !o.has("bones") && !o.has("meshes");
-    e.automaticStride = !o.has("stride");
+    e.automaticBones = common.automaticBones;
+    e.automaticStride = common.automaticStride;
     e.givenKeys = o.keys();
     e.minBoneWeight = common.minBoneWeight;
     e.start = common.start;

@@ -58,13 +58,23 @@ inline std::string formatNumber(double v) {
 
 using ParamInfo = scene::ParamInfo;
 
-// `params` with each key once (where a reader asks for a key twice, its first reading).
+// Marks the entries describe mode records for a presence check (has()), not a reading.
+inline constexpr size_t kPresenceMark = size_t(-1);
+
+// `params` with each key once (where a reader asks for a key twice, its first reading), each
+// marked absentDiffers where the reader checked whether the key is there.
 inline std::vector<ParamInfo> uniqueParams(std::vector<ParamInfo> params) {
+    auto presence = [](const ParamInfo& p) {
+        return p.absentDiffers && p.minCount == kPresenceMark;
+    };
     std::vector<ParamInfo> out;
     for (ParamInfo& p : params)
-        if (std::none_of(out.begin(), out.end(),
-                         [&](const ParamInfo& q) { return q.key == p.key; }))
-            out.push_back(std::move(p));
+        if (!presence(p) && std::none_of(out.begin(), out.end(),
+                                         [&](const ParamInfo& q) { return q.key == p.key; }))
+            out.push_back(p);
+    for (ParamInfo& p : out)
+        for (const ParamInfo& q : params)
+            if (presence(q) && q.key == p.key) p.absentDiffers = true;
     return out;
 }
 
@@ -96,7 +106,17 @@ public:
         }
     }
 
-    bool has(const std::string& key) const { return described_ || j_.contains(key); }
+    bool has(const std::string& key) const {
+        if (described_) { // a presence check: the key's absence means something of its own
+            ParamInfo presence;
+            presence.key = prefix_ + key;
+            presence.absentDiffers = true;
+            presence.type = ParamInfo::Type::Objects;
+            presence.minCount = kPresenceMark;
+            described_->push_back(presence);
+        }
+        return described_ || j_.contains(key);
+    }
     // Whether the file (in describe mode: the context) gives `key`: for checks between keys.
     bool given(const std::string& key) const { return j_.contains(key); }
     // Whether the file gives `key` as null.

@@ -248,6 +248,10 @@ Scene kickScene() {
     return s;
 }
 
+std::string defaultSceneJson() {
+    return kDefaultSceneJson;
+}
+
 Scene defaultScene() {
     // docs/scenes/hero.json, embedded at build time; a test keeps it parsing.
     Result<Scene> s =

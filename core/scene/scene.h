@@ -124,6 +124,8 @@ Result<Scene> loadScene(const std::filesystem::path& file);
 // slash, toon-shaded, with glowing kick lines, a crescent slash arc on the sword, energy smoke
 // from the kicking foot, bloom and the filmic tone map.
 Scene defaultScene();
+// Its text (docs/scenes/hero.json as built in).
+std::string defaultSceneJson();
 // The plain kick: the fighter's roundhouse kick with speed-lines, a blur volume on the kicking
 // leg and smoke from the kicking foot (what the tests and the character preview build on).
 Scene kickScene();

@@ -33,7 +33,11 @@ struct ParamInfo {
     bool lowOpen = false;
     size_t minCount = 0, maxCount = 0;
     std::vector<std::string> choices;
-    nlohmann::json fallback; // the default; null where the key has none (absent means "off")
+    nlohmann::json fallback; // the default; null where the key has none
+    // The reader tells an absent key from any value (no "colour": the mesh's colours; no
+    // "cel_bands": smooth shading; no "bones" or "meshes": the fastest limb): `fallback` is then
+    // only what it reads in the key's place where it needs one.
+    bool absentDiffers = false;
 };
 
 // The sections of a scene file that are one object: "character", "camera", "lights" (one light),
