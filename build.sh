@@ -20,7 +20,7 @@ PACKAGES=(
     cmake make g++ pkg-config
     libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools
     libglm-dev libtinygltf-dev nlohmann-json3-dev libeigen3-dev libgtest-dev libstb-dev
-    libglfw3-dev libx11-dev xvfb ffmpeg
+    libglfw3-dev libimgui-dev libx11-dev xvfb ffmpeg
 )
 
 say() { printf '\n== %s\n' "$*"; }

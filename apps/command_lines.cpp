@@ -36,7 +36,8 @@ const char* const kViewKeysHelp =
     "frames forward/back; home or r restart; 1-9 show/hide the scene's effects by their order; "
     "left drag orbits the camera, middle or shift + left drag pans it, the wheel zooms; f frames "
     "the character, c goes back to the scene's camera, p prints the camera as a scene \"camera\" "
-    "block; s writes a screenshot (to the --screenshot file, else motionfx_view.png); escape or q "
+    "block; tab shows/hides the parameter panel; s writes a screenshot (to the --screenshot file, "
+    "else motionfx_view.png); escape or q "
     "quit. The scene file (and the character file it names) is watched: a "
     "saved change plays at once, from the frame shown";
 
@@ -252,6 +253,8 @@ CommandLine viewCommandLine() {
         .samples()
         .option("paused", "", "start paused on the first frame")
         .option("quit-after", "N", "close by itself after presenting N frames")
+        .option("no-panel", "", "start with the parameter panel hidden (tab shows it)")
+        .option("screenshot-panel", "", "show the parameter panel in screenshots too")
         .option("screenshot", "FILE",
                 "on closing (and whenever s is pressed), write the window's picture as PNG");
     return command;

@@ -9,7 +9,9 @@
 #ifdef MFX_HAVE_GLFW
 
 #include "apps/file_watch.h"
+#include "apps/view_frame.h"
 #include "apps/view_input.h"
+#include "apps/view_panel.h"
 #include "apps/view_session.h"
 #include "core/gpu/check.h"
 #include "core/gpu/commands.h"
@@ -59,6 +61,46 @@ std::string cameraStatus(const ViewSession& view) {
                   double(glm::degrees(orbit.yaw())), double(glm::degrees(orbit.pitch())),
                   double(orbit.distance()), view.cameraMoved() ? "" : " (SCENE)");
     return text;
+}
+
+// The panel where this build has one (and the window could start it); else nothing, and `tab`
+// says why.
+class ViewOverlay {
+public:
+    explicit ViewOverlay(std::unique_ptr<ViewPanel> panel, bool inScreenshots)
+        : panel_(std::move(panel)), inScreenshots_(inScreenshots) {}
+    bool available() const { return panel_ != nullptr; }
+    bool visible() const { return panel_ && panel_->visible(); }
+    void toggle() {
+        if (panel_) panel_->setVisible(!panel_->visible());
+    }
+    bool inScreenshots() const { return inScreenshots_ && visible(); }
+    bool wantsMouse() const { return panel_ && panel_->wantsMouse(); }
+    bool typing() const { return panel_ && panel_->typing(); }
+    PanelRequests build(const PanelView& view) {
+        return panel_ ? panel_->build(view) : PanelRequests{};
+    }
+    void record(VkCommandBuffer cmd, uint32_t index) {
+        if (panel_) panel_->record(cmd, index);
+    }
+    void resize(const gpu::Swapchain& swapchain) {
+        if (panel_) panel_->resize(swapchain);
+    }
+
+private:
+    std::unique_ptr<ViewPanel> panel_;
+    bool inScreenshots_ = false;
+};
+
+ViewOverlay makeOverlay(const gpu::Context& ctx, GLFWwindow* window,
+                        const gpu::Swapchain& swapchain, const cli::ParsedArgs& parsed) {
+    Result<std::unique_ptr<ViewPanel>> panel = ViewPanel::create(ctx, window, swapchain);
+    if (!panel) {
+        std::printf("no parameter panel: %s\n", panel.error().message.c_str());
+        return ViewOverlay(nullptr, false);
+    }
+    panel.value()->setVisible(!parsed.has("no-panel"));
+    return ViewOverlay(std::move(panel).value(), parsed.has("screenshot-panel"));
 }
 
 } // namespace
@@ -135,6 +177,16 @@ int runView(const cli::ParsedArgs& parsed) {
     gpu::Swapchain& swapchain = *swapchainResult.value();
 
     const std::string viewedFile = s.file;
+    // The document the panel edits: the scene file, or the built-in default's text (a character
+    // preview has none).
+    std::unique_ptr<scene::SceneDocument> document;
+    const bool builtIn = parsed.positional.empty();
+    if (builtIn || !scene::isCharacterFile(parsed.positional[0])) {
+        Result<scene::SceneDocument> read =
+            builtIn ? scene::SceneDocument::fromText(scene::defaultSceneJson(), s.file)
+                    : scene::SceneDocument::load(parsed.positional[0]);
+        if (read) document = std::make_unique<scene::SceneDocument>(std::move(read).value());
+    }
     ViewSession viewer(ctx, parsed, "960x540", std::move(argument),
                        VkSampleCountFlagBits(samples.value()));
     if (Status started = viewer.start(); !started) {
@@ -152,41 +204,68 @@ int runView(const cli::ParsedArgs& parsed) {
             names += (names.empty() ? "" : " and ") + file.string();
         std::printf("watching %s: a saved change is played at once\n", names.c_str());
     }
+    ViewOverlay overlay = makeOverlay(ctx, window, swapchain, parsed);
+    controls.setPanelQueries([&] { return overlay.wantsMouse(); },
+                             [&] { return overlay.typing(); });
     std::fflush(stdout);
 
     gpu::CommandBuffer commands = gpu::CommandBuffer::create(ctx, ctx.graphicsQueue());
-    // A screenshot's pixels: the swapchain image copied out on the last frame.
+    // A screenshot's pixels: the swapchain image copied out.
     gpu::Buffer readback;
     bool paused = parsed.has("paused");
     uint32_t presented = 0;
     std::deque<double> recentMs; // the last frames' times, for a steady on-screen figure
     std::vector<double> allMs;
+    std::deque<sim::SimulationFrameStats> history; // the panel's plot
     auto lastAdvance = std::chrono::steady_clock::now();
     bool resized = false;
     bool lastFrame = false;
     bool shotWanted = false; // a screenshot asked for and not yet taken
     const std::string shotFile = screenshot.empty() ? "motionfx_view.png" : screenshot;
     std::string reloadError; // the last reload's error, shown until a reload succeeds
+    std::string panelMessage;
     float pictureHeight = float(viewer.scene().output.height); // on screen, for the pan
     while (!lastFrame) {
         glfwPollEvents();
         lastFrame = glfwWindowShouldClose(window) ||
                     (quitAfter.value() > 0 && presented + 1 >= quitAfter.value());
         const ViewInput input = controls.take();
+        if (input.togglePanel) {
+            overlay.toggle();
+            say(overlay.available() ? (overlay.visible() ? "panel shown" : "panel hidden")
+                                    : "no panel in this build (Dear ImGui was not found)");
+        }
         // Keys, each answered with a line on stdout as well as on screen.
-        if (input.togglePause) {
+        bool togglePause = input.togglePause;
+        std::vector<std::pair<size_t, bool>> show;
+        for (int e : input.toggles)
+            if (size_t(e) < viewer.scene().effects.size())
+                show.emplace_back(size_t(e), !viewer.renderer().shown(size_t(e)));
+        // The panel: what it shows, and what was done with it.
+        PanelView panelView;
+        panelView.document = document.get();
+        for (size_t e = 0; e < viewer.scene().effects.size(); ++e) {
+            panelView.effects.push_back(viewer.scene().effects[e].name);
+            panelView.shown.push_back(viewer.renderer().shown(e));
+        }
+        panelView.frame = std::max(0, viewer.shown());
+        panelView.frameCount = viewer.frameCount();
+        panelView.paused = paused;
+        panelView.history = &history;
+        panelView.message = panelMessage;
+        const PanelRequests asked = overlay.build(panelView);
+        togglePause = togglePause != asked.togglePause;
+        show.insert(show.end(), asked.show.begin(), asked.show.end());
+        if (togglePause) {
             paused = !paused;
             say(std::string(paused ? "paused" : "playing") + " at frame " +
                 std::to_string(viewer.shown() + 1));
         }
-        const std::vector<scene::EffectSpec>& effects = viewer.scene().effects;
-        for (int e : input.toggles)
-            if (size_t(e) < effects.size()) {
-                const bool show = !viewer.renderer().shown(size_t(e));
-                viewer.renderer().setShown(size_t(e), show);
-                say("effect " + std::to_string(e + 1) + " (" + effects[size_t(e)].name + ") " +
-                    (show ? "shown" : "hidden"));
-            }
+        for (const auto& [e, visible] : show) {
+            viewer.renderer().setShown(e, visible);
+            say("effect " + std::to_string(e + 1) + " (" + viewer.scene().effects[e].name + ") " +
+                (visible ? "shown" : "hidden"));
+        }
         // The camera.
         if (input.sceneCamera) {
             viewer.useSceneCamera();
@@ -202,6 +281,31 @@ int runView(const cli::ParsedArgs& parsed) {
         if (input.printCamera) say(render::cameraBlock(viewer.camera()));
         bool advance = false;
         Status moved = Ok{};
+        // The panel's edits: the scene the document reads now, from the frame shown.
+        if (!asked.refused.empty()) {
+            panelMessage = "refused: " + asked.refused;
+            say(panelMessage);
+        }
+        if (asked.edited && document) {
+            if (Status replaced = viewer.replace(document->scene()); replaced) {
+                advance = true;
+            } else {
+                panelMessage = replaced.error().message;
+                say(panelMessage);
+            }
+        }
+        if (document && (asked.save || !asked.saveAs.empty())) {
+            const std::string target = asked.saveAs.empty() ? document->where() : asked.saveAs;
+            if (asked.saveAs.empty() && builtIn && target == viewedFile) {
+                panelMessage = "the built-in scene has no file: save it as one";
+            } else if (Status saved = document->save(target); saved) {
+                panelMessage = "saved " + target;
+                watch.watch(viewer.files()); // what was just written is not a change
+            } else {
+                panelMessage = saved.error().message;
+            }
+            say(panelMessage);
+        }
         // The scene's files, saved since: read again, and on to the frame shown.
         if (watch.poll()) {
             std::vector<std::string> notes;
@@ -212,6 +316,11 @@ int runView(const cli::ParsedArgs& parsed) {
                 reloadError.clear();
                 advance = true;
                 watch.watch(viewer.files());
+                if (document && !builtIn)
+                    if (Result<scene::SceneDocument> read =
+                            scene::SceneDocument::load(document->where());
+                        read)
+                        *document = std::move(read).value();
             } else if (reloaded.error().message != reloadError) {
                 reloadError = reloaded.error().message;
                 say("reload failed, playing the last good scene: " + reloadError);
@@ -220,15 +329,16 @@ int runView(const cli::ParsedArgs& parsed) {
         if (input.restart) {
             moved = viewer.start();
             say("restarted");
-        } else if (input.step != 0) {
+        } else if (input.step != 0 || asked.seek) {
             paused = true;
             const int target =
-                std::clamp(viewer.shown() + input.step, 0, int(viewer.frameCount()) - 1);
+                std::clamp(asked.seek ? int(*asked.seek) : viewer.shown() + input.step, 0,
+                           int(viewer.frameCount()) - 1);
             if (target != viewer.shown()) {
                 moved = viewer.seek(uint32_t(target)); // then drawn by advancing to it
                 advance = true;
             }
-            say("paused at frame " + std::to_string(target + 1));
+            if (!asked.seek) say("paused at frame " + std::to_string(target + 1));
         } else if (!paused) {
             // Real time: the next frame once its time has come (every loop when slower).
             const auto now = std::chrono::steady_clock::now();
@@ -253,12 +363,14 @@ int runView(const cli::ParsedArgs& parsed) {
         }
         if (resized) {
             swapchain.recreate(uint32_t(width), uint32_t(height));
+            overlay.resize(swapchain);
             resized = false;
         }
         uint32_t index = 0;
         VkSemaphore ready = VK_NULL_HANDLE;
         if (!swapchain.acquire(index, ready)) {
             swapchain.recreate(uint32_t(width), uint32_t(height));
+            overlay.resize(swapchain);
             continue;
         }
         shotWanted = shotWanted || input.screenshot || (lastFrame && !screenshot.empty());
@@ -267,110 +379,44 @@ int runView(const cli::ParsedArgs& parsed) {
         const auto start = std::chrono::steady_clock::now();
         VkCommandBuffer cmd = commands.begin();
         viewer.record(cmd, advance || viewer.shown() < 0);
-        render::RenderTarget& target = viewer.renderer().output();
-        gpu::transitionImage(cmd, target.color, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-        const VkImage image = swapchain.image(index);
-        gpu::imageBarrier(cmd, image, VK_IMAGE_LAYOUT_UNDEFINED,
-                          VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                          VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, 0,
-                          VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
-        // The picture scaled to the window, letterboxed to keep its shape.
-        const float scale = std::min(float(extent.width) / float(target.width),
-                                     float(extent.height) / float(target.height));
-        const int32_t w = std::max(1, int32_t(float(target.width) * scale));
-        const int32_t h = std::max(1, int32_t(float(target.height) * scale));
-        const int32_t x0 = (int32_t(extent.width) - w) / 2, y0 = (int32_t(extent.height) - h) / 2;
-        pictureHeight = float(h);
-        VkClearColorValue black{{0.0f, 0.0f, 0.0f, 1.0f}};
-        VkImageSubresourceRange whole{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-        vkCmdClearColorImage(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &black, 1, &whole);
-        gpu::imageBarrier(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                          VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                          VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                          VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
-        VkImageBlit blit{};
-        blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-        blit.srcOffsets[1] = {int32_t(target.width), int32_t(target.height), 1};
-        blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-        blit.dstOffsets[0] = {x0, y0, 0};
-        blit.dstOffsets[1] = {x0 + w, y0 + h, 1};
-        vkCmdBlitImage(cmd, target.color.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, image,
-                       VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
-        gpu::imageBarrier(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                          VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                          VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                          VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                          VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
-        // The status lines.
-        VkRenderingAttachmentInfo colour{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-        colour.imageView = swapchain.view(index);
-        colour.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-        colour.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
-        colour.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-        VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
-        rendering.renderArea = {{0, 0}, extent};
-        rendering.layerCount = 1;
-        rendering.colorAttachmentCount = 1;
-        rendering.pColorAttachments = &colour;
-        vkCmdBeginRendering(cmd, &rendering);
         double shownMs = 0.0;
         for (double ms : recentMs)
             shownMs += ms / double(recentMs.size());
-        const uint32_t textScale = extent.height >= 400 ? 2 : 1;
-        const std::string status =
-            "FRAME " + std::to_string(viewer.shown() + 1) + "/" +
-            std::to_string(viewer.frameCount()) + "  " +
-            (recentMs.empty() ? std::string("-") : formatMs(shownMs)) + " MS" +
-            (recentMs.empty() ? "" : " (" + formatMs(1000.0 / shownMs) + " FPS)") +
-            (paused ? "  PAUSED" : "");
-        const glm::vec4 white(1.0f), shade(0.0f, 0.0f, 0.0f, 1.0f);
-        const int margin = int(4 * textScale);
-        const int lineHeight = int(10 * textScale);
-        render::drawText(cmd, status, {margin, margin}, textScale, white, shade, extent);
-        render::drawText(cmd, cameraStatus(viewer), {margin, margin + lineHeight}, textScale,
-                         viewer.cameraMoved() ? white : glm::vec4(0.6f), shade, extent);
-        int line = 2;
-        const std::vector<scene::EffectSpec>& shownEffects = viewer.scene().effects;
-        for (size_t e = 0; e < shownEffects.size() && e < 9; ++e, ++line) {
-            const std::string label = std::to_string(e + 1) + " " + shownEffects[e].name + " " +
-                                      (viewer.renderer().shown(e) ? "ON" : "OFF");
-            render::drawText(cmd, label, {margin, margin + line * lineHeight}, textScale,
-                             viewer.renderer().shown(e) ? white : glm::vec4(0.6f), shade, extent);
+        std::vector<StatusLine> lines;
+        lines.push_back({"FRAME " + std::to_string(viewer.shown() + 1) + "/" +
+                         std::to_string(viewer.frameCount()) + "  " +
+                         (recentMs.empty() ? std::string("-") : formatMs(shownMs)) + " MS" +
+                         (recentMs.empty() ? "" : " (" + formatMs(1000.0 / shownMs) + " FPS)") +
+                         (paused ? "  PAUSED" : "")});
+        lines.push_back(
+            {cameraStatus(viewer), viewer.cameraMoved() ? glm::vec4(1.0f) : glm::vec4(0.6f)});
+        for (size_t e = 0; e < viewer.scene().effects.size() && e < 9; ++e) {
+            const bool on = viewer.renderer().shown(e);
+            lines.push_back({std::to_string(e + 1) + " " + viewer.scene().effects[e].name + " " +
+                                 (on ? "ON" : "OFF"),
+                             on ? glm::vec4(1.0f) : glm::vec4(0.6f)});
         }
-        if (!reloadError.empty()) // at the bottom, in red, until the file is mended
-            render::drawText(cmd, "RELOAD FAILED: " + reloadError,
-                             {margin, int(extent.height) - margin - lineHeight}, textScale,
-                             glm::vec4(1.0f, 0.25f, 0.2f, 1.0f), shade, extent);
-        vkCmdEndRendering(cmd);
-        if (capture) {
-            const VkDeviceSize bytes = VkDeviceSize(extent.width) * extent.height * 4;
-            readback = gpu::createBuffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                         gpu::MemoryUsage::Readback, "view screenshot");
-            gpu::imageBarrier(cmd, image, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                              VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                              VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                              VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
-                              VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
-            VkBufferImageCopy copy{};
-            copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-            copy.imageExtent = {extent.width, extent.height, 1};
-            vkCmdCopyImageToBuffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback.get(),
-                                   1, &copy);
-            gpu::imageBarrier(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                              VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
-                              0, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0);
-        } else {
-            gpu::imageBarrier(
-                cmd, image, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0);
-        }
+        // The error line at the bottom, in red, until the file is mended.
+        const StatusLine bottom{reloadError.empty() ? "" : "RELOAD FAILED: " + reloadError,
+                                glm::vec4(1.0f, 0.25f, 0.2f, 1.0f)};
+        const VkImage image = swapchain.image(index);
+        pictureHeight = recordWindowPicture(cmd, viewer.renderer().output(), image,
+                                            swapchain.view(index), extent, lines, bottom);
+        // The screenshot has the panel only when asked to.
+        if (capture && !overlay.inScreenshots()) recordCopyOut(ctx, cmd, image, extent, readback);
+        overlay.record(cmd, index);
+        if (capture && overlay.inScreenshots()) recordCopyOut(ctx, cmd, image, extent, readback);
+        gpu::imageBarrier(
+            cmd, image, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
+            VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
+            VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0);
         commands.end();
         const VkSemaphore finished = swapchain.renderFinished(index);
         commands.submit(ready, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, finished);
         if (!swapchain.present(index, finished)) resized = true;
         commands.wait();
-        viewer.finish();
+        history.push_back(viewer.finish());
+        if (history.size() > 120) history.pop_front();
         const double ms =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
                 .count();
@@ -383,14 +429,8 @@ int runView(const cli::ParsedArgs& parsed) {
             std::fflush(stdout);
         }
         if (capture) {
-            std::vector<uint8_t> rgba(static_cast<const uint8_t*>(readback.mapped),
-                                      static_cast<const uint8_t*>(readback.mapped) +
-                                          size_t(extent.width) * extent.height * 4);
-            if (swapchain.format() == VK_FORMAT_B8G8R8A8_SRGB ||
-                swapchain.format() == VK_FORMAT_B8G8R8A8_UNORM)
-                for (size_t p = 0; p < rgba.size(); p += 4)
-                    std::swap(rgba[p], rgba[p + 2]);
             shotWanted = false;
+            const std::vector<uint8_t> rgba = copiedPixels(readback, extent, swapchain.format());
             if (Status written = render::writePng(shotFile, extent.width, extent.height, rgba);
                 !written) {
                 printError(written.error().message);

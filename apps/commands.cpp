@@ -83,8 +83,14 @@ Result<SceneArgument> readSceneArgument(const cli::ParsedArgs& parsed, const cha
         : preview                 ? Result<scene::Scene>(scene::previewScene(parsed.positional[0]))
                                   : scene::loadScene(parsed.positional[0]);
     if (!loaded) return loaded.error();
+    return prepareSceneArgument(parsed, defaultSize, std::move(loaded).value(), lines);
+}
+
+Result<SceneArgument> prepareSceneArgument(const cli::ParsedArgs& parsed, const char* defaultSize,
+                                           scene::Scene scene, std::vector<std::string>* lines) {
+    const bool preview = !parsed.positional.empty() && scene::isCharacterFile(parsed.positional[0]);
     SceneArgument out;
-    out.scene = std::move(loaded).value();
+    out.scene = std::move(scene);
     if (parsed.has("character") && !parsed.value("character").empty()) {
         const std::string file = parsed.value("character");
         // Relative to where the command runs, not to the scene file.
@@ -98,7 +104,8 @@ Result<SceneArgument> readSceneArgument(const cli::ParsedArgs& parsed, const cha
     // values are checked by loadSceneArgument; one that does not parse is not applied).
     scene::OutputSpec& output = out.scene.output;
     if (parsed.has("size") || defaultSize) {
-        if (auto size = cli::parseSize(parsed.value("size", defaultSize ? defaultSize : ""), 16384)) {
+        if (auto size =
+                cli::parseSize(parsed.value("size", defaultSize ? defaultSize : ""), 16384)) {
             output.width = size.value().first;
             output.height = size.value().second;
         }

@@ -47,6 +47,10 @@ bool loadSceneArgument(const cli::ParsedArgs& parsed, SceneArgument& out, int& e
 // character's scaling, the choices fitScene made). A viewer reloads its scene through it.
 Result<SceneArgument> readSceneArgument(const cli::ParsedArgs& parsed, const char* defaultSize,
                                         std::vector<std::string>* lines);
+// The second half of readSceneArgument: `scene` (as read) with the command line's options
+// applied, its character loaded and fitted (a viewer's panel edits a scene without a file).
+Result<SceneArgument> prepareSceneArgument(const cli::ParsedArgs& parsed, const char* defaultSize,
+                                           scene::Scene scene, std::vector<std::string>* lines);
 
 // The --character and --clip options of the commands that take a scene or a character file.
 std::vector<cli::OptionSpec> characterOptions();

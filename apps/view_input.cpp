@@ -30,7 +30,9 @@ ViewInput ViewControls::take() {
 
 void ViewControls::onKey(GLFWwindow* window, int key, int, int action, int) {
     if (action != GLFW_PRESS && action != GLFW_REPEAT) return;
-    ViewInput& in = controls(window).pending_;
+    ViewControls& c = controls(window);
+    if (c.panelTyping_ && c.panelTyping_()) return;
+    ViewInput& in = c.pending_;
     switch (key) {
     case GLFW_KEY_ESCAPE:
     case GLFW_KEY_Q:
@@ -69,6 +71,9 @@ void ViewControls::onKey(GLFWwindow* window, int key, int, int action, int) {
     case GLFW_KEY_S:
         in.screenshot = true;
         break;
+    case GLFW_KEY_TAB:
+        in.togglePanel = true;
+        break;
     default:
         if (key >= GLFW_KEY_1 && key <= GLFW_KEY_9) in.toggles.push_back(key - GLFW_KEY_1);
     }
@@ -80,6 +85,7 @@ void ViewControls::onButton(GLFWwindow* window, int button, int action, int mods
         c.drag_ = Drag::None;
         return;
     }
+    if (c.panelWantsMouse_ && c.panelWantsMouse_()) return; // a click on the panel
     if (button == GLFW_MOUSE_BUTTON_LEFT)
         c.drag_ = (mods & GLFW_MOD_SHIFT) ? Drag::Pan : Drag::Orbit;
     else if (button == GLFW_MOUSE_BUTTON_MIDDLE)
@@ -99,7 +105,9 @@ void ViewControls::onCursor(GLFWwindow* window, double x, double y) {
 }
 
 void ViewControls::onScroll(GLFWwindow* window, double, double dy) {
-    controls(window).pending_.zoom += float(dy);
+    ViewControls& c = controls(window);
+    if (c.panelWantsMouse_ && c.panelWantsMouse_()) return;
+    c.pending_.zoom += float(dy);
 }
 
 } // namespace mfx::app

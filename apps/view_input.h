@@ -3,6 +3,7 @@
 // shift + left drag pans it, the wheel zooms (render/orbit_camera.h); keys as kViewKeysHelp.
 #pragma once
 
+#include <functional>
 #include <glm/glm.hpp>
 #include <vector>
 
@@ -23,6 +24,7 @@ struct ViewInput {
     bool sceneCamera = false;
     bool printCamera = false;
     bool screenshot = false;
+    bool togglePanel = false;
 };
 
 class ViewControls {
@@ -32,6 +34,12 @@ public:
     explicit ViewControls(GLFWwindow* window);
     // What was asked for since the last take().
     ViewInput take();
+    // The panel's say over the mouse and keys: while `wantsMouse` the camera ignores the mouse,
+    // while `typing` the keys are the text field's.
+    void setPanelQueries(std::function<bool()> wantsMouse, std::function<bool()> typing) {
+        panelWantsMouse_ = std::move(wantsMouse);
+        panelTyping_ = std::move(typing);
+    }
 
 private:
     static void onKey(GLFWwindow* window, int key, int scancode, int action, int mods);
@@ -41,6 +49,7 @@ private:
 
     enum class Drag { None, Orbit, Pan };
     ViewInput pending_;
+    std::function<bool()> panelWantsMouse_, panelTyping_;
     Drag drag_ = Drag::None;
     bool haveCursor_ = false;
     glm::vec2 cursor_{0.0f};

@@ -46,12 +46,19 @@ void ViewSession::record(VkCommandBuffer cmd, bool advance) {
     }
 }
 
-void ViewSession::finish() {
-    player_->finish();
+sim::SimulationFrameStats ViewSession::finish() {
+    return player_->finish();
 }
 
 Status ViewSession::reload(std::vector<std::string>* lines) {
-    Result<SceneArgument> read = readSceneArgument(parsed_, defaultSize_, lines);
+    return use(readSceneArgument(parsed_, defaultSize_, lines));
+}
+
+Status ViewSession::replace(scene::Scene scene, std::vector<std::string>* lines) {
+    return use(prepareSceneArgument(parsed_, defaultSize_, std::move(scene), lines));
+}
+
+Status ViewSession::use(Result<SceneArgument> read) {
     if (!read) return read.error();
     auto argument = std::make_unique<SceneArgument>(std::move(read).value());
     auto created = sim::SceneSimulation::create(ctx_, argument->scene, argument->character);

@@ -28,13 +28,15 @@ public:
     Status seek(uint32_t target);
     // Records frame shown() + 1 when `advance`, else the shown frame again.
     void record(VkCommandBuffer cmd, bool advance);
-    void finish();
+    sim::SimulationFrameStats finish();
 
     // Reads the scene (and its character) again through the command line's options. If it is
     // valid, it replaces the one playing: rebuilt and simulated up to the frame shown now, with
     // the camera the user moved and the effects hidden by name kept. If not, the scene playing
     // plays on and the error is returned. `lines` gets the notes of the reading.
     Status reload(std::vector<std::string>* lines = nullptr);
+    // As reload(), from `scene` as read (a scene the panel edited) instead of the files.
+    Status replace(scene::Scene scene, std::vector<std::string>* lines = nullptr);
     // The files the scene was read from: the scene file and the character file it names (none
     // for the built-in default scene and fighter).
     std::vector<std::filesystem::path> files() const;
@@ -59,6 +61,8 @@ public:
 
 private:
     render::OrbitCamera& orbitCamera();
+    // Plays `read`, if it was read, from the frame shown (reload() and replace()).
+    Status use(Result<SceneArgument> read);
 
     const gpu::Context& ctx_;
     const cli::ParsedArgs& parsed_;

@@ -439,4 +439,51 @@ TEST_F(ViewTest, ASavedSceneChangePlaysAtOnceAndABrokenOneKeepsTheLastGoodScene)
     EXPECT_GT(leaning(shot, kBlue), blue1 / 2) << "blue again, in the screenshot on closing";
 }
 
+// The mean absolute difference per channel between two screenshots over columns [x0, w).
+double meanDifference(const std::string& a, const std::string& b, int x0) {
+    int w = 0, h = 0, c = 0, w2 = 0, h2 = 0;
+    stbi_uc* p = stbi_load(a.c_str(), &w, &h, &c, 4);
+    stbi_uc* q = stbi_load(b.c_str(), &w2, &h2, &c, 4);
+    double sum = 0.0;
+    size_t n = 0;
+    if (p && q && w == w2 && h == h2)
+        for (int y = 40; y < h; ++y) // below the status lines
+            for (int x = x0; x < w; ++x)
+                for (int k = 0; k < 3; ++k, ++n)
+                    sum += std::abs(int(p[(size_t(y) * w + x) * 4 + k]) -
+                                    int(q[(size_t(y) * w + x) * 4 + k]));
+    stbi_image_free(p);
+    stbi_image_free(q);
+    return n ? sum / double(n) : 1e9;
+}
+
+TEST_F(ViewTest, ThePanelHidesWithTabAndIsInScreenshotsOnlyWhenAsked) {
+    const std::string dir = outputDir() + "/" + testName();
+    std::filesystem::create_directories(dir);
+    const std::string title = "\"motionfx view\"";
+    auto shotOf = [&](std::vector<std::string> extra, const std::string& shot, bool hide) {
+        std::vector<std::string> args{"--size",   "800x450",      "--samples", "1",
+                                      "--paused", "--screenshot", shot};
+        args.insert(args.end(), extra.begin(), extra.end());
+        auto view = startView(args);
+        EXPECT_TRUE(waitForOutput("first frame presented", 300s)) << readFile(errPath());
+        if (hide) {
+            const size_t before = outputSoFar();
+            EXPECT_EQ(windowTool("keys " + title + " Tab"), 0);
+            EXPECT_TRUE(waitForOutput("panel hidden", 60s, before)) << readFile(outPath());
+        }
+        EXPECT_EQ(windowTool("keys " + title + " Escape"), 0);
+        EXPECT_EQ(view->waitFor(60s), 0) << readFile(errPath());
+    };
+    const std::string withPanel = dir + "/with_panel.png", hidden = dir + "/hidden.png",
+                      plain = dir + "/plain.png";
+    shotOf({"--screenshot-panel"}, withPanel, false);
+    shotOf({"--screenshot-panel"}, hidden, true);
+    shotOf({}, plain, false);
+    // The panel covers the right of the window (400 pixels): there the picture with it differs
+    // from the one without; a screenshot not asked to show it is the picture without it.
+    EXPECT_GT(meanDifference(withPanel, hidden, 800 - 380), 10.0) << "no panel drawn";
+    EXPECT_LT(meanDifference(plain, hidden, 800 - 380), 1.0) << "the panel is in the screenshot";
+}
+
 } // namespace

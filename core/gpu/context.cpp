@@ -1,6 +1,7 @@
 #include "core/gpu/context.h"
 
 #include "core/gpu/check.h"
+#include "core/gpu/program.h"
 
 #include <algorithm>
 #include <cctype>
@@ -478,9 +479,22 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
     return Result<std::unique_ptr<Context>>(std::move(ctx));
 }
 
+std::shared_ptr<const ProgramObjects> Context::findProgram(const std::string& key) const {
+    std::lock_guard<std::mutex> lock(programsMutex_);
+    const auto it = programs_.find(key);
+    return it == programs_.end() ? nullptr : it->second;
+}
+
+void Context::keepProgram(const std::string& key,
+                          std::shared_ptr<const ProgramObjects> objects) const {
+    std::lock_guard<std::mutex> lock(programsMutex_);
+    programs_.emplace(key, std::move(objects));
+}
+
 Context::~Context() {
     if (device_ != VK_NULL_HANDLE) {
         vkDeviceWaitIdle(device_);
+        programs_.clear(); // their pipelines and layouts, before the device
         oneShotPool_.reset();
         vkDestroyDevice(device_, nullptr);
     }

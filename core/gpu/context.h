@@ -15,6 +15,7 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <unordered_map>
 #include <vector>
 #include <vulkan/vulkan.h>
 
@@ -22,6 +23,8 @@ namespace mfx::gpu {
 
 // Environment variable naming the device (substring), used when no --device is given.
 inline constexpr const char* kDeviceEnvironmentVariable = "MOTIONFX_DEVICE";
+
+struct ProgramObjects; // core/gpu/program.h
 
 struct ContextOptions {
     std::string deviceName;      // case-insensitive substring; empty: $MOTIONFX_DEVICE, then best
@@ -130,6 +133,11 @@ public:
     PFN_vkCmdPushDescriptorSetKHR cmdPushDescriptorSet() const { return pushDescriptorSet_; }
     uint32_t maxPushDescriptors() const { return maxPushDescriptors_; }
 
+    // The Vulkan objects of the programs made on this Context, by their description's key
+    // (core/gpu/program.cpp): null when none was made yet; kept until the Context goes.
+    std::shared_ptr<const ProgramObjects> findProgram(const std::string& key) const;
+    void keepProgram(const std::string& key, std::shared_ptr<const ProgramObjects> objects) const;
+
 private:
     Context() = default;
     static VKAPI_ATTR VkBool32 VKAPI_CALL debugCallback(
@@ -148,6 +156,8 @@ private:
     VkPhysicalDeviceMemoryProperties memory_{};
     bool validation_ = false;
     bool printValidation_ = true;
+    mutable std::mutex programsMutex_;
+    mutable std::unordered_map<std::string, std::shared_ptr<const ProgramObjects>> programs_;
     UniqueCommandPool oneShotPool_;
     PFN_vkSetDebugUtilsObjectNameEXT setObjectName_ = nullptr;
     PFN_vkCmdPushDescriptorSetKHR pushDescriptorSet_ = nullptr;

@@ -5,6 +5,7 @@
 #include "core/gpu/resources.h"
 
 #include <algorithm>
+#include <sstream>
 #include <stdexcept>
 
 namespace mfx::gpu {
@@ -161,6 +162,40 @@ DescriptorWrite bindImage(uint32_t binding, const Image& image, VkImageLayout la
     return write;
 }
 
+namespace {
+
+// A program's shader code by its length and an FNV-1a hash of its words.
+std::string spirvKey(std::span<const uint32_t> spirv) {
+    uint64_t h = 1469598103934665603ull;
+    for (uint32_t word : spirv)
+        for (int byte = 0; byte < 4; ++byte) {
+            h ^= (word >> (8 * byte)) & 0xffu;
+            h *= 1099511628211ull;
+        }
+    return std::to_string(spirv.size()) + ":" + std::to_string(h);
+}
+
+// Everything a graphics program is made from, as one string.
+std::string graphicsKey(const GraphicsProgramDesc& d) {
+    std::ostringstream key;
+    key << "graphics|" << d.name << '|' << spirvKey(d.vertex) << '|' << spirvKey(d.geometry) << '|'
+        << spirvKey(d.fragment) << '|' << d.pushConstantSize << '|';
+    for (uint32_t v : d.specialization)
+        key << v << ',';
+    key << '|' << d.vertexStride << '|';
+    for (const VertexAttribute& a : d.attributes)
+        key << a.location << ':' << a.format << ':' << a.offset << ',';
+    key << '|' << d.topology << '|' << d.polygonMode << '|' << d.cullMode << '|' << d.frontFace
+        << '|' << d.rasterizerDiscard << '|';
+    for (VkFormat f : d.colorFormats)
+        key << f << ',';
+    key << '|' << d.depthFormat << '|' << d.depthTest << d.depthWrite << '|' << d.depthCompare
+        << '|' << int(d.blend) << '|' << d.samples;
+    return key.str();
+}
+
+} // namespace
+
 Program createComputeProgram(const Context& ctx, const ComputeProgramDesc& desc) {
     Program program;
     program.name_ = desc.name;
@@ -169,8 +204,15 @@ Program createComputeProgram(const Context& ctx, const ComputeProgramDesc& desc)
     program.pushStages_ = VK_SHADER_STAGE_COMPUTE_BIT;
     program.bindPoint_ = VK_PIPELINE_BIND_POINT_COMPUTE;
     program.pushDescriptors_ = ctx.cmdPushDescriptorSet();
+    std::ostringstream key;
+    key << "compute|" << desc.name << '|' << spirvKey(desc.spirv) << '|' << desc.pushConstantSize
+        << '|';
+    for (uint32_t v : desc.specialization)
+        key << v << ',';
+    if ((program.objects_ = ctx.findProgram(key.str()))) return program;
+    auto objects = std::make_shared<ProgramObjects>();
     buildLayout(ctx, program.name_, program.bindings_, desc.pushConstantSize, program.pushStages_,
-                program.setLayout_, program.layout_);
+                objects->setLayout, objects->layout);
 
     UniqueShaderModule module = createShaderModule(ctx, desc.spirv, program.name_);
     const Specialization specialization(desc.specialization);
@@ -180,11 +222,13 @@ Program createComputeProgram(const Context& ctx, const ComputeProgramDesc& desc)
     info.stage.module = module.get();
     info.stage.pName = "main";
     info.stage.pSpecializationInfo = specialization.get();
-    info.layout = program.layout_.get();
+    info.layout = objects->layout.get();
     VkPipeline pipeline = VK_NULL_HANDLE;
     MFX_VK_CHECK(
         vkCreateComputePipelines(ctx.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
-    program.pipeline_ = UniquePipeline(ctx.device(), pipeline);
+    objects->pipeline = UniquePipeline(ctx.device(), pipeline);
+    program.objects_ = objects;
+    ctx.keepProgram(key.str(), objects);
     ctx.setDebugName(VK_OBJECT_TYPE_PIPELINE, reinterpret_cast<uint64_t>(pipeline), desc.name);
     return program;
 }
@@ -210,8 +254,11 @@ Program createGraphicsProgram(const Context& ctx, const GraphicsProgramDesc& des
     if (!desc.fragment.empty()) program.pushStages_ |= VK_SHADER_STAGE_FRAGMENT_BIT;
     program.bindPoint_ = VK_PIPELINE_BIND_POINT_GRAPHICS;
     program.pushDescriptors_ = ctx.cmdPushDescriptorSet();
+    const std::string key = graphicsKey(desc);
+    if ((program.objects_ = ctx.findProgram(key))) return program;
+    auto objects = std::make_shared<ProgramObjects>();
     buildLayout(ctx, program.name_, program.bindings_, desc.pushConstantSize, program.pushStages_,
-                program.setLayout_, program.layout_);
+                objects->setLayout, objects->layout);
 
     const Specialization specialization(desc.specialization);
     std::vector<UniqueShaderModule> modules;
@@ -298,11 +345,13 @@ Program createGraphicsProgram(const Context& ctx, const GraphicsProgramDesc& des
     info.pDepthStencilState = &depth;
     info.pColorBlendState = &blend;
     info.pDynamicState = &dynamic;
-    info.layout = program.layout_.get();
+    info.layout = objects->layout.get();
     VkPipeline pipeline = VK_NULL_HANDLE;
     MFX_VK_CHECK(
         vkCreateGraphicsPipelines(ctx.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
-    program.pipeline_ = UniquePipeline(ctx.device(), pipeline);
+    objects->pipeline = UniquePipeline(ctx.device(), pipeline);
+    program.objects_ = objects;
+    ctx.keepProgram(key, objects);
     ctx.setDebugName(VK_OBJECT_TYPE_PIPELINE, reinterpret_cast<uint64_t>(pipeline), desc.name);
     return program;
 }
@@ -345,21 +394,21 @@ void Program::bind(VkCommandBuffer cmd, std::span<const DescriptorWrite> writes)
         for (const BindingDesc& b : bindings_)
             if ((written & (uint64_t(1) << b.binding)) == 0)
                 fail(b.binding, " is declared but not written");
-    vkCmdBindPipeline(cmd, bindPoint_, pipeline_.get());
+    vkCmdBindPipeline(cmd, bindPoint_, pipeline());
     if (!writes.empty())
-        pushDescriptors_(cmd, bindPoint_, layout_.get(), 0, static_cast<uint32_t>(writes.size()),
+        pushDescriptors_(cmd, bindPoint_, layout(), 0, static_cast<uint32_t>(writes.size()),
                          vkWrites);
 }
 
 void Program::bindPipeline(VkCommandBuffer cmd) const {
-    vkCmdBindPipeline(cmd, bindPoint_, pipeline_.get());
+    vkCmdBindPipeline(cmd, bindPoint_, pipeline());
 }
 
 void Program::push(VkCommandBuffer cmd, const void* data, uint32_t size) const {
     if (size != pushConstantSize_)
         throw std::logic_error("program " + name_ + ": pushed " + std::to_string(size) +
                                " bytes, declared " + std::to_string(pushConstantSize_));
-    vkCmdPushConstants(cmd, layout_.get(), pushStages_, 0, size, data);
+    vkCmdPushConstants(cmd, layout(), pushStages_, 0, size, data);
 }
 
 } // namespace mfx::gpu

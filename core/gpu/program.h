@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <functional>
 #include <initializer_list>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -85,12 +86,22 @@ struct GraphicsProgramDesc {
     VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
 };
 
+// A program's Vulkan objects. A Context keeps those it made, by the program's description, and
+// gives them to every program built again from the same description (Context::findProgram):
+// lavapipe compiles a pipeline's shaders at its first use, so a viewer rebuilding its scene
+// would otherwise compile every shader again.
+struct ProgramObjects {
+    UniqueDescriptorSetLayout setLayout;
+    UniquePipelineLayout layout;
+    UniquePipeline pipeline;
+};
+
 class Program {
 public:
     Program() = default;
 
-    VkPipeline pipeline() const { return pipeline_.get(); }
-    VkPipelineLayout layout() const { return layout_.get(); }
+    VkPipeline pipeline() const { return objects_ ? objects_->pipeline.get() : VK_NULL_HANDLE; }
+    VkPipelineLayout layout() const { return objects_ ? objects_->layout.get() : VK_NULL_HANDLE; }
     VkPipelineBindPoint bindPoint() const { return bindPoint_; }
     const std::vector<BindingDesc>& bindings() const { return bindings_; }
     uint32_t pushConstantSize() const { return pushConstantSize_; }
@@ -123,9 +134,7 @@ private:
     uint32_t pushConstantSize_ = 0;
     VkShaderStageFlags pushStages_ = 0;
     VkPipelineBindPoint bindPoint_ = VK_PIPELINE_BIND_POINT_COMPUTE;
-    UniqueDescriptorSetLayout setLayout_;
-    UniquePipelineLayout layout_;
-    UniquePipeline pipeline_;
+    std::shared_ptr<const ProgramObjects> objects_;
     PFN_vkCmdPushDescriptorSetKHR pushDescriptors_ = nullptr;
 };
 

@@ -41,6 +41,7 @@ public:
     VkImage image(uint32_t index) const { return images_[index]; }
     VkImageView view(uint32_t index) const { return views_[index].get(); }
     VkFormat format() const { return format_; }
+    uint32_t imageCount() const { return uint32_t(images_.size()); }
     VkExtent2D extent() const { return extent_; }
     // Whether the images can be copied from (for screenshots).
     bool readable() const { return readable_; }
