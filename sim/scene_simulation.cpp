@@ -129,6 +129,10 @@ Result<std::unique_ptr<SceneSimulation>> SceneSimulation::create(const gpu::Cont
         options.buoyancy = e.buoyancy;
         options.vorticity = e.vorticity;
         options.jacobiIterations = e.jacobi;
+        // The scene's names are the solver's (a test keeps the two lists the same).
+        options.pressureSolver = fluid::pressureSolverFromName(e.pressure).value();
+        options.advection = fluid::advectionFromName(e.advection).value();
+        options.storage = fluid::storageFromName(e.storage).value();
         for (fluid::FaceBoundary& face : options.boundaries)
             face.kind = fluid::Boundary::Open;
         options.boundaries[fluid::FaceLowY].kind = fluid::Boundary::WallFreeSlip; // the stage floor

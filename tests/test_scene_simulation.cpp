@@ -4,7 +4,9 @@
 // smoke.
 #include "core/anim/fighter.h"
 #include "core/gpu/commands.h"
+#include "core/scene/kinds/smoke_effect.h"
 #include "fluid/reference/reference_solver.h"
+#include "fluid/solver_options.h"
 #include "sim/scene_simulation.h"
 #include "tests/gpu_test.h"
 #include "tests/moving_point.h"
@@ -51,6 +53,38 @@ TEST_F(SceneSimulationTest, SpeedLinesAloneAllocateNoFluidAndDispatchNone) {
         EXPECT_TRUE(ran(stats, "speed_lines#0/split"));
         EXPECT_EQ(stats.dispatches(), 1u); // the one trajectory pass
     }
+}
+
+// A smoke effect's solver keys reach its grid's solver options, named as the solver names them.
+TEST_F(SceneSimulationTest, SmokeSolverKeysChooseTheGridsPressureAdvectionAndStorage) {
+    EXPECT_EQ(scene::smokePressureSolvers().size(), 4u);
+    for (const std::string& name : scene::smokePressureSolvers())
+        EXPECT_TRUE(fluid::pressureSolverFromName(name)) << name;
+    for (const std::string& name : scene::smokeAdvectionSchemes())
+        EXPECT_TRUE(fluid::advectionFromName(name)) << name;
+    for (const std::string& name : scene::smokeStorages())
+        EXPECT_TRUE(fluid::storageFromName(name)) << name;
+    const scene::Scene s = parseScene(R"({"output": {"frames": 2}, "effects": [
+        {"type": "smoke", "bones": ["foot_r"], "grid": [16, 16, 16], "cell_size": 0.12,
+         "pressure": "mgpcg", "advection": "bfecc", "storage": "fp16", "jacobi": 7}]})");
+    const anim::Character fighter = anim::makeFighter();
+    auto sim = simulate(ctx(), s, fighter);
+    ASSERT_TRUE(sim);
+    const fluid::SolverOptions& o = sim->smokeGrids()[0].grid.settings().options;
+    EXPECT_EQ(o.pressureSolver, fluid::PressureSolver::MultigridPcg);
+    EXPECT_EQ(o.advection, fluid::AdvectionScheme::Bfecc);
+    EXPECT_EQ(o.storage, fluid::Storage::Float16);
+    EXPECT_EQ(o.jacobiIterations, 7u);
+    for (uint32_t f = 0; f < 2; ++f)
+        sim->runFrame(f);
+    const scene::Scene plain = parseScene(
+        R"({"effects": [{"type": "smoke", "bones": ["foot_r"], "grid": [16, 16, 16]}]})");
+    auto defaults = simulate(ctx(), plain, fighter);
+    ASSERT_TRUE(defaults);
+    const fluid::SolverOptions& d = defaults->smokeGrids()[0].grid.settings().options;
+    EXPECT_EQ(d.pressureSolver, fluid::PressureSolver::Jacobi);
+    EXPECT_EQ(d.advection, fluid::AdvectionScheme::SemiLagrangian);
+    EXPECT_EQ(d.storage, fluid::Storage::Float32);
 }
 
 // Two smoke effects share one grid; the first lives for 0.3 s, the second from 1.6 s. In between

@@ -13,7 +13,23 @@ std::vector<std::string> SmokeSpec::keys() {
                       "radius",       "strength",     "emission",
                       "surface_step", "max_emitters", "sleep_threshold",
                       "follow",       "look",         "glow",
-                      "cel_bands",    "anisotropy"});
+                      "cel_bands",    "anisotropy",   "pressure",
+                      "advection",    "storage"});
+}
+
+const std::vector<std::string>& smokePressureSolvers() {
+    static const std::vector<std::string> names = {"jacobi", "rbgs", "multigrid", "mgpcg"};
+    return names;
+}
+
+const std::vector<std::string>& smokeAdvectionSchemes() {
+    static const std::vector<std::string> names = {"semi-lagrangian", "maccormack", "bfecc"};
+    return names;
+}
+
+const std::vector<std::string>& smokeStorages() {
+    static const std::vector<std::string> names = {"fp32", "fp16"};
+    return names;
 }
 
 SmokeShading smokeShading(SmokePreset preset) {
@@ -38,6 +54,9 @@ std::unique_ptr<EffectKindSpec> SmokeSpec::parse(const Object& o) {
     }
     g.cellSize = float(o.number("cell_size", g.cellSize, 0.0, 10.0, true));
     g.jacobi = o.integer("jacobi", g.jacobi, 0, 10000);
+    g.pressure = o.choice("pressure", g.pressure, smokePressureSolvers());
+    g.advection = o.choice("advection", g.advection, smokeAdvectionSchemes());
+    g.storage = o.choice("storage", g.storage, smokeStorages());
     g.fade = float(o.number("fade", g.fade, 0.0, 100.0));
     g.drag = float(o.number("drag", g.drag, 0.0, 100.0));
     g.stepsPerSecond = float(o.number("steps_per_second", g.stepsPerSecond, 1.0, 1000.0));

@@ -40,8 +40,18 @@ struct SmokeGridSpec {
     bool follow = false;          // the grid moves with the character's root, by whole cells
     float buoyancy = 0.0f;
     float vorticity = 0.0f;
+    // The solver's accuracy against its time (README "Accuracy against time"), named as the
+    // solver's options name them (fluid/solver_options.h; a test keeps the lists the same).
+    std::string pressure = "jacobi";           // jacobi, rbgs, multigrid, mgpcg
+    std::string advection = "semi-lagrangian"; // semi-lagrangian, maccormack, bfecc
+    std::string storage = "fp32";              // fp32, fp16 (fields stored in 16 bits)
     bool operator==(const SmokeGridSpec&) const = default;
 };
+
+// The choices of SmokeGridSpec's solver keys.
+const std::vector<std::string>& smokePressureSolvers();
+const std::vector<std::string>& smokeAdvectionSchemes();
+const std::vector<std::string>& smokeStorages();
 
 struct SmokeSpec : TrailEffect<SmokeSpec> {
     static constexpr const char* kType = "smoke";
