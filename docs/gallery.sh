@@ -44,3 +44,7 @@ shot docs/images/default_scene_frame40 docs/scenes/hero.json 40 640x360
 for effect in lines:20 blur:20 particles:20 smoke:20 afterimage:20 swept:12 shell:16; do
     shot "docs/images/effect_${effect%%:*}" "docs/scenes/${effect%%:*}.json" "${effect##*:}" 480x270
 done
+# The viewer with its parameter panel (README "The parameter panel"), under a virtual X server.
+xvfb-run -a -s "-screen 0 1400x1100x24" "$MOTIONFX" view --size 1280x1000 --quit-after 41 \
+    --screenshot-panel --screenshot docs/images/view_panel.png >/dev/null
+echo "docs/images/view_panel.png <- motionfx view (built-in default, frame 41, panel shown)"
