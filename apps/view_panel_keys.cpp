@@ -121,10 +121,11 @@ bool editStops(const ParamInfo& p, const PanelWidget& w, const std::vector<Param
                 changed = true;
             }
         } else {
+            // A drag over the reader's whole range (a slider to 100 is too coarse near 1).
             float v = number(value[s][key]);
             ImGui::SetNextItemWidth(160.0f);
-            if (ImGui::SliderFloat("##v", &v, float(widgetLowest(w)), float(std::min(w.max, 10.0)),
-                                   w.format.c_str())) {
+            if (ImGui::DragFloat("##v", &v, 0.01f, float(widgetLowest(w)), float(w.max),
+                                 w.format.c_str(), ImGuiSliderFlags_AlwaysClamp)) {
                 value[s][key] = v;
                 changed = true;
             }

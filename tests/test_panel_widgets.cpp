@@ -4,6 +4,7 @@
 #include "apps/panel_widgets.h"
 #include "core/scene/effect_kinds.h"
 #include "core/scene/scene.h"
+#include "tests/scene_params_util.h"
 
 #include <gtest/gtest.h>
 
@@ -78,13 +79,8 @@ void checkTable(const std::vector<ParamInfo>& table, const std::string& label, c
 
 TEST(PanelWidgets, EveryKeyOfEveryEffectKindHasAWidgetWithTheReadersRange) {
     for (const scene::EffectKindEntry& kind : scene::effectKinds()) {
-        std::vector<json> contexts{json::object()};
-        for (const ParamInfo& p : scene::effectParams(kind.type))
-            if (p.type == ParamInfo::Type::Choice && p.key != "type")
-                for (const std::string& c : p.choices)
-                    contexts.push_back(json{{p.key, c}});
         std::set<std::string> covered;
-        for (json context : contexts) {
+        for (json context : choiceContexts(kind.type)) {
             context["type"] = kind.type;
             const std::vector<ParamInfo> table = scene::effectParams(kind.type, context);
             checkTable(table, kind.type, context, true);

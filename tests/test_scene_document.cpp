@@ -4,6 +4,7 @@
 // leaves the document as it was.
 #include "core/scene/effect_kinds.h"
 #include "core/scene/scene_document.h"
+#include "tests/scene_params_util.h"
 
 #include <gtest/gtest.h>
 
@@ -143,13 +144,8 @@ void roundTripEveryKey(const std::string& start, const std::string& section,
 
 TEST(SceneDocument, EveryKeyOfEveryEffectKindRoundTripsThroughSaveAndLoad) {
     for (const scene::EffectKindEntry& kind : scene::effectKinds()) {
-        std::vector<json> contexts{json::object()};
-        for (const ParamInfo& p : scene::effectParams(kind.type))
-            if (p.type == ParamInfo::Type::Choice && p.key != "type")
-                for (const std::string& c : p.choices)
-                    contexts.push_back(json{{p.key, c}});
         int n = 0;
-        for (json effect : contexts) {
+        for (json effect : choiceContexts(kind.type)) {
             effect["type"] = kind.type;
             const json doc = {{"effects", json::array({effect})}};
             roundTripEveryKey(doc.dump(), "effects[0]",

@@ -5,6 +5,7 @@
 #include "core/scene/effect_kinds.h"
 #include "core/scene/scene.h"
 #include "core/scene/scene_params.h"
+#include "tests/scene_params_util.h"
 
 #include <gtest/gtest.h>
 
@@ -23,12 +24,7 @@ using scene::ParamInfo;
 std::vector<std::pair<json, ParamInfo>> everyEffectParam(const std::string& type) {
     std::vector<std::pair<json, ParamInfo>> out;
     std::set<std::string> seen;
-    std::vector<json> contexts{json::object()};
-    for (const ParamInfo& p : scene::effectParams(type))
-        if (p.type == ParamInfo::Type::Choice && p.key != "type")
-            for (const std::string& c : p.choices)
-                contexts.push_back(json{{p.key, c}});
-    for (const json& context : contexts)
+    for (const json& context : choiceContexts(type))
         for (const ParamInfo& p : scene::effectParams(type, context))
             if (seen.insert(p.key).second) out.emplace_back(context, p);
     return out;
