@@ -31,6 +31,7 @@
 #include <cstdio>
 #include <cstring>
 #include <deque>
+#include <optional>
 
 namespace mfx::app {
 
@@ -308,19 +309,28 @@ int runView(const cli::ParsedArgs& parsed) {
         }
         // The scene's files, saved since: read again, and on to the frame shown.
         if (watch.poll()) {
+            // With a document, the file is read once, into it, and the scene it reads played:
+            // the panel and the window never show two versions of the file.
             std::vector<std::string> notes;
-            if (Status reloaded = viewer.reload(&notes); reloaded) {
+            std::optional<scene::SceneDocument> read;
+            Status reloaded = Ok{};
+            if (document && !builtIn) {
+                Result<scene::SceneDocument> loaded =
+                    scene::SceneDocument::load(parsed.positional[0]);
+                reloaded = loaded ? viewer.replace(loaded.value().scene(), &notes)
+                                  : Status(loaded.error());
+                if (reloaded) read = std::move(loaded).value();
+            } else {
+                reloaded = viewer.reload(&notes);
+            }
+            if (reloaded) {
                 for (const std::string& note : notes)
                     say(note);
                 say("reloaded " + viewedFile + " at frame " + std::to_string(viewer.shown() + 2));
                 reloadError.clear();
                 advance = true;
                 watch.watch(viewer.files());
-                if (document && !builtIn)
-                    if (Result<scene::SceneDocument> read =
-                            scene::SceneDocument::load(document->where());
-                        read)
-                        *document = std::move(read).value();
+                if (read) *document = std::move(*read);
             } else if (reloaded.error().message != reloadError) {
                 reloadError = reloaded.error().message;
                 say("reload failed, playing the last good scene: " + reloadError);

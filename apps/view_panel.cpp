@@ -220,12 +220,12 @@ PanelRequests ViewPanel::build(const PanelView& view) {
         }
         // The document and the scene playing list the same effects, unless a reload of the file
         // was read by one and not the other: then the document's keys are not offered.
-        const nlohmann::json& effects =
-            doc ? doc->document().value("effects", nlohmann::json()) : nlohmann::json();
-        if (doc && effects.is_array() && size_t(selected_) < effects.size() &&
-            effects.size() == view.effects.size()) {
+        const auto found = doc ? doc->document().find("effects") : nlohmann::json::const_iterator();
+        const nlohmann::json* effects = doc && found != doc->document().end() ? &*found : nullptr;
+        if (effects && effects->is_array() && size_t(selected_) < effects->size() &&
+            effects->size() == view.effects.size()) {
             const std::string section = "effects[" + std::to_string(selected_) + "]";
-            const std::string type = effects[size_t(selected_)].value("type", std::string());
+            const std::string type = (*effects)[size_t(selected_)].value("type", std::string());
             ImGui::Separator();
             ImGui::TextUnformatted(type.c_str());
             if (type == "smoke" && view.history && !view.history->empty())

@@ -8,6 +8,7 @@
 #include "core/scene/json_object.h"
 #include "core/scene/kinds/smoke_effect.h"
 #include "core/scene/kinds/trail_effects.h"
+#include "core/scene/scene_document.h"
 #include "core/scene/scene_fit.h"
 #include "core/scene/scene_params.h"
 
@@ -200,13 +201,15 @@ CharacterStyle characterStyle(const CharacterSpec& character) {
     return character.source == "fighter" ? CharacterStyle::Toon : CharacterStyle::Lit;
 }
 
-Result<Scene> parseScene(const std::string& text, const std::string& where) {
-    json doc;
+Result<json> parseSceneJson(const std::string& text, const std::string& where) {
     try {
-        doc = json::parse(text);
+        return json::parse(text);
     } catch (const json::exception& e) { // syntax errors, and numbers too large for a double
         return Error{where + ": not valid JSON: " + parseMessage(e.what())};
     }
+}
+
+Result<Scene> sceneFromJson(const json& doc, const std::string& where) {
     try {
         return readScene(doc, where);
     } catch (const SceneError& e) {
@@ -214,7 +217,13 @@ Result<Scene> parseScene(const std::string& text, const std::string& where) {
     }
 }
 
-Result<Scene> loadScene(const std::filesystem::path& file) {
+Result<Scene> parseScene(const std::string& text, const std::string& where) {
+    Result<json> doc = parseSceneJson(text, where);
+    if (!doc) return doc.error();
+    return sceneFromJson(doc.value(), where);
+}
+
+Result<std::string> readSceneText(const std::filesystem::path& file) {
     std::error_code ec;
     if (std::filesystem::is_directory(file, ec))
         return Error{file.string() + ": is a directory, not a scene file"};
@@ -223,7 +232,13 @@ Result<Scene> loadScene(const std::filesystem::path& file) {
     std::ostringstream text;
     text << in.rdbuf();
     if (text.str().size() > (64u << 20)) return Error{file.string() + ": larger than 64 MiB"};
-    return parseScene(text.str(), file.string());
+    return text.str();
+}
+
+Result<Scene> loadScene(const std::filesystem::path& file) {
+    Result<std::string> text = readSceneText(file);
+    if (!text) return text.error();
+    return parseScene(text.value(), file.string());
 }
 
 Scene kickScene() {

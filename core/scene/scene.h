@@ -120,6 +120,8 @@ struct Scene {
 Result<Scene> parseScene(const std::string& text, const std::string& where);
 // Reads and parses a scene file.
 Result<Scene> loadScene(const std::filesystem::path& file);
+// A scene file's text (refusing a folder, an unreadable file, or one over 64 MiB).
+Result<std::string> readSceneText(const std::filesystem::path& file);
 // The built-in default (docs/scenes/hero.json): the fighter's roundhouse kick into the sword
 // slash, toon-shaded, with glowing kick lines, a crescent slash arc on the sword, energy smoke
 // from the kicking foot, bloom and the filmic tone map.

@@ -96,37 +96,43 @@ std::vector<std::string> keyOrder(const std::vector<ParamInfo>& params) {
 
 } // namespace
 
-std::vector<ParamInfo> sectionTable(const json& doc, const std::string& section) {
+// The object of `section` in `doc`, or null where the document has none.
+static const json* sectionObject(const json& doc, const std::string& section) {
     const auto [name, index] = splitSection(section);
-    if (name == "effects") {
-        const json* e =
-            doc.contains("effects") && doc["effects"].is_array() && index < doc["effects"].size()
-                ? &doc["effects"][index]
-                : nullptr;
+    const bool list = name == "effects" || name == "lights";
+    if (list != (index != std::string::npos)) return nullptr;
+    const auto it = doc.find(name);
+    if (it == doc.end()) return nullptr;
+    if (!list) return &*it;
+    return it->is_array() && index < it->size() ? &(*it)[index] : nullptr;
+}
+
+std::vector<ParamInfo> sectionTable(const json& doc, const std::string& section) {
+    if (splitSection(section).first == "effects") {
+        const json* e = sectionObject(doc, section);
         if (!e || !e->is_object() || !e->contains("type") || !(*e)["type"].is_string())
             throw std::invalid_argument("no effect " + section);
         return effectParams((*e)["type"].get<std::string>(), *e);
     }
-    return sectionParams(name);
+    return sectionParams(splitSection(section).first);
 }
 
 Result<SceneDocument> SceneDocument::fromText(const std::string& text, const std::string& where) {
-    Result<Scene> scene = parseScene(text, where);
+    Result<json> doc = parseSceneJson(text, where);
+    if (!doc) return doc.error();
+    Result<Scene> scene = sceneFromJson(doc.value(), where);
     if (!scene) return scene.error();
     SceneDocument d;
     d.where_ = where;
-    d.doc_ = json::parse(text); // parseScene read it
+    d.doc_ = std::move(doc).value();
     d.scene_ = std::move(scene).value();
     return d;
 }
 
 Result<SceneDocument> SceneDocument::load(const std::filesystem::path& file) {
-    Result<Scene> scene = loadScene(file);
-    if (!scene) return scene.error();
-    std::ifstream in(file, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return fromText(text.str(), file.string());
+    Result<std::string> text = readSceneText(file);
+    if (!text) return text.error();
+    return fromText(text.value(), file.string());
 }
 
 json* SceneDocument::object(json& doc, const std::string& section, bool create) {
@@ -151,26 +157,22 @@ json* SceneDocument::object(json& doc, const std::string& section, bool create) 
 
 std::vector<ParamInfo> SceneDocument::params(const std::string& section) const {
     std::vector<ParamInfo> table = sectionTable(doc_, section);
-    json copy = doc_;
-    const json* o = object(copy, section, false);
-    for (ParamInfo& p : table)
-        if (o && o->contains(p.key)) p.fallback = (*o)[p.key];
+    if (const json* o = sectionObject(doc_, section))
+        for (ParamInfo& p : table)
+            if (o->contains(p.key)) p.fallback = (*o)[p.key];
     return table;
 }
 
 bool SceneDocument::given(const std::string& section, const std::string& key) const {
-    json copy = doc_;
-    const json* o = object(copy, section, false);
+    const json* o = sectionObject(doc_, section);
     return o && o->contains(key);
 }
 
 Status SceneDocument::apply(json doc) {
-    Result<Scene> scene = parseScene(doc.dump(), where_);
+    Result<Scene> scene = sceneFromJson(doc, where_);
     if (!scene) return scene.error();
     doc_ = std::move(doc);
-    const std::string file = scene_.file;
     scene_ = std::move(scene).value();
-    scene_.file = file.empty() ? where_ : file;
     return Ok{};
 }
 

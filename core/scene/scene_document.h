@@ -56,6 +56,10 @@ private:
     Scene scene_;
 };
 
+// parseScene in its two halves: the text's JSON (its syntax errors), then the scene it describes.
+Result<nlohmann::json> parseSceneJson(const std::string& text, const std::string& where);
+Result<Scene> sceneFromJson(const nlohmann::json& doc, const std::string& where);
+
 // The table of `section` of `doc` (effect sections by their type and values).
 std::vector<ParamInfo> sectionTable(const nlohmann::json& doc, const std::string& section);
 
