@@ -119,17 +119,17 @@ std::vector<ParamInfo> effectParams(const std::string& type, const nlohmann::jso
     const auto kind = std::find_if(effectKinds().begin(), effectKinds().end(),
                                    [&](const EffectKindEntry& k) { return type == k.type; });
     if (kind == effectKinds().end()) throw std::invalid_argument("no effect type \"" + type + "\"");
-    std::vector<ParamInfo> described;
+    detail::Description described;
     ParamInfo typeKey;
     typeKey.key = "type";
     typeKey.type = ParamInfo::Type::Choice;
     typeKey.choices = detail::typeNames();
     typeKey.fallback = type;
-    described.push_back(typeKey);
+    described.params.push_back(typeKey);
     const detail::Object o(described, effect);
     detail::readCommonKeys(o, type, 0);
     kind->parse(o);
-    return detail::uniqueParams(std::move(described));
+    return detail::uniqueParams(described);
 }
 
 } // namespace mfx::scene

@@ -2,7 +2,7 @@
 // so that every refusal names where it is (`effects[2].bones[0]: ...`). The readers throw
 // SceneError, which parseScene turns into one Error.
 //
-// The same readers describe what they read: an Object made with a ParamInfo list reads nothing
+// The same readers describe what they read: an Object made with a Description reads nothing
 // (every key "is there" and reads as its default) and records each key it is asked for with its
 // type, range, choices and default. That record is the parameter table (core/scene/scene_params.h)
 // the viewer's panel and the scene writer use, so the table and the validation are one code.
@@ -58,23 +58,24 @@ inline std::string formatNumber(double v) {
 
 using ParamInfo = scene::ParamInfo;
 
-// Marks the entries describe mode records for a presence check (has()), not a reading.
-inline constexpr size_t kPresenceMark = size_t(-1);
+// What describe mode records: every key read, in order, and the keys whose presence was checked
+// (has()), whose absence means something of its own.
+struct Description {
+    std::vector<ParamInfo> params;
+    std::vector<std::string> presenceChecked;
+};
 
-// `params` with each key once (where a reader asks for a key twice, its first reading), each
+// The description's keys, each once (where a reader asks for a key twice, its first reading),
 // marked absentDiffers where the reader checked whether the key is there.
-inline std::vector<ParamInfo> uniqueParams(std::vector<ParamInfo> params) {
-    auto presence = [](const ParamInfo& p) {
-        return p.absentDiffers && p.minCount == kPresenceMark;
-    };
+inline std::vector<ParamInfo> uniqueParams(const Description& described) {
     std::vector<ParamInfo> out;
-    for (ParamInfo& p : params)
-        if (!presence(p) && std::none_of(out.begin(), out.end(),
-                                         [&](const ParamInfo& q) { return q.key == p.key; }))
+    for (const ParamInfo& p : described.params)
+        if (std::none_of(out.begin(), out.end(),
+                         [&](const ParamInfo& q) { return q.key == p.key; }))
             out.push_back(p);
     for (ParamInfo& p : out)
-        for (const ParamInfo& q : params)
-            if (presence(q) && q.key == p.key) p.absentDiffers = true;
+        p.absentDiffers = std::count(described.presenceChecked.begin(),
+                                     described.presenceChecked.end(), p.key) > 0;
     return out;
 }
 
@@ -88,7 +89,7 @@ public:
     // Describe mode: records into `described` every key read (keys prefixed by `prefix`). Every
     // key is there (has() is true), and reads as `context` has it (checked as usual), else as its
     // default: a context of {"variant": "multi"} describes what that variant reads.
-    explicit Object(std::vector<ParamInfo>& described, const json& context = emptyObject(),
+    explicit Object(Description& described, const json& context = emptyObject(),
                     std::string prefix = {})
         : j_(context.is_object() ? context : emptyObject()), described_(&described),
           prefix_(std::move(prefix)) {}
@@ -107,14 +108,8 @@ public:
     }
 
     bool has(const std::string& key) const {
-        if (described_) { // a presence check: the key's absence means something of its own
-            ParamInfo presence;
-            presence.key = prefix_ + key;
-            presence.absentDiffers = true;
-            presence.type = ParamInfo::Type::Objects;
-            presence.minCount = kPresenceMark;
-            described_->push_back(presence);
-        }
+        // A presence check: the key's absence means something of its own.
+        if (described_) described_->presenceChecked.push_back(prefix_ + key);
         return described_ || j_.contains(key);
     }
     // Whether the file (in describe mode: the context) gives `key`: for checks between keys.
@@ -287,9 +282,9 @@ private:
     }
     ParamInfo& record(const std::string& key, ParamInfo::Type type, json fallback, double low = 0.0,
                       double high = 0.0) const {
-        described_->push_back(
+        described_->params.push_back(
             ParamInfo{prefix_ + key, type, low, high, false, 0, 0, {}, std::move(fallback)});
-        return described_->back();
+        return described_->params.back();
     }
 
     static double checkNumber(const json& v, const std::string& path, double low, double high,
@@ -315,7 +310,7 @@ private:
 
     const json& j_;
     std::string path_;
-    std::vector<ParamInfo>* described_ = nullptr;
+    Description* described_ = nullptr;
     std::string prefix_;
 };
 

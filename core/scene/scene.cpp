@@ -164,7 +164,7 @@ const std::vector<std::string>& sceneSections() {
 }
 
 std::vector<ParamInfo> sectionParams(const std::string& section) {
-    std::vector<ParamInfo> described;
+    Description described;
     const Object o(described);
     if (section == "character") {
         CharacterSpec c;
@@ -187,7 +187,7 @@ std::vector<ParamInfo> sectionParams(const std::string& section) {
     } else {
         throw std::invalid_argument("no scene section \"" + section + "\"");
     }
-    return uniqueParams(std::move(described));
+    return uniqueParams(described);
 }
 
 const ParamInfo* findParam(const std::vector<ParamInfo>& params, const std::string& key) {
