@@ -1,5 +1,7 @@
 #include "fluid/solver_options.h"
 
+#include "shaders/shared/sparse_fluid.h"
+
 #include "core/enum_names.h"
 
 #include <cmath>
@@ -111,6 +113,31 @@ const char* storageName(Storage storage) {
 
 std::optional<Storage> storageFromName(std::string_view name) {
     return valueOf(name, kStorageNames);
+}
+
+Status validateSparseOptions(const SolverOptions& o, uint32_t maxDimension,
+                             uint32_t maxInvocations) {
+    if (Status valid = validateOptions(o, maxDimension, maxInvocations); !valid) return valid;
+    auto bad = [](const std::string& what) {
+        return Status(Error{"the sparse domain cannot run " + what + " yet"});
+    };
+    const uint32_t cells[3] = {o.grid.cellsX, o.grid.cellsY, o.grid.cellsZ};
+    for (int axis = 0; axis < 3; ++axis)
+        if (cells[axis] % MFX_BRICK_SIZE != 0)
+            return Error{"the sparse domain's cells along " + std::string(1, "xyz"[axis]) + " (" +
+                         std::to_string(cells[axis]) + ") must be a multiple of " +
+                         std::to_string(MFX_BRICK_SIZE) + ", the brick size"};
+    if (o.pressureSolver != PressureSolver::Jacobi)
+        return bad(std::string("the ") + pressureSolverName(o.pressureSolver) +
+                   " pressure solver (it has jacobi)");
+    if (o.advection != AdvectionScheme::SemiLagrangian)
+        return bad(std::string(advectionName(o.advection)) + " advection (it has semi-lagrangian)");
+    if (o.storage != Storage::Float32) return bad("fp16 storage (it has fp32)");
+    if (o.vorticity != 0.0f) return bad("vorticity confinement (vorticity must be 0)");
+    if (o.viscosity != 0.0f) return bad("viscosity (viscosity must be 0)");
+    for (int axis = 0; axis < 3; ++axis)
+        if (o.periodic(axis)) return bad(std::string("a periodic axis (") + "xyz"[axis] + ")");
+    return Ok{};
 }
 
 Status validateEmitters(std::span<const shared::FluidEmitter> emitters) {

@@ -103,6 +103,13 @@ struct SolverOptions {
 Status validateOptions(const SolverOptions& options, uint32_t maxDimension = 4096,
                        uint32_t maxInvocations = 1024);
 
+// What the sparse domain (fluid/sparse_smoke_solver.h, docs/fluid.md "Sparse domain") can run:
+// valid options whose grid is a whole number of bricks (8 cells) along every axis, with Jacobi
+// pressure, semi-Lagrangian advection, fp32 storage, no vorticity confinement, no viscosity and
+// no periodic axis. The error names the first option it cannot run.
+Status validateSparseOptions(const SolverOptions& options, uint32_t maxDimension = 4096,
+                             uint32_t maxInvocations = 1024);
+
 // Refuses emitters with NaN/Inf, a radius <= 0, a negative strength or negative pigment; the
 // error names the emitter index and the field.
 Status validateEmitters(std::span<const shared::FluidEmitter> emitters);

@@ -136,4 +136,15 @@ std::vector<uint32_t> SparseBricks::activeList() const {
     return out;
 }
 
+std::vector<uint8_t> SparseBricks::activeCells() const {
+    const glm::uvec3 n = cells();
+    std::vector<uint8_t> flags(size_t(n.x) * n.y * n.z, 0);
+    for (uint32_t z = 0; z < n.z; ++z)
+        for (uint32_t y = 0; y < n.y; ++y)
+            for (uint32_t x = 0; x < n.x; ++x)
+                if (table_[index(glm::ivec3(glm::uvec3(x, y, z) / kBrickSize))] != kNoSlot)
+                    flags[x + size_t(n.x) * (y + size_t(n.y) * z)] = 1;
+    return flags;
+}
+
 } // namespace mfx::fluid

@@ -22,6 +22,8 @@
 //     cells.
 #pragma once
 
+#include "shaders/shared/sparse_fluid.h"
+
 #include <glm/glm.hpp>
 
 #include <cstdint>
@@ -29,8 +31,10 @@
 
 namespace mfx::fluid {
 
-inline constexpr uint32_t kBrickSize = 8;
-inline constexpr uint32_t kNoSlot = 0xffffffffu;
+inline constexpr uint32_t kBrickSize = MFX_BRICK_SIZE;
+inline constexpr uint32_t kNoSlot = MFX_NO_SLOT;
+static_assert(MFX_BRICK_CELLS == kBrickSize * kBrickSize * kBrickSize);
+static_assert(MFX_BRICK_FACES == (kBrickSize + 1) * kBrickSize * kBrickSize);
 
 class SparseBricks {
 public:
@@ -72,6 +76,10 @@ public:
     uint32_t capacity() const { return capacity_; }
     // The active bricks' indices, ascending (x fastest): the list an indirect dispatch walks.
     std::vector<uint32_t> activeList() const;
+    // The slot of every brick (x fastest), kNoSlot where inactive: the GPU's brick table.
+    const std::vector<uint32_t>& table() const { return table_; }
+    // One flag per cell of the virtual domain (x fastest): 1 in active bricks.
+    std::vector<uint8_t> activeCells() const;
     uint32_t index(glm::ivec3 brick) const {
         return uint32_t(brick.x) + bricks_.x * (uint32_t(brick.y) + bricks_.y * uint32_t(brick.z));
     }

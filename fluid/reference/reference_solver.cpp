@@ -37,6 +37,7 @@ void ReferenceSolver::setState(const FieldState& state) {
     divergence_ = toArray(state.divergence);
     pigment_ = toArray(state.pigment);
     if (options_.storage == Storage::Float16) roundStoredFields();
+    clearInactive();
 }
 
 FieldState ReferenceSolver::state() const {
@@ -85,6 +86,7 @@ void ReferenceSolver::runStage(Stage stage, std::span<const shared::FluidEmitter
         break;
     }
     if (options_.storage == Storage::Float16) roundStoredFields();
+    clearInactive();
 }
 
 void ReferenceSolver::step(std::span<const shared::FluidEmitter> emitters) {

@@ -16,6 +16,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <glm/glm.hpp>
 #include <span>
 #include <vector>
@@ -66,6 +67,18 @@ public:
     void solvePressure();      // by options().pressureSolver (docs/fluid.md, "Accuracy options")
     void solvePressureExact(); // Eigen's conjugate gradient to 1e-12 relative residual
     void project();
+
+    // --- The sparse domain (sparse_domain.cpp; docs/fluid.md, "Sparse domain") ---------------
+    // Restricts the solver to the cells flagged in `activeCells` (one byte per cell, x fastest;
+    // empty: every cell, the dense solver). What is not stored on the sparse grid is 0: a face
+    // with no active cell beside it, and velocity, pressure, divergence and pigment of every
+    // inactive cell; setState, setActiveCells and each stage run by runStage or step leave them
+    // 0, and the Jacobi pressure sweeps hold inactive cells at p = 0. The options must pass
+    // validateSparseOptions (std::invalid_argument otherwise, or when the size is wrong).
+    void setActiveCells(std::vector<uint8_t> activeCells);
+    // Whether cell q (inside the grid) is active, and whether face q of component c is stored.
+    bool cellActive(glm::ivec3 q) const;
+    bool faceStored(int c, glm::ivec3 q) const;
 
     // --- Measuring the pressure solve ---------------------------------------------------------
     // The relative residual ||b - A p|| / ||b|| of the pressure equation A p = b for the current
@@ -168,6 +181,8 @@ private:
 
     // Storage::Float16 (half_storage.cpp): velocity, pressure and pigment rounded to half.
     void roundStoredFields();
+    // The sparse domain: every value outside the active cells becomes 0 (sparse_domain.cpp).
+    void clearInactive();
 
     SolverOptions options_;
     glm::ivec3 cells_;
@@ -175,7 +190,8 @@ private:
     std::array<Eigen::ArrayXd, 3> velocity_;
     Eigen::ArrayXd pressure_;
     Eigen::ArrayXd divergence_;
-    Eigen::ArrayXd pigment_; // RGBA interleaved
+    Eigen::ArrayXd pigment_;           // RGBA interleaved
+    std::vector<uint8_t> activeCells_; // empty: dense
     bool recordHistory_ = false;
     std::vector<double> residualHistory_;
     uint32_t pressureIterations_ = 0;

@@ -61,6 +61,10 @@ void ReferenceSolver::solvePressureJacobi() {
             for (int j = 0; j < cells_.y; ++j)
                 for (int i = 0; i < cells_.x; ++i) {
                     const glm::ivec3 q(i, j, k);
+                    if (!cellActive(q)) { // the sparse domain: open air, p = 0
+                        next[Eigen::Index(cellIndex(q))] = 0.0;
+                        continue;
+                    }
                     double sum = 0.0;
                     int count = 0;
                     for (int s = 0; s < 6; ++s) {

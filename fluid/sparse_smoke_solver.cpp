@@ -1,0 +1,511 @@
+#include "fluid/sparse_smoke_solver.h"
+
+#include "core/gpu/commands.h"
+#include "core/gpu/context.h"
+#include "fluid/smoke_fields.h"
+#include "shaders/embedded.h"
+#include "shaders/shared/sparse_fluid.h"
+
+#include <algorithm>
+#include <cstring>
+#include <stdexcept>
+
+namespace mfx::fluid {
+
+namespace {
+
+constexpr VkBufferUsageFlags kFieldUsage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                           VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                                           VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+constexpr uint32_t kGroupsPerBrick = 2; // workgroups of 8x8x4
+
+// The sparse stages' SPIR-V by kernel name (shaders/fluid/<name>.comp). A function: the spans are
+// defined in another translation unit.
+std::span<const uint32_t> kernel(const std::string& name) {
+    using namespace mfx::shaders;
+    static const std::pair<const char*, std::span<const uint32_t>> kernels[] = {
+        {"sparse_activate_bricks", sparse_activate_bricks_comp},
+        {"sparse_splat_impulses", sparse_splat_impulses_comp},
+        {"sparse_advect_velocity", sparse_advect_velocity_comp},
+        {"sparse_advect_pigment", sparse_advect_pigment_comp},
+        {"sparse_apply_buoyancy", sparse_apply_buoyancy_comp},
+        {"sparse_apply_boundaries", sparse_apply_boundaries_comp},
+        {"sparse_compute_divergence", sparse_compute_divergence_comp},
+        {"sparse_solve_pressure", sparse_solve_pressure_comp},
+        {"sparse_project", sparse_project_comp},
+    };
+    for (const auto& [n, spirv] : kernels)
+        if (name == n) return spirv;
+    throw std::logic_error("the sparse smoke solver has no kernel " + name);
+}
+
+// Brick-local indices, as shaders/fluid/sparse_common.glsl.
+size_t brickCell(glm::ivec3 l) {
+    return size_t(l.x) + kBrickSize * (size_t(l.y) + kBrickSize * size_t(l.z));
+}
+size_t brickFace(int c, glm::ivec3 l) {
+    glm::ivec3 e{int(kBrickSize)};
+    e[c] += 1;
+    return size_t(l.x) + size_t(e.x) * (size_t(l.y) + size_t(e.y) * size_t(l.z));
+}
+
+// Calls visit(slot, brick origin in cells) for every active brick.
+template <typename Visit>
+void forEachActiveBrick(const SparseBricks& layout, Visit visit) {
+    const glm::uvec3 n = layout.bricks();
+    for (uint32_t index : layout.activeList()) {
+        const glm::ivec3 b(index % n.x, (index / n.x) % n.y, index / (n.x * n.y));
+        visit(layout.slot(b), b * int(kBrickSize));
+    }
+}
+
+// Calls visit(local face, face index in the dense array) for every face a brick stores of
+// component c.
+template <typename Visit>
+void forEachBrickFace(const GridShape& grid, int c, glm::ivec3 origin, Visit visit) {
+    const glm::uvec3 dense = faceExtent(grid, c);
+    glm::ivec3 e{int(kBrickSize)};
+    e[c] += 1;
+    for (int z = 0; z < e.z; ++z)
+        for (int y = 0; y < e.y; ++y)
+            for (int x = 0; x < e.x; ++x) {
+                const glm::ivec3 l(x, y, z), q = origin + l;
+                visit(l, size_t(q.x) + dense.x * (size_t(q.y) + dense.y * size_t(q.z)));
+            }
+}
+
+template <typename Visit>
+void forEachBrickCell(const GridShape& grid, glm::ivec3 origin, Visit visit) {
+    const int s = int(kBrickSize);
+    for (int z = 0; z < s; ++z)
+        for (int y = 0; y < s; ++y)
+            for (int x = 0; x < s; ++x) {
+                const glm::ivec3 l(x, y, z), q = origin + l;
+                visit(l, grid.index(uint32_t(q.x), uint32_t(q.y), uint32_t(q.z)));
+            }
+}
+
+} // namespace
+
+Result<std::unique_ptr<SparseSmokeSolver>> SparseSmokeSolver::create(const gpu::Context& ctx,
+                                                                     const SolverOptions& options,
+                                                                     uint32_t maxBricks,
+                                                                     uint32_t initialSlots) {
+    const VkPhysicalDeviceLimits& limits = ctx.limits();
+    // The virtual domain is never an image: only the buffers' sizes bound it.
+    if (Status valid =
+            validateSparseOptions(options, 1u << 16, limits.maxComputeWorkGroupInvocations);
+        !valid)
+        return valid.error();
+    if (maxBricks == 0) return Error{"max_bricks must be at least 1"};
+    const uint64_t bricks = options.grid.cellCount() / (kBrickSize * kBrickSize * kBrickSize);
+    if (bricks > (uint64_t(1) << 26))
+        return Error{"the sparse domain " + toString(options.grid) + " has " +
+                     std::to_string(bricks) + " bricks; at most " +
+                     std::to_string(uint64_t(1) << 26) + " are addressed"};
+    // The largest atlas buffer, the pigment, holds 8 KiB a brick.
+    const uint64_t perBuffer = uint64_t(limits.maxStorageBufferRange) / (MFX_BRICK_CELLS * 16u);
+    if (maxBricks > perBuffer)
+        return Error{"max_bricks " + std::to_string(maxBricks) + " exceeds the " +
+                     std::to_string(perBuffer) +
+                     " bricks one storage buffer of this device can hold"};
+    return std::unique_ptr<SparseSmokeSolver>(
+        new SparseSmokeSolver(ctx, options, maxBricks, initialSlots));
+}
+
+SparseSmokeSolver::SparseSmokeSolver(const gpu::Context& ctx, const SolverOptions& options,
+                                     uint32_t maxBricks, uint32_t initialSlots)
+    : ctx_(ctx), options_(options),
+      layout_(glm::uvec3(options.grid.cellsX, options.grid.cellsY, options.grid.cellsZ) /
+                  kBrickSize,
+              maxBricks, initialSlots) {
+    parameters_ =
+        gpu::createBuffer(ctx, sizeof(shared::FluidParameters), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                          gpu::MemoryUsage::Upload, "sparse fluid parameters");
+    emitters_ = gpu::createBuffer(ctx, 16 * sizeof(shared::FluidEmitter),
+                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload,
+                                  "sparse fluid emitters");
+    table_ =
+        gpu::createBuffer(ctx, layout_.table().size() * sizeof(uint32_t),
+                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                          gpu::MemoryUsage::DeviceLocal, "sparse brick table");
+    uploadBuffer(ctx, table_, std::span<const uint32_t>(layout_.table()));
+    allocateAtlas(layout_.capacity());
+    uploadList(active_, {});
+    uploadList(activated_, {});
+    writeParameters();
+}
+
+gpu::Program& SparseSmokeSolver::program(const char* name, uint32_t target, uint32_t variant) {
+    gpu::Program& slot = programs_[{name, target, variant}];
+    if (slot.pipeline() != VK_NULL_HANDLE) return slot;
+    gpu::ComputeProgramDesc desc;
+    desc.name = name;
+    desc.spirv = kernel(name);
+    desc.pushConstantSize = sizeof(shared::FluidDispatch);
+    // Constant ids as in shaders/fluid/fluid_common.glsl: the target, the six boundary kinds, the
+    // integrator, the workgroup (8x8x4: half a brick), then the kernel's variant.
+    desc.specialization = {target};
+    for (const FaceBoundary& face : options_.boundaries)
+        desc.specialization.push_back(uint32_t(face.kind));
+    desc.specialization.push_back(uint32_t(options_.integrator));
+    desc.specialization.insert(desc.specialization.end(),
+                               {kBrickSize, kBrickSize, kBrickSize / kGroupsPerBrick, variant});
+    slot = gpu::createComputeProgram(ctx_, desc);
+    return slot;
+}
+
+void SparseSmokeSolver::allocateAtlas(uint32_t slots) {
+    auto make = [&](VkDeviceSize bytes, const char* name) {
+        return gpu::createBuffer(ctx_, bytes, kFieldUsage, gpu::MemoryUsage::DeviceLocal, name);
+    };
+    const VkDeviceSize faces = VkDeviceSize(slots) * MFX_BRICK_FACES * sizeof(float);
+    const VkDeviceSize cells = VkDeviceSize(slots) * MFX_BRICK_CELLS * sizeof(float);
+    std::array<std::array<gpu::Buffer, 3>, 2> velocity;
+    std::array<gpu::Buffer, 2> pigment, pressure;
+    for (int set = 0; set < 2; ++set) {
+        for (int c = 0; c < 3; ++c)
+            velocity[set][c] = make(faces, "sparse velocity");
+        pigment[set] = make(4 * cells, "sparse pigment");
+        pressure[set] = make(cells, "sparse pressure");
+    }
+    gpu::Buffer divergence = make(cells, "sparse divergence");
+    if (slots_ > 0) { // keep what the old atlas held: slots keep their numbers
+        gpu::submitOneShot(ctx_, [&](VkCommandBuffer cmd) {
+            auto copy = [&](const gpu::Buffer& from, const gpu::Buffer& to) {
+                const VkBufferCopy region{0, 0, from.size};
+                vkCmdCopyBuffer(cmd, from.get(), to.get(), 1, &region);
+            };
+            for (int set = 0; set < 2; ++set) {
+                for (int c = 0; c < 3; ++c)
+                    copy(velocity_[set][c], velocity[set][c]);
+                copy(pigment_[set], pigment[set]);
+                copy(pressure_[set], pressure[set]);
+            }
+            copy(divergence_, divergence);
+        });
+    }
+    velocity_ = std::move(velocity);
+    pigment_ = std::move(pigment);
+    pressure_ = std::move(pressure);
+    divergence_ = std::move(divergence);
+    slots_ = slots;
+    const VkDeviceSize listBytes = sizeof(shared::BrickListHeader) + VkDeviceSize(slots) * 4;
+    for (gpu::Buffer* list : {&active_, &activated_})
+        *list = gpu::createBuffer(ctx_, listBytes,
+                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                      VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
+                                      VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                  gpu::MemoryUsage::DeviceLocal, "sparse brick list");
+}
+
+void SparseSmokeSolver::uploadList(gpu::Buffer& list, const std::vector<uint32_t>& bricks) {
+    std::vector<uint32_t> words(4 + bricks.size());
+    words[0] = uint32_t(bricks.size()) * kGroupsPerBrick;
+    words[1] = 1;
+    words[2] = 1;
+    words[3] = uint32_t(bricks.size());
+    std::copy(bricks.begin(), bricks.end(), words.begin() + 4);
+    uploadBuffer(ctx_, list, std::span<const uint32_t>(words));
+}
+
+SparseBricks::Update SparseSmokeSolver::commitActive() {
+    SparseBricks::Update update = layout_.commit();
+    if (layout_.capacity() > slots_) {
+        allocateAtlas(layout_.capacity()); // new, empty lists
+        uploadList(activated_, {});
+    }
+    uploadBuffer(ctx_, table_, std::span<const uint32_t>(layout_.table()));
+    uploadList(active_, layout_.activeList());
+    uploadList(activated_, update.activated);
+    if (!update.activated.empty()) {
+        gpu::submitOneShot(ctx_, [&](VkCommandBuffer cmd) {
+            fieldBarrier(cmd);
+            for (uint32_t pass = 0; pass < 2; ++pass) {
+                Writes w = common(activated_);
+                for (uint32_t c = 0; c < 3; ++c)
+                    w.push_back(gpu::bindBuffer(3 + c, velocity_[currentVelocity_[c]][c]));
+                w.push_back(gpu::bindBuffer(6, pigment_[currentPigment_]));
+                w.push_back(gpu::bindBuffer(7, pressure_[currentPressure_]));
+                w.push_back(gpu::bindBuffer(8, divergence_));
+                dispatch(cmd, program("sparse_activate_bricks", 0, pass), w, activated_);
+                fieldBarrier(cmd);
+            }
+        });
+    }
+    return update;
+}
+
+void SparseSmokeSolver::setState(const FieldState& state) {
+    const GridShape& g = options_.grid;
+    std::array<std::vector<float>, 3> velocity;
+    for (auto& v : velocity)
+        v.assign(size_t(slots_) * MFX_BRICK_FACES, 0.0f);
+    std::vector<float> pigment(size_t(slots_) * MFX_BRICK_CELLS * 4, 0.0f);
+    std::vector<float> pressure(size_t(slots_) * MFX_BRICK_CELLS, 0.0f), divergence = pressure;
+    const std::vector<float>* faces[3] = {&state.velocityX, &state.velocityY, &state.velocityZ};
+    forEachActiveBrick(layout_, [&](uint32_t slot, glm::ivec3 origin) {
+        for (int c = 0; c < 3; ++c)
+            forEachBrickFace(g, c, origin, [&](glm::ivec3 l, size_t dense) {
+                velocity[c][slot * MFX_BRICK_FACES + brickFace(c, l)] = (*faces[c])[dense];
+            });
+        forEachBrickCell(g, origin, [&](glm::ivec3 l, size_t dense) {
+            const size_t e = slot * MFX_BRICK_CELLS + brickCell(l);
+            pressure[e] = state.pressure[dense];
+            divergence[e] = state.divergence[dense];
+            for (size_t channel = 0; channel < 4; ++channel)
+                pigment[4 * e + channel] = state.pigment[4 * dense + channel];
+        });
+    });
+    for (int c = 0; c < 3; ++c)
+        uploadBuffer(ctx_, velocity_[currentVelocity_[c]][c], std::span<const float>(velocity[c]));
+    uploadBuffer(ctx_, pigment_[currentPigment_], std::span<const float>(pigment));
+    uploadBuffer(ctx_, pressure_[currentPressure_], std::span<const float>(pressure));
+    uploadBuffer(ctx_, divergence_, std::span<const float>(divergence));
+}
+
+FieldState SparseSmokeSolver::state() {
+    const GridShape& g = options_.grid;
+    FieldState state = FieldState::zero(g);
+    std::array<std::vector<float>, 3> velocity;
+    for (int c = 0; c < 3; ++c)
+        velocity[c] = gpu::readBufferAs<float>(ctx_, velocity_[currentVelocity_[c]][c]);
+    const std::vector<float> pigment = gpu::readBufferAs<float>(ctx_, pigment_[currentPigment_]);
+    const std::vector<float> pressure = gpu::readBufferAs<float>(ctx_, pressure_[currentPressure_]);
+    const std::vector<float> divergence = gpu::readBufferAs<float>(ctx_, divergence_);
+    std::vector<float>* faces[3] = {&state.velocityX, &state.velocityY, &state.velocityZ};
+    std::array<std::vector<uint8_t>, 3> seen;
+    for (int c = 0; c < 3; ++c)
+        seen[c].assign(faces[c]->size(), 0);
+    sharedFaceMismatches_ = 0;
+    forEachActiveBrick(layout_, [&](uint32_t slot, glm::ivec3 origin) {
+        for (int c = 0; c < 3; ++c)
+            forEachBrickFace(g, c, origin, [&](glm::ivec3 l, size_t dense) {
+                const float v = velocity[c][slot * MFX_BRICK_FACES + brickFace(c, l)];
+                float& out = (*faces[c])[dense];
+                // Bitwise: both copies come from the same code on the same inputs.
+                if (seen[c][dense] && std::memcmp(&out, &v, sizeof v) != 0) ++sharedFaceMismatches_;
+                out = v;
+                seen[c][dense] = 1;
+            });
+        forEachBrickCell(g, origin, [&](glm::ivec3 l, size_t dense) {
+            const size_t e = slot * MFX_BRICK_CELLS + brickCell(l);
+            state.pressure[dense] = pressure[e];
+            state.divergence[dense] = divergence[e];
+            for (size_t channel = 0; channel < 4; ++channel)
+                state.pigment[4 * dense + channel] = pigment[4 * e + channel];
+        });
+    });
+    return state;
+}
+
+Status SparseSmokeSolver::setEmitters(std::span<const shared::FluidEmitter> emitters) {
+    if (Status valid = validateEmitters(emitters); !valid) return valid;
+    const VkDeviceSize bytes = emitters.size_bytes();
+    if (bytes > emitters_.size)
+        emitters_ = gpu::createBuffer(ctx_, std::max<VkDeviceSize>(bytes, 2 * emitters_.size),
+                                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload,
+                                      "sparse fluid emitters");
+    if (bytes > 0) std::memcpy(emitters_.mapped, emitters.data(), bytes);
+    emitterCount_ = uint32_t(emitters.size());
+    return Ok{};
+}
+
+void SparseSmokeSolver::writeParameters() {
+    const shared::FluidParameters parameters = makeParameters(options_, emitterCount_);
+    std::memcpy(parameters_.mapped, &parameters, sizeof(parameters));
+}
+
+SparseSmokeSolver::Writes SparseSmokeSolver::common(const gpu::Buffer& list) const {
+    return {gpu::bindBuffer(0, parameters_), gpu::bindBuffer(1, table_), gpu::bindBuffer(2, list)};
+}
+
+void SparseSmokeSolver::dispatch(VkCommandBuffer cmd, gpu::Program& prog, const Writes& writes,
+                                 const gpu::Buffer& list) {
+    prog.bind(cmd, writes);
+    prog.push(cmd, shared::FluidDispatch{0, 0, 0, 0});
+    vkCmdDispatchIndirect(cmd, list.get(), 0);
+}
+
+// --- Stages -------------------------------------------------------------------------------------
+
+void SparseSmokeSolver::splatImpulses(VkCommandBuffer cmd) {
+    if (emitterCount_ == 0) return;
+    Writes w = common(active_);
+    w.push_back(gpu::bindBuffer(3, emitters_));
+    for (uint32_t c = 0; c < 3; ++c)
+        w.push_back(gpu::bindBuffer(4 + c, velocity_[currentVelocity_[c]][c]));
+    w.push_back(gpu::bindBuffer(7, pigment_[currentPigment_]));
+    for (uint32_t target = 0; target < 4; ++target) // each writes only its own field
+        dispatch(cmd, program("sparse_splat_impulses", target), w, active_);
+    fieldBarrier(cmd);
+}
+
+void SparseSmokeSolver::advectVelocity(VkCommandBuffer cmd) {
+    for (uint32_t c = 0; c < 3; ++c) {
+        Writes w = common(active_);
+        for (uint32_t d = 0; d < 3; ++d)
+            w.push_back(gpu::bindBuffer(3 + d, velocity_[currentVelocity_[d]][d]));
+        w.push_back(gpu::bindBuffer(6, velocity_[1 - currentVelocity_[c]][c]));
+        dispatch(cmd, program("sparse_advect_velocity", c), w, active_);
+    }
+    fieldBarrier(cmd);
+    for (int& current : currentVelocity_)
+        current = 1 - current;
+}
+
+void SparseSmokeSolver::advectPigment(VkCommandBuffer cmd) {
+    Writes w = common(active_);
+    for (uint32_t d = 0; d < 3; ++d)
+        w.push_back(gpu::bindBuffer(3 + d, velocity_[currentVelocity_[d]][d]));
+    w.push_back(gpu::bindBuffer(6, pigment_[currentPigment_]));
+    w.push_back(gpu::bindBuffer(7, pigment_[1 - currentPigment_]));
+    dispatch(cmd, program("sparse_advect_pigment", uint32_t(MFX_TARGET_PIGMENT)), w, active_);
+    fieldBarrier(cmd);
+    currentPigment_ = 1 - currentPigment_;
+}
+
+void SparseSmokeSolver::applyBuoyancy(VkCommandBuffer cmd) {
+    if (options_.buoyancy == 0.0f) return;
+    Writes w = common(active_);
+    w.push_back(gpu::bindBuffer(3, velocity_[currentVelocity_[1]][1]));
+    w.push_back(gpu::bindBuffer(4, pigment_[currentPigment_]));
+    w.push_back(gpu::bindBuffer(5, velocity_[1 - currentVelocity_[1]][1]));
+    dispatch(cmd, program("sparse_apply_buoyancy", 1), w, active_);
+    fieldBarrier(cmd);
+    currentVelocity_[1] = 1 - currentVelocity_[1];
+}
+
+void SparseSmokeSolver::applyBoundaries(VkCommandBuffer cmd) {
+    auto wall = [&](int face) {
+        const Boundary b = options_.boundaries[size_t(face)].kind;
+        return b == Boundary::WallFreeSlip || b == Boundary::WallNoSlip;
+    };
+    bool any = false;
+    for (uint32_t c = 0; c < 3; ++c) {
+        if (!wall(int(2 * c)) && !wall(int(2 * c + 1))) continue; // no face of c is on a wall
+        Writes w = common(active_);
+        for (uint32_t d = 0; d < 3; ++d)
+            w.push_back(gpu::bindBuffer(3 + d, velocity_[currentVelocity_[d]][d]));
+        dispatch(cmd, program("sparse_apply_boundaries", c), w, active_);
+        any = true;
+    }
+    if (any) fieldBarrier(cmd);
+}
+
+void SparseSmokeSolver::computeDivergence(VkCommandBuffer cmd) {
+    Writes w = common(active_);
+    for (uint32_t d = 0; d < 3; ++d)
+        w.push_back(gpu::bindBuffer(3 + d, velocity_[currentVelocity_[d]][d]));
+    w.push_back(gpu::bindBuffer(6, divergence_));
+    dispatch(cmd, program("sparse_compute_divergence"), w, active_);
+    fieldBarrier(cmd);
+}
+
+void SparseSmokeSolver::solvePressure(VkCommandBuffer cmd) {
+    if (!options_.warmStart) {
+        const gpu::Buffer& p = pressure_[currentPressure_];
+        vkCmdFillBuffer(cmd, p.get(), 0, p.size, 0);
+        fieldBarrier(cmd);
+    }
+    for (uint32_t sweep = 0; sweep < options_.jacobiIterations; ++sweep) {
+        Writes w = common(active_);
+        w.push_back(gpu::bindBuffer(3, divergence_));
+        w.push_back(gpu::bindBuffer(4, pressure_[currentPressure_]));
+        w.push_back(gpu::bindBuffer(5, pressure_[1 - currentPressure_]));
+        dispatch(cmd, program("sparse_solve_pressure"), w, active_);
+        fieldBarrier(cmd);
+        currentPressure_ = 1 - currentPressure_;
+    }
+}
+
+void SparseSmokeSolver::project(VkCommandBuffer cmd) {
+    for (uint32_t c = 0; c < 3; ++c) {
+        Writes w = common(active_);
+        for (uint32_t d = 0; d < 3; ++d)
+            w.push_back(gpu::bindBuffer(3 + d, velocity_[currentVelocity_[d]][d]));
+        w.push_back(gpu::bindBuffer(6, pressure_[currentPressure_]));
+        w.push_back(gpu::bindBuffer(7, velocity_[1 - currentVelocity_[c]][c]));
+        dispatch(cmd, program("sparse_project", c), w, active_);
+    }
+    fieldBarrier(cmd);
+    for (int& current : currentVelocity_)
+        current = 1 - current;
+}
+
+// --- Recording -----------------------------------------------------------------------------------
+
+void SparseSmokeSolver::recordStageOnly(VkCommandBuffer cmd, Stage stage, gpu::GpuTimer* timer) {
+    if (timer) timer->begin(cmd, stageName(stage));
+    switch (stage) {
+    case Stage::SplatImpulses:
+        splatImpulses(cmd);
+        break;
+    case Stage::AdvectVelocity:
+        advectVelocity(cmd);
+        break;
+    case Stage::AdvectPigment:
+        advectPigment(cmd);
+        break;
+    case Stage::ApplyBuoyancy:
+        applyBuoyancy(cmd);
+        break;
+    case Stage::VorticityConfinement: // off on the sparse domain (validateSparseOptions)
+    case Stage::DiffuseViscosity:
+        break;
+    case Stage::ApplyBoundaries:
+        applyBoundaries(cmd);
+        break;
+    case Stage::ComputeDivergence:
+        computeDivergence(cmd);
+        break;
+    case Stage::SolvePressure:
+        solvePressure(cmd);
+        break;
+    case Stage::Project:
+        project(cmd);
+        break;
+    }
+    if (timer) timer->end(cmd);
+}
+
+void SparseSmokeSolver::recordStage(VkCommandBuffer cmd, Stage stage, gpu::GpuTimer* timer) {
+    writeParameters();
+    fieldBarrier(cmd); // the lists and table uploaded before → the indirect dispatches
+    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
+                       VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
+    recordStageOnly(cmd, stage, timer);
+}
+
+void SparseSmokeSolver::recordStep(VkCommandBuffer cmd, gpu::GpuTimer* timer) {
+    writeParameters();
+    fieldBarrier(cmd);
+    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
+                       VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
+    for (uint32_t substep = 0; substep < options_.substeps; ++substep)
+        for (Stage stage : kStepOrder)
+            recordStageOnly(cmd, stage, timer);
+}
+
+void SparseSmokeSolver::step() {
+    gpu::submitOneShot(ctx_, [&](VkCommandBuffer cmd) { recordStep(cmd); });
+}
+
+void SparseSmokeSolver::runStage(Stage stage) {
+    gpu::submitOneShot(ctx_, [&](VkCommandBuffer cmd) { recordStage(cmd, stage); });
+}
+
+uint64_t SparseSmokeSolver::memoryBytes() const {
+    uint64_t bytes = divergence_.size + table_.size + active_.size + activated_.size +
+                     parameters_.size + emitters_.size;
+    for (int set = 0; set < 2; ++set) {
+        for (const gpu::Buffer& b : velocity_[set])
+            bytes += b.size;
+        bytes += pigment_[set].size + pressure_[set].size;
+    }
+    return bytes;
+}
+
+} // namespace mfx::fluid

@@ -1,0 +1,126 @@
+// The smoke solver on a sparse grid: a virtual domain of bricks of 8^3 cells (fluid/sparse_bricks.h
+// says why 8), of which only the active ones are stored, in an atlas of storage buffers
+// (shaders/shared/sparse_fluid.h). Every stage is an indirect dispatch over the active bricks
+// alone (two workgroups a brick), shaders/fluid/sparse_<stage>.comp, and computes what the dense
+// solver computes over the whole virtual domain with every value that is not stored read as 0:
+// air at rest, without pigment, at pressure 0 (docs/fluid.md, "Sparse domain"). The CPU reference
+// with the same active cells (ReferenceSolver::setActiveCells) is its twin, stage by stage.
+//
+// The active set is given by the caller for now: want bricks on layout(), then commitActive().
+// Bricks that fall inactive are freed (their slots serve the next new ones); new bricks start at
+// rest, except the faces they share with bricks active before, which keep their values. The atlas
+// doubles when it runs out of slots, up to the budget of bricks given at creation; past it, wanted
+// bricks are refused (counted in the update), never a crash.
+#pragma once
+
+#include "core/gpu/program.h"
+#include "core/gpu/resources.h"
+#include "core/gpu/timer.h"
+#include "fluid/solver_options.h"
+#include "fluid/sparse_bricks.h"
+
+#include <array>
+#include <map>
+#include <memory>
+#include <span>
+#include <string>
+#include <tuple>
+#include <vector>
+
+namespace mfx::gpu {
+class Context;
+}
+
+namespace mfx::fluid {
+
+class SparseSmokeSolver {
+public:
+    // options.grid is the virtual domain; the options must pass validateSparseOptions. At most
+    // `maxBricks` bricks are stored at once; the atlas starts with `initialSlots`.
+    static Result<std::unique_ptr<SparseSmokeSolver>> create(const gpu::Context& ctx,
+                                                             const SolverOptions& options,
+                                                             uint32_t maxBricks,
+                                                             uint32_t initialSlots = 64);
+    SparseSmokeSolver(const SparseSmokeSolver&) = delete;
+    SparseSmokeSolver& operator=(const SparseSmokeSolver&) = delete;
+
+    const SolverOptions& options() const { return options_; }
+
+    // The layout: want bricks on it (clearWanted, wantSphere, wantCell, dilate), then commit.
+    SparseBricks& layout() { return layout_; }
+    const SparseBricks& layout() const { return layout_; }
+    // The wanted set becomes the active set, on the GPU too (waits for the GPU): the atlas grows
+    // if it must, new bricks start at rest. Not while a recorded step is in flight.
+    SparseBricks::Update commitActive();
+
+    // The virtual domain's fields, dense (waits for the GPU). setState stores the values of the
+    // active bricks and ignores the rest; state() has 0 wherever nothing is stored.
+    void setState(const FieldState& state);
+    FieldState state();
+    // Faces stored twice (by two active bricks) whose copies differed in the last state(): 0
+    // unless a stage broke the rule that both copies are computed alike.
+    uint64_t lastSharedFaceMismatches() const { return sharedFaceMismatches_; }
+
+    Status setEmitters(std::span<const shared::FluidEmitter> emitters);
+
+    // As SmokeSolver: one whole step, or one stage alone (with the sub-step dt). Vorticity
+    // confinement and viscosity are off on the sparse domain, so those stages record nothing.
+    void recordStep(VkCommandBuffer cmd, gpu::GpuTimer* timer = nullptr);
+    void recordStage(VkCommandBuffer cmd, Stage stage, gpu::GpuTimer* timer = nullptr);
+    void step();
+    void runStage(Stage stage);
+
+    // Bytes of GPU memory of the atlas, the brick table and the lists.
+    uint64_t memoryBytes() const;
+    uint32_t passesPerStep() const { return uint32_t(kStepOrder.size()) * options_.substeps; }
+
+private:
+    using Writes = std::vector<gpu::DescriptorWrite>;
+
+    SparseSmokeSolver(const gpu::Context& ctx, const SolverOptions& options, uint32_t maxBricks,
+                      uint32_t initialSlots);
+    gpu::Program& program(const char* name, uint32_t target = 0, uint32_t variant = 0);
+    void allocateAtlas(uint32_t slots); // keeps what the old atlas held
+    void uploadList(gpu::Buffer& list, const std::vector<uint32_t>& bricks);
+    void writeParameters();
+    // The parameters, the brick table and a list of bricks at bindings 0-2.
+    Writes common(const gpu::Buffer& list) const;
+    void dispatch(VkCommandBuffer cmd, gpu::Program& program, const Writes& writes,
+                  const gpu::Buffer& list);
+    void recordStageOnly(VkCommandBuffer cmd, Stage stage, gpu::GpuTimer* timer);
+
+    void splatImpulses(VkCommandBuffer cmd);
+    void advectVelocity(VkCommandBuffer cmd);
+    void advectPigment(VkCommandBuffer cmd);
+    void applyBuoyancy(VkCommandBuffer cmd);
+    void applyBoundaries(VkCommandBuffer cmd);
+    void computeDivergence(VkCommandBuffer cmd);
+    void solvePressure(VkCommandBuffer cmd);
+    void project(VkCommandBuffer cmd);
+
+    const gpu::Context& ctx_;
+    SolverOptions options_;
+    SparseBricks layout_;
+    std::map<std::tuple<std::string, uint32_t, uint32_t>, gpu::Program> programs_;
+
+    // The atlas: velocity[set][component], pigment[set] and pressure[set] ping-pong; current*
+    // says which set is live (per component for velocity).
+    uint32_t slots_ = 0;
+    std::array<std::array<gpu::Buffer, 3>, 2> velocity_;
+    std::array<gpu::Buffer, 2> pigment_;
+    std::array<gpu::Buffer, 2> pressure_;
+    gpu::Buffer divergence_;
+    std::array<int, 3> currentVelocity_{0, 0, 0};
+    int currentPigment_ = 0;
+    int currentPressure_ = 0;
+
+    gpu::Buffer table_;     // slot per virtual brick
+    gpu::Buffer active_;    // BrickListHeader + the active bricks
+    gpu::Buffer activated_; // BrickListHeader + the bricks activated by the last commit
+    gpu::Buffer parameters_;
+    gpu::Buffer emitters_;
+    uint32_t emitterCount_ = 0;
+    uint64_t sharedFaceMismatches_ = 0;
+};
+
+} // namespace mfx::fluid
