@@ -33,6 +33,11 @@ std::span<const uint32_t> kernel(const std::string& name) {
         {"sparse_compute_divergence", sparse_compute_divergence_comp},
         {"sparse_solve_pressure", sparse_solve_pressure_comp},
         {"sparse_project", sparse_project_comp},
+        {"sparse_mark_live_bricks", sparse_mark_live_bricks_comp},
+        {"sparse_mark_emitter_bricks", sparse_mark_emitter_bricks_comp},
+        {"sparse_dilate_bricks", sparse_dilate_bricks_comp},
+        {"sparse_free_bricks", sparse_free_bricks_comp},
+        {"sparse_allocate_bricks", sparse_allocate_bricks_comp},
     };
     for (const auto& [n, spirv] : kernels)
         if (name == n) return spirv;
@@ -49,14 +54,19 @@ size_t brickFace(int c, glm::ivec3 l) {
     return size_t(l.x) + size_t(e.x) * (size_t(l.y) + size_t(e.y) * size_t(l.z));
 }
 
-// Calls visit(slot, brick origin in cells) for every active brick.
+// Calls visit(slot, brick origin in cells) for every active brick of a brick table.
 template <typename Visit>
-void forEachActiveBrick(const SparseBricks& layout, Visit visit) {
-    const glm::uvec3 n = layout.bricks();
-    for (uint32_t index : layout.activeList()) {
+void forEachActiveBrick(const std::vector<uint32_t>& table, glm::uvec3 n, Visit visit) {
+    for (uint32_t index = 0; index < table.size(); ++index) {
+        if (table[index] == kNoSlot) continue;
         const glm::ivec3 b(index % n.x, (index / n.x) % n.y, index / (n.x * n.y));
-        visit(layout.slot(b), b * int(kBrickSize));
+        visit(table[index], b * int(kBrickSize));
     }
+}
+
+// Workgroups of 256 invocations covering `count` items.
+uint32_t flatGroups(uint32_t count) {
+    return (count + 255u) / 256u;
 }
 
 // Calls visit(local face, face index in the dense array) for every face a brick stores of
@@ -130,6 +140,18 @@ SparseSmokeSolver::SparseSmokeSolver(const gpu::Context& ctx, const SolverOption
                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                           gpu::MemoryUsage::DeviceLocal, "sparse brick table");
     uploadBuffer(ctx, table_, std::span<const uint32_t>(layout_.table()));
+    const VkDeviceSize perBrick = layout_.table().size() * sizeof(uint32_t);
+    for (gpu::Buffer* b : {&brickState_, &wantedScratch_})
+        *b = gpu::createBuffer(
+            ctx, perBrick, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+            gpu::MemoryUsage::DeviceLocal, "sparse brick marks");
+    refused_ = gpu::createBuffer(ctx, sizeof(uint32_t), kFieldUsage, gpu::MemoryUsage::DeviceLocal,
+                                 "sparse refused bricks");
+    counters_ = gpu::createBuffer(ctx, 4 * sizeof(uint32_t), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                  gpu::MemoryUsage::Readback, "sparse rebuild counts");
+    rebuildParameters_ = gpu::createBuffer(ctx, sizeof(shared::SparseRebuildParameters),
+                                           VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                                           gpu::MemoryUsage::Upload, "sparse rebuild parameters");
     allocateAtlas(layout_.capacity());
     uploadList(active_, {});
     uploadList(activated_, {});
@@ -170,6 +192,16 @@ void SparseSmokeSolver::allocateAtlas(uint32_t slots) {
         pressure[set] = make(cells, "sparse pressure");
     }
     gpu::Buffer divergence = make(cells, "sparse divergence");
+    const VkDeviceSize listBytes = sizeof(shared::BrickListHeader) + VkDeviceSize(slots) * 4;
+    auto makeList = [&](const char* name) {
+        return gpu::createBuffer(ctx_, listBytes,
+                                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                     VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | kFieldUsage,
+                                 gpu::MemoryUsage::DeviceLocal, name);
+    };
+    gpu::Buffer active = makeList("sparse active bricks");
+    gpu::Buffer activated = makeList("sparse activated bricks");
+    gpu::Buffer freeSlots = makeList("sparse free slots");
     if (slots_ > 0) { // keep what the old atlas held: slots keep their numbers
         gpu::submitOneShot(ctx_, [&](VkCommandBuffer cmd) {
             auto copy = [&](const gpu::Buffer& from, const gpu::Buffer& to) {
@@ -183,20 +215,45 @@ void SparseSmokeSolver::allocateAtlas(uint32_t slots) {
                 copy(pressure_[set], pressure[set]);
             }
             copy(divergence_, divergence);
+            copy(active_, active);
+            copy(activated_, activated);
+            copy(freeSlots_, freeSlots);
         });
     }
     velocity_ = std::move(velocity);
     pigment_ = std::move(pigment);
     pressure_ = std::move(pressure);
     divergence_ = std::move(divergence);
+    active_ = std::move(active);
+    activated_ = std::move(activated);
+    freeSlots_ = std::move(freeSlots);
     slots_ = slots;
-    const VkDeviceSize listBytes = sizeof(shared::BrickListHeader) + VkDeviceSize(slots) * 4;
-    for (gpu::Buffer* list : {&active_, &activated_})
-        *list = gpu::createBuffer(ctx_, listBytes,
-                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
-                                      VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
-                                      VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                  gpu::MemoryUsage::DeviceLocal, "sparse brick list");
+}
+
+std::vector<uint32_t> SparseSmokeSolver::activeBricks() const {
+    const std::vector<uint32_t> table = slotTable();
+    std::vector<uint32_t> active;
+    for (uint32_t index = 0; index < table.size(); ++index)
+        if (table[index] != kNoSlot) active.push_back(index);
+    return active;
+}
+
+std::vector<uint8_t> SparseSmokeSolver::activeCells() const {
+    const std::vector<uint32_t> table = slotTable();
+    const glm::uvec3 n = layout_.cells(), bricks = layout_.bricks();
+    std::vector<uint8_t> flags(size_t(n.x) * n.y * n.z, 0);
+    for (uint32_t z = 0; z < n.z; ++z)
+        for (uint32_t y = 0; y < n.y; ++y)
+            for (uint32_t x = 0; x < n.x; ++x) {
+                const glm::uvec3 b = glm::uvec3(x, y, z) / kBrickSize;
+                if (table[b.x + bricks.x * (b.y + size_t(bricks.y) * b.z)] != kNoSlot)
+                    flags[x + size_t(n.x) * (y + size_t(n.y) * z)] = 1;
+            }
+    return flags;
+}
+
+std::vector<uint32_t> SparseSmokeSolver::slotTable() const {
+    return gpuLayout_ ? gpu::readBufferAs<uint32_t>(ctx_, table_) : layout_.table();
 }
 
 void SparseSmokeSolver::uploadList(gpu::Buffer& list, const std::vector<uint32_t>& bricks) {
@@ -210,30 +267,171 @@ void SparseSmokeSolver::uploadList(gpu::Buffer& list, const std::vector<uint32_t
 }
 
 SparseBricks::Update SparseSmokeSolver::commitActive() {
+    if (gpuLayout_)
+        throw std::logic_error("commitActive: the GPU rebuilds this solver's active set");
     SparseBricks::Update update = layout_.commit();
-    if (layout_.capacity() > slots_) {
-        allocateAtlas(layout_.capacity()); // new, empty lists
-        uploadList(activated_, {});
-    }
+    if (layout_.capacity() > slots_) allocateAtlas(layout_.capacity());
     uploadBuffer(ctx_, table_, std::span<const uint32_t>(layout_.table()));
     uploadList(active_, layout_.activeList());
     uploadList(activated_, update.activated);
-    if (!update.activated.empty()) {
-        gpu::submitOneShot(ctx_, [&](VkCommandBuffer cmd) {
-            fieldBarrier(cmd);
-            for (uint32_t pass = 0; pass < 2; ++pass) {
-                Writes w = common(activated_);
-                for (uint32_t c = 0; c < 3; ++c)
-                    w.push_back(gpu::bindBuffer(3 + c, velocity_[currentVelocity_[c]][c]));
-                w.push_back(gpu::bindBuffer(6, pigment_[currentPigment_]));
-                w.push_back(gpu::bindBuffer(7, pressure_[currentPressure_]));
-                w.push_back(gpu::bindBuffer(8, divergence_));
-                dispatch(cmd, program("sparse_activate_bricks", 0, pass), w, activated_);
-                fieldBarrier(cmd);
-            }
-        });
-    }
+    std::vector<uint32_t> states(layout_.table().size(), 0);
+    for (uint32_t index : update.activated)
+        states[index] = MFX_BRICK_WANTED | MFX_BRICK_FRESH;
+    uploadBuffer(ctx_, brickState_, std::span<const uint32_t>(states));
+    if (!update.activated.empty())
+        gpu::submitOneShot(ctx_, [&](VkCommandBuffer cmd) { recordActivation(cmd); });
     return update;
+}
+
+void SparseSmokeSolver::recordActivation(VkCommandBuffer cmd) {
+    fieldBarrier(cmd);
+    gpu::memoryBarrier(
+        cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
+        VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT, VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
+    for (uint32_t pass = 0; pass < 2; ++pass) {
+        Writes w = common(activated_);
+        for (uint32_t c = 0; c < 3; ++c)
+            w.push_back(gpu::bindBuffer(3 + c, velocity_[currentVelocity_[c]][c]));
+        w.push_back(gpu::bindBuffer(6, pigment_[currentPigment_]));
+        w.push_back(gpu::bindBuffer(7, pressure_[currentPressure_]));
+        w.push_back(gpu::bindBuffer(8, divergence_));
+        w.push_back(gpu::bindBuffer(9, brickState_));
+        dispatch(cmd, program("sparse_activate_bricks", 0, pass), w, activated_);
+        fieldBarrier(cmd);
+    }
+}
+
+void SparseSmokeSolver::startGpuLayout() {
+    // The free stack: every slot no brick holds, the lowest on top.
+    std::vector<uint8_t> used(slots_, 0);
+    for (uint32_t slot : layout_.table())
+        if (slot != kNoSlot) used[slot] = 1;
+    std::vector<uint32_t> stack(1, 0);
+    for (uint32_t slot = slots_; slot-- > 0;)
+        if (!used[slot]) stack.push_back(slot);
+    stack[0] = uint32_t(stack.size() - 1);
+    uploadBuffer(ctx_, freeSlots_, std::span<const uint32_t>(stack));
+    gpuLayout_ = true;
+}
+
+void SparseSmokeSolver::recordRebuild(VkCommandBuffer cmd, float alphaThreshold,
+                                      float speedThreshold, uint32_t reachCells) {
+    if (!gpuLayout_) startGpuLayout();
+    const uint32_t bricks = uint32_t(layout_.table().size());
+    shared::SparseRebuildParameters rebuild{};
+    rebuild.thresholds = glm::vec4(alphaThreshold, speedThreshold, 0.0f, 0.0f);
+    rebuild.counts = glm::uvec4((reachCells + kBrickSize - 1) / kBrickSize, bricks, slots_, 0);
+    std::memcpy(rebuildParameters_.mapped, &rebuild, sizeof rebuild);
+    writeParameters(); // the emitter count
+    auto barrier = [&] {
+        fieldBarrier(cmd);
+        gpu::memoryBarrier(
+            cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+            VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
+            VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT, VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
+    };
+    barrier();
+    vkCmdFillBuffer(cmd, wantedScratch_.get(), 0, VK_WHOLE_SIZE, 0);
+    vkCmdFillBuffer(cmd, refused_.get(), 0, VK_WHOLE_SIZE, 0);
+    barrier();
+    // 1-2: the live bricks (over the active list as it was) and the emitters' bricks.
+    {
+        Writes w = common(active_);
+        w.push_back(gpu::bindBuffer(3, rebuildParameters_));
+        for (uint32_t c = 0; c < 3; ++c)
+            w.push_back(gpu::bindBuffer(4 + c, velocity_[currentVelocity_[c]][c]));
+        w.push_back(gpu::bindBuffer(7, pigment_[currentPigment_]));
+        w.push_back(gpu::bindBuffer(8, wantedScratch_));
+        dispatch(cmd, program("sparse_mark_live_bricks"), w, active_);
+    }
+    const Writes rebuildCommon = {gpu::bindBuffer(0, parameters_),
+                                  gpu::bindBuffer(1, rebuildParameters_)};
+    auto flat = [&](const char* name, uint32_t target, Writes w, uint32_t items) {
+        w.insert(w.begin(), rebuildCommon.begin(), rebuildCommon.end());
+        gpu::Program& prog = program(name, target);
+        prog.bind(cmd, w);
+        prog.push(cmd, shared::FluidDispatch{0, 0, 0, 0});
+        if (items > 0) vkCmdDispatch(cmd, flatGroups(items), 1, 1);
+    };
+    if (emitterCount_ > 0)
+        flat("sparse_mark_emitter_bricks", 0,
+             {gpu::bindBuffer(2, emitters_), gpu::bindBuffer(3, wantedScratch_)}, emitterCount_);
+    barrier();
+    // The lists are rebuilt from here on: empty them.
+    for (const gpu::Buffer* list : {&active_, &activated_}) {
+        vkCmdFillBuffer(cmd, list->get(), 0, 4, 0);
+        vkCmdFillBuffer(cmd, list->get(), 4, 8, 1);
+        vkCmdFillBuffer(cmd, list->get(), 12, 4, 0);
+    }
+    // 3: dilation, x then y then z, ending in the brick states.
+    const gpu::Buffer* from = &wantedScratch_;
+    const gpu::Buffer* to = &brickState_;
+    for (uint32_t axis = 0; axis < 3; ++axis) {
+        flat("sparse_dilate_bricks", axis, {gpu::bindBuffer(2, *from), gpu::bindBuffer(3, *to)},
+             bricks);
+        barrier();
+        std::swap(from, to);
+    }
+    // 4-5: free, then allocate and list.
+    flat("sparse_free_bricks", 0,
+         {gpu::bindBuffer(2, table_), gpu::bindBuffer(3, brickState_),
+          gpu::bindBuffer(4, freeSlots_)},
+         bricks);
+    barrier();
+    flat("sparse_allocate_bricks", 0,
+         {gpu::bindBuffer(2, table_), gpu::bindBuffer(3, brickState_),
+          gpu::bindBuffer(4, freeSlots_), gpu::bindBuffer(5, active_),
+          gpu::bindBuffer(6, activated_), gpu::bindBuffer(7, refused_)},
+         bricks);
+    recordActivation(cmd);
+    // The counts, for finishRebuild.
+    const VkBufferCopy counts[4] = {{0, 0, 4}, {12, 4, 4}, {12, 8, 4}, {0, 12, 4}};
+    vkCmdCopyBuffer(cmd, refused_.get(), counters_.get(), 1, &counts[0]);
+    vkCmdCopyBuffer(cmd, active_.get(), counters_.get(), 1, &counts[1]);
+    vkCmdCopyBuffer(cmd, activated_.get(), counters_.get(), 1, &counts[2]);
+    vkCmdCopyBuffer(cmd, freeSlots_.get(), counters_.get(), 1, &counts[3]);
+    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+    fieldBarrier(cmd);
+}
+
+SparseSmokeSolver::RebuildCounts SparseSmokeSolver::finishRebuild() {
+    uint32_t words[4];
+    std::memcpy(words, counters_.mapped, sizeof words);
+    RebuildCounts counts;
+    counts.refused = words[0];
+    counts.active = words[1];
+    counts.activated = words[2];
+    const uint32_t freeCount = words[3];
+    if (counts.refused == 0) return counts;
+    const uint32_t budget = layout_.maxBricks();
+    if (slots_ >= budget) {
+        counts.error = std::to_string(counts.refused) + " wanted bricks over the budget of " +
+                       std::to_string(budget) + " (max_bricks); simulating within it";
+        return counts;
+    }
+    const uint32_t grown =
+        std::min(budget, std::max(2 * slots_, counts.active + counts.refused + freeCount));
+    const uint32_t before = slots_;
+    try {
+        allocateAtlas(grown);
+    } catch (const std::exception& e) {
+        counts.error = "the sparse atlas could not grow from " + std::to_string(before) + " to " +
+                       std::to_string(grown) + " bricks (" + e.what() + "); simulating with " +
+                       std::to_string(before);
+        return counts;
+    }
+    // The new slots onto the free stack, above those already there, the lowest on top.
+    std::vector<uint32_t> added;
+    for (uint32_t slot = grown; slot-- > before;)
+        added.push_back(slot);
+    const uint32_t count = freeCount + uint32_t(added.size());
+    uploadBuffer(ctx_, freeSlots_, std::span<const uint32_t>(&count, 1));
+    uploadBuffer(ctx_, freeSlots_, std::span<const uint32_t>(added),
+                 VkDeviceSize(1 + freeCount) * sizeof(uint32_t));
+    counts.grown = true;
+    return counts;
 }
 
 void SparseSmokeSolver::setState(const FieldState& state) {
@@ -244,7 +442,7 @@ void SparseSmokeSolver::setState(const FieldState& state) {
     std::vector<float> pigment(size_t(slots_) * MFX_BRICK_CELLS * 4, 0.0f);
     std::vector<float> pressure(size_t(slots_) * MFX_BRICK_CELLS, 0.0f), divergence = pressure;
     const std::vector<float>* faces[3] = {&state.velocityX, &state.velocityY, &state.velocityZ};
-    forEachActiveBrick(layout_, [&](uint32_t slot, glm::ivec3 origin) {
+    forEachActiveBrick(slotTable(), layout_.bricks(), [&](uint32_t slot, glm::ivec3 origin) {
         for (int c = 0; c < 3; ++c)
             forEachBrickFace(g, c, origin, [&](glm::ivec3 l, size_t dense) {
                 velocity[c][slot * MFX_BRICK_FACES + brickFace(c, l)] = (*faces[c])[dense];
@@ -278,7 +476,7 @@ FieldState SparseSmokeSolver::state() {
     for (int c = 0; c < 3; ++c)
         seen[c].assign(faces[c]->size(), 0);
     sharedFaceMismatches_ = 0;
-    forEachActiveBrick(layout_, [&](uint32_t slot, glm::ivec3 origin) {
+    forEachActiveBrick(slotTable(), layout_.bricks(), [&](uint32_t slot, glm::ivec3 origin) {
         for (int c = 0; c < 3; ++c)
             forEachBrickFace(g, c, origin, [&](glm::ivec3 l, size_t dense) {
                 const float v = velocity[c][slot * MFX_BRICK_FACES + brickFace(c, l)];

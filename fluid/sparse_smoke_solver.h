@@ -6,11 +6,14 @@
 // air at rest, without pigment, at pressure 0 (docs/fluid.md, "Sparse domain"). The CPU reference
 // with the same active cells (ReferenceSolver::setActiveCells) is its twin, stage by stage.
 //
-// The active set is given by the caller for now: want bricks on layout(), then commitActive().
-// Bricks that fall inactive are freed (their slots serve the next new ones); new bricks start at
-// rest, except the faces they share with bricks active before, which keep their values. The atlas
-// doubles when it runs out of slots, up to the budget of bricks given at creation; past it, wanted
-// bricks are refused (counted in the update), never a crash.
+// The active set is rebuilt on the GPU at the start of each step (recordRebuild): the bricks with
+// a live cell (pigment or speed above the sleep thresholds) and those the emitters reach, dilated
+// by the advection's reach. Or the caller sets it: want bricks on layout(), then commitActive()
+// (the tests; one or the other for a solver's life). Bricks that fall inactive are freed (their
+// slots serve the next new ones); new bricks start at rest, except the faces they share with
+// bricks active before, which keep their values. The atlas doubles when it runs out of slots, up
+// to the budget of bricks given at creation; past it, wanted bricks are refused (counted), never a
+// crash, and the simulation goes on with the bricks it has.
 #pragma once
 
 #include "core/gpu/program.h"
@@ -53,6 +56,34 @@ public:
     // if it must, new bricks start at rest. Not while a recorded step is in flight.
     SparseBricks::Update commitActive();
 
+    // Records the active set's rebuild on the GPU (shaders/fluid/sparse_*_bricks.comp): wanted
+    // are the active bricks with a cell whose pigment alpha exceeds `alphaThreshold` or whose
+    // cell-centre speed exceeds `speedThreshold` (NaN counts), and the bricks the emitters'
+    // spheres reach; then every brick within `reachCells` cells (rounded up to bricks) of a wanted
+    // one. Unwanted bricks are freed, wanted ones given slots and started at rest. recordStep
+    // does not call it: record it before the step.
+    void recordRebuild(VkCommandBuffer cmd, float alphaThreshold, float speedThreshold,
+                       uint32_t reachCells);
+    struct RebuildCounts {
+        uint32_t active = 0;    // bricks active after it
+        uint32_t activated = 0; // of which new
+        uint32_t refused = 0;   // wanted bricks left inactive: no free slot
+        bool grown = false;     // the atlas grew for the refused bricks (active at the next
+                                // rebuild)
+        std::string error;      // why it could not grow, when it could not (budget, memory)
+    };
+    // Once the submission of the last recordRebuild has finished: its counts. If bricks were
+    // refused, the atlas grows (doubling, at least to what was wanted, at most to the budget) so
+    // that the next rebuild can give them slots; at the budget, or when the device is out of
+    // memory, `error` says so and the solver goes on with the slots it has.
+    RebuildCounts finishRebuild();
+    uint32_t slots() const { return slots_; }
+    // The active bricks' indices, ascending, and one flag per virtual cell (1 in an active brick),
+    // as the GPU has them (waits for the GPU once it rebuilds the set).
+    std::vector<uint32_t> activeBricks() const;
+    std::vector<uint8_t> activeCells() const;
+    uint32_t maxBricks() const { return layout_.maxBricks(); }
+
     // The virtual domain's fields, dense (waits for the GPU). setState stores the values of the
     // active bricks and ignores the rest; state() has 0 wherever nothing is stored.
     void setState(const FieldState& state);
@@ -81,6 +112,10 @@ private:
                       uint32_t initialSlots);
     gpu::Program& program(const char* name, uint32_t target = 0, uint32_t variant = 0);
     void allocateAtlas(uint32_t slots); // keeps what the old atlas held
+    void startGpuLayout();
+    void recordActivation(VkCommandBuffer cmd); // the activated list's bricks start at rest // the
+                                                // free stack from the table, for recordRebuild
+    std::vector<uint32_t> slotTable() const; // the brick table as the GPU has it
     void uploadList(gpu::Buffer& list, const std::vector<uint32_t>& bricks);
     void writeParameters();
     // The parameters, the brick table and a list of bricks at bindings 0-2.
@@ -114,9 +149,16 @@ private:
     int currentPigment_ = 0;
     int currentPressure_ = 0;
 
-    gpu::Buffer table_;     // slot per virtual brick
-    gpu::Buffer active_;    // BrickListHeader + the active bricks
-    gpu::Buffer activated_; // BrickListHeader + the bricks activated by the last commit
+    gpu::Buffer table_;         // slot per virtual brick
+    gpu::Buffer active_;        // BrickListHeader + the active bricks
+    gpu::Buffer activated_;     // BrickListHeader + the bricks activated by the last commit
+    gpu::Buffer brickState_;    // per virtual brick: MFX_BRICK_WANTED, MFX_BRICK_FRESH
+    gpu::Buffer wantedScratch_; // the rebuild's marks before and between the dilation's passes
+    gpu::Buffer freeSlots_;     // the free stack: count, then slots
+    gpu::Buffer refused_;       // the rebuild's refused bricks
+    gpu::Buffer counters_;      // read back: refused, active, activated, free slots
+    gpu::Buffer rebuildParameters_;
+    bool gpuLayout_ = false; // recordRebuild has run: the GPU owns the table
     gpu::Buffer parameters_;
     gpu::Buffer emitters_;
     uint32_t emitterCount_ = 0;

@@ -73,7 +73,9 @@ public:
     // empty: every cell, the dense solver). What is not stored on the sparse grid is 0: a face
     // with no active cell beside it, and velocity, pressure, divergence and pigment of every
     // inactive cell; setState, setActiveCells and each stage run by runStage or step leave them
-    // 0, and the Jacobi pressure sweeps hold inactive cells at p = 0. The options must pass
+    // 0, and the Jacobi pressure sweeps hold inactive cells at p = 0. When the active cells
+    // change, a face keeps its value only if a cell beside it is active before and after (the
+    // sparse grid's activation). The options must pass
     // validateSparseOptions (std::invalid_argument otherwise, or when the size is wrong).
     void setActiveCells(std::vector<uint8_t> activeCells);
     // Whether cell q (inside the grid) is active, and whether face q of component c is stored.

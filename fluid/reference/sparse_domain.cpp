@@ -19,6 +19,21 @@ void ReferenceSolver::setActiveCells(std::vector<uint8_t> activeCells) {
         if (activeCells.size() != size_t(cells_.x) * size_t(cells_.y) * size_t(cells_.z))
             throw std::invalid_argument("the active cells' flags must be one per cell");
     }
+    // A face keeps its value only where a cell beside it is active before and after: a face
+    // whose bricks on both sides change (one freed, one new) starts again at 0, as a new brick's
+    // copy cannot be taken from a brick that no longer has a slot.
+    if (!activeCells_.empty() && !activeCells.empty()) {
+        auto kept = [&](glm::ivec3 q) {
+            const size_t cell = cellIndex(q);
+            return activeCells_[cell] != 0 && activeCells[cell] != 0;
+        };
+        forEachFace([&](int c, glm::ivec3 q) {
+            glm::ivec3 below = q;
+            below[c] -= 1;
+            if ((q[c] < cells_[c] && kept(q)) || (below[c] >= 0 && kept(below))) return;
+            velocity_[c][Eigen::Index(faceIndex(c, q))] = 0.0;
+        });
+    }
     activeCells_ = std::move(activeCells);
     clearInactive();
 }

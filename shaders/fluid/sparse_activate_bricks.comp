@@ -1,4 +1,4 @@
-// Bricks activated this step (the listed ones, in ascending order) start as air at rest
+// Bricks activated this step (the listed ones, marked fresh in the brick states) start as air at rest
 // (docs/fluid.md, "Sparse domain"), in two passes (kPass):
 //   0: every value of the new bricks' live fields becomes 0;
 //   1: each face a new brick shares with a brick that was active before takes that brick's copy
@@ -28,6 +28,10 @@ layout(std430, binding = 8) writeonly buffer Divergence {
     float divergence[];
 };
 
+layout(std430, binding = 9) readonly buffer BrickStates {
+    uint brickState[];
+};
+
 layout(constant_id = 11) const uint kPass = 0u;
 
 float loadFace(int c, int e) {
@@ -42,26 +46,13 @@ void storeFace(int c, int e, float v) {
         velocityZ[e] = v;
 }
 
-// Whether brick `index` is in the list (activated this step): a binary search of the sorted list.
-bool listed(uint index) {
-    uint lo = 0u, hi = listHeader.count;
-    while (lo < hi) {
-        uint mid = (lo + hi) >> 1;
-        uint v = listedBricks[mid];
-        if (v == index) return true;
-        if (v < index) lo = mid + 1u;
-        else hi = mid;
-    }
-    return false;
-}
-
 // Slot of the brick one step from b along c (up or down), if it was active before this step.
 uint oldNeighbourSlot(ivec3 b, int c, int step) {
     b[c] += step;
     uint slot = slotOf(b);
     if (slot == MFX_NO_SLOT) return slot;
     ivec3 n = brickCount();
-    return listed(uint(b.x + n.x * (b.y + n.y * b.z))) ? MFX_NO_SLOT : slot;
+    return (brickState[b.x + n.x * (b.y + n.y * b.z)] & MFX_BRICK_FRESH) != 0u ? MFX_NO_SLOT : slot;
 }
 
 void main() {

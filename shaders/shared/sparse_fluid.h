@@ -31,11 +31,24 @@ struct BrickListHeader {
     uint count;
 };
 
+// Per virtual brick, in the brick state buffer: wanted in the step being built, and activated by
+// it (its values start at rest).
+#define MFX_BRICK_WANTED 1u
+#define MFX_BRICK_FRESH 2u
+
+// Uniform of the active set's rebuild on the GPU (shaders/fluid/sparse_*_bricks.comp).
+struct SparseRebuildParameters {
+    vec4 thresholds; // x: pigment alpha, y: cell-centre speed above which a cell is live
+    uvec4 counts;    // x: the dilation's reach in bricks, y: virtual bricks, z: atlas slots
+};
+
 MFX_SHARED_END
 
 #ifdef __cplusplus
 MFX_CHECK_SIZE(BrickListHeader, 16);
 MFX_CHECK_LAYOUT(BrickListHeader, count, 12);
+MFX_CHECK_SIZE(SparseRebuildParameters, 32);
+MFX_CHECK_LAYOUT(SparseRebuildParameters, counts, 16);
 #endif
 
 #endif
