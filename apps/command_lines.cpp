@@ -73,6 +73,8 @@ CommandLine renderCommandLine() {
         .option("layers", "",
                 "also write each frame without its effects and the effects alone "
                 "(premultiplied RGBA)");
+    for (const cli::OptionSpec& o : vdbOptions())
+        command.option(o.name, o.valueName, o.help);
     return command;
 }
 
@@ -236,6 +238,8 @@ CommandLine simulateCommandLine() {
         1, CommandLine::kDevice | CommandLine::kScene);
     command.option("frames", "N", "simulate N frames (default: the scene's)")
         .option("stats", "FILE", "write per-frame statistics as JSON");
+    for (const cli::OptionSpec& o : vdbOptions())
+        command.option(o.name, o.valueName, o.help);
     return command;
 }
 

@@ -116,6 +116,8 @@ int runRender(const cli::ParsedArgs& parsed) {
     }
     std::ofstream statsFile;
     if (!openOutputFile(parsed.value("stats"), statsFile)) return kExitFailure;
+    VdbOutput vdb;
+    if (!readVdbOutput(parsed, vdb)) return kExitFailure;
     const std::unique_ptr<gpu::Context> context = createContext(parsed);
     if (!context) return kExitFailure;
     const gpu::Context& ctx = *context;
@@ -141,6 +143,10 @@ int runRender(const cli::ParsedArgs& parsed) {
         nlohmann::json record = statsJson(stats);
         record["effect_draws"] = renderer.effectDraws();
         frames.push_back(record);
+        if (Status written = writeFrameVdbs(sim, f, vdb); !written) {
+            printError(written.error().message);
+            return kExitFailure;
+        }
         if (parsed.has("layers"))
             if (Status layers = writeLayers(ctx, player, f, rgba, outDir); !layers) {
                 printError(layers.error().message);
@@ -159,6 +165,7 @@ int runRender(const cli::ParsedArgs& parsed) {
                 s.file.c_str(), ctx.info().name.c_str(), sim.frameCount(), s.output.width,
                 s.output.height, outDir.c_str(), frameName(sim.frameCount() - 1).c_str(),
                 video.c_str());
+    if (vdb.on) std::printf("wrote %u OpenVDB files into %s\n", vdb.files, vdb.dir.c_str());
     reportMotionlessEffects(sim.scene(), argument.character, sim.frameCount());
     if (statsFile.is_open())
         statsFile << nlohmann::json{{"device", ctx.info().name},

@@ -39,6 +39,8 @@ int runSimulate(const cli::ParsedArgs& parsed) {
     const scene::Scene& s = argument.scene;
     std::ofstream statsFile;
     if (!openOutputFile(parsed.value("stats"), statsFile)) return kExitFailure;
+    VdbOutput vdb;
+    if (!readVdbOutput(parsed, vdb)) return kExitFailure;
     const std::unique_ptr<gpu::Context> context = createContext(parsed);
     if (!context) return kExitFailure;
     auto created = sim::SceneSimulation::create(*context, s, argument.character);
@@ -60,6 +62,10 @@ int runSimulate(const cli::ParsedArgs& parsed) {
         dispatchTotal += stats.dispatches();
         if (!sim.smokeGrids().empty() && stats.awakeGrids == 0) ++sleepingFrames;
         frames.push_back(statsJson(stats));
+        if (Status written = writeFrameVdbs(sim, f, vdb); !written) {
+            printError(written.error().message);
+            return kExitFailure;
+        }
         char note[64];
         std::snprintf(note, sizeof note, "(%.1f ms GPU)", gpu);
         progress.update(f + 1, note);
@@ -70,6 +76,7 @@ int runSimulate(const cli::ParsedArgs& parsed) {
                 s.file.c_str(), sim.frameCount(), context->info().name.c_str(), dispatchTotal,
                 gpuTotal, sim.trajectories().size(), sim.smokeGrids().size(),
                 double(sim.fluidBytes()) / (1024.0 * 1024.0), sleepingFrames);
+    if (vdb.on) std::printf("wrote %u OpenVDB files into %s\n", vdb.files, vdb.dir.c_str());
     reportMotionlessEffects(sim.scene(), argument.character, sim.frameCount());
     if (statsFile.is_open())
         statsFile << nlohmann::json{{"device", context->info().name},

@@ -1,8 +1,10 @@
 #include "apps/commands.h"
 
 #include "core/scene/scene_fit.h"
+#include "render/image_output.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 
@@ -150,6 +152,61 @@ std::vector<cli::OptionSpec> characterOptions() {
             {"clip", "NAME",
              "play the character's clip NAME (default: the scene's, else the "
              "first)"}};
+}
+
+std::vector<cli::OptionSpec> vdbOptions() {
+    return {{"vdb", "DIR",
+             "also write each frame's smoke as OpenVDB files, DIR/<effect>_NNNN.vdb: grids "
+             "density, colour and velocity in world units (metres)"},
+            {"vdb-up", "y|z",
+             "the .vdb files' up axis: y, the scene's own (default), or z, as Blender's glTF "
+             "import turns the character"}};
+}
+
+bool readVdbOutput(const cli::ParsedArgs& parsed, VdbOutput& out) {
+    const std::string up = parsed.value("vdb-up", "y");
+    if (up != "y" && up != "z") {
+        printError("--vdb-up must be y or z, not \"" + up + "\"");
+        return false;
+    }
+    out.up = up == "z" ? fluid::VdbUp::Z : fluid::VdbUp::Y;
+    if (!parsed.has("vdb")) return true;
+    out.on = true;
+    out.dir = parsed.value("vdb");
+    if (!fluid::vdbAvailable()) {
+        printError(fluid::writeVdb(out.dir, {}).error().message);
+        return false;
+    }
+    if (Status dir = render::ensureOutputDirectory(out.dir); !dir) {
+        printError(dir.error().message);
+        return false;
+    }
+    return true;
+}
+
+Status writeFrameVdbs(sim::SceneSimulation& sim, uint32_t frame, VdbOutput& out) {
+    if (!out.on) return Ok{};
+    for (sim::SceneSimulation::SmokeGrid& g : sim.smokeGrids()) {
+        std::string name = g.grid.name();
+        if (!g.effects.empty()) {
+            // The effect's name, with what a file name should not hold made '_'.
+            name = sim.scene().effects[sim.effectIndex(sim.trajectories()[g.effects.front()])].name;
+            for (char& c : name)
+                if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-') c = '_';
+            if (name.empty()) name = g.grid.name();
+        }
+        const fluid::FieldState state = g.grid.solver().state();
+        fluid::VdbFrame vdb;
+        vdb.state = &state;
+        vdb.origin = g.grid.origin();
+        vdb.up = out.up;
+        char file[32];
+        std::snprintf(file, sizeof file, "_%04u.vdb", frame);
+        if (Status written = fluid::writeVdb(out.dir + "/" + name + file, vdb); !written)
+            return written;
+        ++out.files;
+    }
+    return Ok{};
 }
 
 void reportMotionlessEffects(const scene::Scene& scene, const anim::Character& character,

@@ -4,6 +4,7 @@
 
 #include "apps/cli.h"
 #include "core/gpu/context.h"
+#include "fluid/vdb_export.h"
 #include "sim/scene_simulation.h"
 
 #include <nlohmann/json.hpp>
@@ -67,6 +68,22 @@ bool checkOutputSize(const gpu::Context& ctx, const scene::Scene& scene);
 // (`exitCode` set). `argument` must outlive it.
 std::unique_ptr<sim::SceneSimulation>
 createSceneSimulation(const gpu::Context& ctx, const SceneArgument& argument, int& exitCode);
+
+// --vdb DIR and --vdb-up (render, simulate): each frame's smoke as OpenVDB files
+// (fluid/vdb_export.h), DIR/<effect>_NNNN.vdb for each smoke grid, named after the first smoke
+// effect that feeds it.
+struct VdbOutput {
+    bool on = false;
+    std::string dir;
+    fluid::VdbUp up = fluid::VdbUp::Y;
+    uint32_t files = 0; // written so far
+};
+std::vector<cli::OptionSpec> vdbOptions();
+// False (after printing why) for a bad --vdb-up, a DIR that cannot be made, or a build without
+// OpenVDB.
+bool readVdbOutput(const cli::ParsedArgs& parsed, VdbOutput& out);
+// Reads the smoke grids' fields back (waits for the GPU) and writes frame `frame`'s files.
+Status writeFrameVdbs(sim::SceneSimulation& sim, uint32_t frame, VdbOutput& out);
 
 // One frame's simulation statistics as JSON ({"frame", "time", "passes", "fluid_bytes", ...}).
 nlohmann::json statsJson(const sim::SimulationFrameStats& stats);
