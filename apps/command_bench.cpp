@@ -114,6 +114,17 @@ Result<GridResult> benchGrid(const gpu::Context& ctx, const std::string& scenari
 } // namespace
 
 int runBenchSolver(const cli::ParsedArgs& parsed) {
+    const std::string domain = parsed.value("domain", "dense");
+    if (domain == "sparse") return runBenchSparse(parsed);
+    if (domain != "dense") {
+        printError("--domain must be dense or sparse, not \"" + domain + "\"");
+        return kExitUsage;
+    }
+    for (const char* sparseOnly : {"virtual", "bricks", "plot"})
+        if (parsed.has(sparseOnly)) {
+            printError(std::string("--") + sparseOnly + " is an option of --domain sparse");
+            return kExitUsage;
+        }
     auto grids = parseGridList(parsed.value("grids", "32,64,96,128"));
     auto jacobi = cli::parseUnsigned(parsed.value("jacobi", "20"), 0, 100000, "--jacobi");
     auto steps = cli::parseUnsigned(parsed.value("steps", "10"), 1, 10000, "--steps");

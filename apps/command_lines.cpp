@@ -114,6 +114,14 @@ CommandLine benchSolverCommandLine() {
                 "comma-separated compute workgroup shapes XxYxZ to compare (default: the "
                 "solver's, " +
                     workgroupLabel(fluid::SolverOptions{}.workgroup) + ")")
+        .option("domain", "dense|sparse",
+                "dense grids (default), or the sparse domain: ms a step against the number of "
+                "active 8³ bricks, with a dense grid of the same cells in the same run")
+        .option("virtual", "N", "sparse: the virtual domain's cells a side (default 256)")
+        .option("bricks", "LIST",
+                "sparse: comma-separated active brick counts (default "
+                "8,27,64,125,216,343,512,729,1000)")
+        .option("plot", "FILE", "sparse: write the cost against active bricks as an SVG plot")
         .json();
     return command;
 }

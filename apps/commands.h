@@ -85,6 +85,9 @@ bool readVdbOutput(const cli::ParsedArgs& parsed, VdbOutput& out);
 // Reads the smoke grids' fields back (waits for the GPU) and writes frame `frame`'s files.
 Status writeFrameVdbs(sim::SceneSimulation& sim, uint32_t frame, VdbOutput& out);
 
+// motionfx bench solver --domain sparse (command_bench_sparse.cpp).
+int runBenchSparse(const cli::ParsedArgs& parsed);
+
 // One frame's simulation statistics as JSON ({"frame", "time", "passes", "fluid_bytes", ...}).
 nlohmann::json statsJson(const sim::SimulationFrameStats& stats);
 
