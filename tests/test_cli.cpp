@@ -245,6 +245,39 @@ TEST(Cli, BenchSolverBadValuesAreOneLine) {
     EXPECT_NE(r.err.find("workgroup"), std::string::npos) << r.err;
 }
 
+TEST(Cli, BenchSolverSparsePrintsATableWritesJsonAndAPlot) {
+    const std::string dir = std::string(MFX_TEST_OUTPUT_DIR) + "/cli";
+    const std::string json = dir + "/bench_sparse.json", plot = dir + "/bench_sparse.svg";
+    for (const std::string& f : {json, plot})
+        std::filesystem::remove(f);
+    const RunResult r = runMotionfx("bench solver --domain sparse --virtual 32 --bricks 1,8 "
+                                    "--steps 1 --jacobi 2 --json \"" +
+                                    json + "\" --plot \"" + plot + "\"");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("linear fit"), std::string::npos) << r.out;
+    const nlohmann::json doc = nlohmann::json::parse(readFile(json));
+    ASSERT_EQ(doc["results"].size(), 2u);
+    EXPECT_EQ(doc["results"][0]["bricks"], 1);
+    EXPECT_EQ(doc["results"][1]["bricks"], 8);
+    for (const auto& result : doc["results"]) {
+        EXPECT_GT(result["step_ms"].get<double>(), 0.0);
+        EXPECT_GT(result["dense_step_ms"].get<double>(), 0.0);
+        EXPECT_GT(result["bytes"].get<double>(), 0.0);
+        EXPECT_TRUE(result["stages"].contains("advect_velocity"));
+    }
+    EXPECT_NE(readFile(plot).find("<svg"), std::string::npos);
+}
+
+TEST(Cli, BenchSolverSparseBadValuesAreOneLine) {
+    for (const char* args : {"--domain bogus", "--domain sparse --virtual 20",
+                             "--domain sparse --virtual 32 --bricks 65",
+                             "--domain sparse --bricks 0", "--virtual 64"}) {
+        const RunResult r = runMotionfx(std::string("bench solver ") + args);
+        EXPECT_EQ(r.exitCode, 2) << args;
+        EXPECT_EQ(lineCount(r.err), 1u) << args << ": " << r.err;
+    }
+}
+
 TEST(Cli, UnwritableOutputIsOneLine) {
     const std::string dir = std::string(MFX_TEST_OUTPUT_DIR) + "/cli";
     std::filesystem::create_directories(dir);
