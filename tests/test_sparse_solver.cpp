@@ -443,7 +443,7 @@ TEST_F(SparseSolverTest, HardCasesStayFiniteAndBoundedFor2000StepsWithinTheBudge
     o.fade = 0.3f;
     o.drag = 0.1f;
     o.buoyancy = 4.0f;
-    o.jacobiIterations = 10;
+    o.jacobiIterations = 6;
     auto sparse = makeSparse(ctx(), o, 12, 4); // of the domain's 64 bricks
     ASSERT_TRUE(sparse);
     const float cfl20 = 20.0f * o.grid.cellSize / o.dt; // 37.5 world units a second
