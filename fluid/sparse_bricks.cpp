@@ -129,21 +129,30 @@ SparseBricks::Update SparseBricks::commit() {
 }
 
 std::vector<uint32_t> SparseBricks::activeList() const {
-    std::vector<uint32_t> out;
-    out.reserve(activeCount_);
-    for (uint32_t i = 0; i < table_.size(); ++i)
-        if (table_[i] != kNoSlot) out.push_back(i);
-    return out;
+    return activeBricksOf(table_);
 }
 
 std::vector<uint8_t> SparseBricks::activeCells() const {
-    const glm::uvec3 n = cells();
+    return activeCellsOf(table_, bricks_);
+}
+
+std::vector<uint32_t> activeBricksOf(const std::vector<uint32_t>& table) {
+    std::vector<uint32_t> out;
+    for (uint32_t i = 0; i < table.size(); ++i)
+        if (table[i] != kNoSlot) out.push_back(i);
+    return out;
+}
+
+std::vector<uint8_t> activeCellsOf(const std::vector<uint32_t>& table, glm::uvec3 bricks) {
+    const glm::uvec3 n = bricks * kBrickSize;
     std::vector<uint8_t> flags(size_t(n.x) * n.y * n.z, 0);
     for (uint32_t z = 0; z < n.z; ++z)
         for (uint32_t y = 0; y < n.y; ++y)
-            for (uint32_t x = 0; x < n.x; ++x)
-                if (table_[index(glm::ivec3(glm::uvec3(x, y, z) / kBrickSize))] != kNoSlot)
+            for (uint32_t x = 0; x < n.x; ++x) {
+                const glm::uvec3 b = glm::uvec3(x, y, z) / kBrickSize;
+                if (table[b.x + bricks.x * (b.y + size_t(bricks.y) * b.z)] != kNoSlot)
                     flags[x + size_t(n.x) * (y + size_t(n.y) * z)] = 1;
+            }
     return flags;
 }
 

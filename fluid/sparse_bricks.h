@@ -95,4 +95,10 @@ private:
     uint32_t activeCount_ = 0;
 };
 
+// From a brick table (a slot per brick, x fastest, kNoSlot where inactive; SparseBricks's own or
+// one read back from the GPU): the active bricks' indices, ascending, and one flag per cell of the
+// virtual domain of `bricks` bricks a side (1 in an active brick).
+std::vector<uint32_t> activeBricksOf(const std::vector<uint32_t>& table);
+std::vector<uint8_t> activeCellsOf(const std::vector<uint32_t>& table, glm::uvec3 bricks);
+
 } // namespace mfx::fluid

@@ -64,6 +64,16 @@ void forEachActiveBrick(const std::vector<uint32_t>& table, glm::uvec3 n, Visit 
     }
 }
 
+// fieldBarrier, and the brick lists' writes (a compute pass, or an upload) before the indirect
+// dispatches that read them.
+void listBarrier(VkCommandBuffer cmd) {
+    fieldBarrier(cmd);
+    gpu::memoryBarrier(
+        cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
+        VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT, VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
+}
+
 // Workgroups of 256 invocations covering `count` items.
 uint32_t flatGroups(uint32_t count) {
     return (count + 255u) / 256u;
@@ -231,25 +241,11 @@ void SparseSmokeSolver::allocateAtlas(uint32_t slots) {
 }
 
 std::vector<uint32_t> SparseSmokeSolver::activeBricks() const {
-    const std::vector<uint32_t> table = slotTable();
-    std::vector<uint32_t> active;
-    for (uint32_t index = 0; index < table.size(); ++index)
-        if (table[index] != kNoSlot) active.push_back(index);
-    return active;
+    return activeBricksOf(slotTable());
 }
 
 std::vector<uint8_t> SparseSmokeSolver::activeCells() const {
-    const std::vector<uint32_t> table = slotTable();
-    const glm::uvec3 n = layout_.cells(), bricks = layout_.bricks();
-    std::vector<uint8_t> flags(size_t(n.x) * n.y * n.z, 0);
-    for (uint32_t z = 0; z < n.z; ++z)
-        for (uint32_t y = 0; y < n.y; ++y)
-            for (uint32_t x = 0; x < n.x; ++x) {
-                const glm::uvec3 b = glm::uvec3(x, y, z) / kBrickSize;
-                if (table[b.x + bricks.x * (b.y + size_t(bricks.y) * b.z)] != kNoSlot)
-                    flags[x + size_t(n.x) * (y + size_t(n.y) * z)] = 1;
-            }
-    return flags;
+    return activeCellsOf(slotTable(), layout_.bricks());
 }
 
 std::vector<uint32_t> SparseSmokeSolver::slotTable() const {
@@ -284,11 +280,7 @@ SparseBricks::Update SparseSmokeSolver::commitActive() {
 }
 
 void SparseSmokeSolver::recordActivation(VkCommandBuffer cmd) {
-    fieldBarrier(cmd);
-    gpu::memoryBarrier(
-        cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
-        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
-        VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT, VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
+    listBarrier(cmd);
     for (uint32_t pass = 0; pass < 2; ++pass) {
         Writes w = common(activated_);
         for (uint32_t c = 0; c < 3; ++c)
@@ -324,17 +316,10 @@ void SparseSmokeSolver::recordRebuild(VkCommandBuffer cmd, float alphaThreshold,
     rebuild.counts = glm::uvec4((reachCells + kBrickSize - 1) / kBrickSize, bricks, slots_, 0);
     std::memcpy(rebuildParameters_.mapped, &rebuild, sizeof rebuild);
     writeParameters(); // the emitter count
-    auto barrier = [&] {
-        fieldBarrier(cmd);
-        gpu::memoryBarrier(
-            cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
-            VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
-            VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT, VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
-    };
-    barrier();
+    listBarrier(cmd);
     vkCmdFillBuffer(cmd, wantedScratch_.get(), 0, VK_WHOLE_SIZE, 0);
     vkCmdFillBuffer(cmd, refused_.get(), 0, VK_WHOLE_SIZE, 0);
-    barrier();
+    listBarrier(cmd);
     // 1-2: the live bricks (over the active list as it was) and the emitters' bricks.
     {
         Writes w = common(active_);
@@ -357,7 +342,7 @@ void SparseSmokeSolver::recordRebuild(VkCommandBuffer cmd, float alphaThreshold,
     if (emitterCount_ > 0)
         flat("sparse_mark_emitter_bricks", 0,
              {gpu::bindBuffer(2, emitters_), gpu::bindBuffer(3, wantedScratch_)}, emitterCount_);
-    barrier();
+    listBarrier(cmd);
     // The lists are rebuilt from here on: empty them.
     for (const gpu::Buffer* list : {&active_, &activated_}) {
         vkCmdFillBuffer(cmd, list->get(), 0, 4, 0);
@@ -370,7 +355,7 @@ void SparseSmokeSolver::recordRebuild(VkCommandBuffer cmd, float alphaThreshold,
     for (uint32_t axis = 0; axis < 3; ++axis) {
         flat("sparse_dilate_bricks", axis, {gpu::bindBuffer(2, *from), gpu::bindBuffer(3, *to)},
              bricks);
-        barrier();
+        listBarrier(cmd);
         std::swap(from, to);
     }
     // 4-5: free, then allocate and list.
@@ -378,7 +363,7 @@ void SparseSmokeSolver::recordRebuild(VkCommandBuffer cmd, float alphaThreshold,
          {gpu::bindBuffer(2, table_), gpu::bindBuffer(3, brickState_),
           gpu::bindBuffer(4, freeSlots_)},
          bricks);
-    barrier();
+    listBarrier(cmd);
     flat("sparse_allocate_bricks", 0,
          {gpu::bindBuffer(2, table_), gpu::bindBuffer(3, brickState_),
           gpu::bindBuffer(4, freeSlots_), gpu::bindBuffer(5, active_),
@@ -669,19 +654,13 @@ void SparseSmokeSolver::recordStageOnly(VkCommandBuffer cmd, Stage stage, gpu::G
 
 void SparseSmokeSolver::recordStage(VkCommandBuffer cmd, Stage stage, gpu::GpuTimer* timer) {
     writeParameters();
-    fieldBarrier(cmd); // the lists and table uploaded before → the indirect dispatches
-    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                       VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
-                       VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
+    listBarrier(cmd); // the lists and table written before → the indirect dispatches
     recordStageOnly(cmd, stage, timer);
 }
 
 void SparseSmokeSolver::recordStep(VkCommandBuffer cmd, gpu::GpuTimer* timer) {
     writeParameters();
-    fieldBarrier(cmd);
-    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                       VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
-                       VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
+    listBarrier(cmd); // the lists and table written before → the indirect dispatches
     for (uint32_t substep = 0; substep < options_.substeps; ++substep)
         for (Stage stage : kStepOrder)
             recordStageOnly(cmd, stage, timer);

@@ -115,7 +115,7 @@ private:
     void startGpuLayout();
     void recordActivation(VkCommandBuffer cmd); // the activated list's bricks start at rest // the
                                                 // free stack from the table, for recordRebuild
-    std::vector<uint32_t> slotTable() const; // the brick table as the GPU has it
+    std::vector<uint32_t> slotTable() const;    // the brick table as the GPU has it
     void uploadList(gpu::Buffer& list, const std::vector<uint32_t>& bricks);
     void writeParameters();
     // The parameters, the brick table and a list of bricks at bindings 0-2.
