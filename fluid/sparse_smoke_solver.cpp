@@ -147,7 +147,8 @@ SparseSmokeSolver::SparseSmokeSolver(const gpu::Context& ctx, const SolverOption
                                   "sparse fluid emitters");
     table_ =
         gpu::createBuffer(ctx, layout_.table().size() * sizeof(uint32_t),
-                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                              VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                           gpu::MemoryUsage::DeviceLocal, "sparse brick table");
     uploadBuffer(ctx, table_, std::span<const uint32_t>(layout_.table()));
     const VkDeviceSize perBrick = layout_.table().size() * sizeof(uint32_t);
