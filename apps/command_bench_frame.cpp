@@ -66,6 +66,7 @@ int runBenchFrame(const cli::ParsedArgs& parsed) {
     for (uint32_t f = 0; f < sim.frameCount(); ++f) {
         const auto start = std::chrono::steady_clock::now();
         const sim::SimulationFrameStats stats = player.play(f);
+        reportBudget(stats);
         const double wall =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
                 .count();
@@ -96,7 +97,7 @@ int runBenchFrame(const cli::ParsedArgs& parsed) {
     std::array<uint32_t, 3> grid{0, 0, 0};
     uint32_t stepsPerFrame = 0;
     if (!sim.smokeGrids().empty()) {
-        const fluid::GridShape& g = sim.smokeGrids().front().grid.solver().options().grid;
+        const fluid::GridShape& g = sim.smokeGrids().front().grid.options().grid;
         grid = {g.cellsX, g.cellsY, g.cellsZ};
         stepsPerFrame = sim.smokeGrids().front().grid.settings().stepsPerFrame;
     }

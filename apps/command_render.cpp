@@ -133,6 +133,7 @@ int runRender(const cli::ParsedArgs& parsed) {
     nlohmann::json frames = nlohmann::json::array();
     for (uint32_t f = 0; f < sim.frameCount(); ++f) {
         const sim::SimulationFrameStats stats = player.play(f);
+        reportBudget(stats);
         const std::vector<uint8_t> rgba = render::readColor(ctx, renderer.output());
         if (Status written = render::writePng(outDir + "/" + frameName(f), s.output.width,
                                               s.output.height, rgba);

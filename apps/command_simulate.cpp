@@ -18,6 +18,10 @@ nlohmann::json statsJson(const sim::SimulationFrameStats& s) {
     nlohmann::json grids = nlohmann::json::array();
     for (const sim::GridFrameState& g : s.grids) {
         nlohmann::json grid = {{"name", g.name}, {"awake", g.awake}, {"emitters", g.emitters}};
+        if (g.sparse) {
+            grid["active_bricks"] = g.activeBricks;
+            grid["refused_bricks"] = g.refusedBricks;
+        }
         if (g.measured) {
             grid["largest_alpha"] = g.largestAlpha;
             grid["largest_speed"] = g.largestSpeed;
@@ -55,6 +59,7 @@ int runSimulate(const cli::ParsedArgs& parsed) {
     uint32_t dispatchTotal = 0, sleepingFrames = 0;
     for (uint32_t f = 0; f < sim.frameCount(); ++f) {
         const sim::SimulationFrameStats stats = sim.runFrame(f);
+        reportBudget(stats);
         double gpu = 0.0;
         for (const sim::PassRecord& p : stats.passes)
             gpu += p.gpuMs;

@@ -195,9 +195,12 @@ Status writeFrameVdbs(sim::SceneSimulation& sim, uint32_t frame, VdbOutput& out)
                 if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-') c = '_';
             if (name.empty()) name = g.grid.name();
         }
-        const fluid::FieldState state = g.grid.solver().state();
+        const fluid::FieldState state = g.grid.state();
+        std::vector<uint8_t> stored;
+        if (g.grid.sparse()) stored = g.grid.storedCells();
         fluid::VdbFrame vdb;
         vdb.state = &state;
+        if (g.grid.sparse()) vdb.storedCells = &stored;
         vdb.origin = g.grid.origin();
         vdb.up = out.up;
         char file[32];
@@ -207,6 +210,13 @@ Status writeFrameVdbs(sim::SceneSimulation& sim, uint32_t frame, VdbOutput& out)
         ++out.files;
     }
     return Ok{};
+}
+
+void reportBudget(const sim::SimulationFrameStats& stats) {
+    for (const sim::GridFrameState& g : stats.grids)
+        if (!g.budgetLine.empty())
+            std::fprintf(stderr, "motionfx: warning: frame %u: %s\n", stats.frame,
+                         g.budgetLine.c_str());
 }
 
 void reportMotionlessEffects(const scene::Scene& scene, const anim::Character& character,

@@ -61,6 +61,10 @@ std::vector<cli::OptionSpec> characterOptions();
 void reportMotionlessEffects(const scene::Scene& scene, const anim::Character& character,
                              uint32_t frames);
 
+// For each sparse smoke grid of `stats` that first wanted more bricks than its budget this frame:
+// its one line, "motionfx: warning: ..." on stderr (the simulation goes on at the budget).
+void reportBudget(const sim::SimulationFrameStats& stats);
+
 // False (after printing why) when the scene's output size exceeds the device's largest image.
 bool checkOutputSize(const gpu::Context& ctx, const scene::Scene& scene);
 

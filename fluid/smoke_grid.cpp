@@ -2,15 +2,28 @@
 
 #include "shaders/shared/coupling.h"
 
+#include <algorithm>
 #include <cstring>
+#include <stdexcept>
 
 namespace mfx::fluid {
 
 Result<SmokeGrid> SmokeGrid::create(const gpu::Context& ctx, SmokeGridSettings settings) {
     SmokeGrid grid;
-    auto solver = SmokeSolver::create(ctx, settings.options);
-    if (!solver) return solver.error();
-    grid.solver_ = std::move(solver).value();
+    if (settings.sparse) {
+        if (settings.follow)
+            return Error{"a sparse grid stands still over its domain; it cannot follow"};
+        if (Status valid = validateSparseOptions(settings.options); !valid) return valid.error();
+        // Room for the first bricks; the atlas doubles up to the budget as the smoke spreads.
+        auto sparse = SparseSmokeSolver::create(ctx, settings.options, settings.maxBricks,
+                                                std::min(settings.maxBricks, 64u));
+        if (!sparse) return sparse.error();
+        grid.sparse_ = std::move(sparse).value();
+    } else {
+        auto solver = SmokeSolver::create(ctx, settings.options);
+        if (!solver) return solver.error();
+        grid.solver_ = std::move(solver).value();
+    }
     // Transfer source for the simulation's emitter capture.
     grid.emitters_ = gpu::createBuffer(
         ctx, VkDeviceSize(settings.emitterCapacity) * sizeof(shared::FluidEmitter),
@@ -24,9 +37,42 @@ Result<SmokeGrid> SmokeGrid::create(const gpu::Context& ctx, SmokeGridSettings s
     return grid;
 }
 
+const SolverOptions& SmokeGrid::options() const {
+    return sparse_ ? sparse_->options() : solver_->options();
+}
+
+const SmokeSolver& SmokeGrid::solver() const {
+    if (!solver_) throw std::logic_error(settings_.name + " is sparse: it has no dense solver");
+    return *solver_;
+}
+
+SmokeSolver& SmokeGrid::solver() {
+    if (!solver_) throw std::logic_error(settings_.name + " is sparse: it has no dense solver");
+    return *solver_;
+}
+
+FieldState SmokeGrid::state() {
+    return sparse_ ? sparse_->state() : solver_->state();
+}
+
+std::vector<uint8_t> SmokeGrid::storedCells() const {
+    if (sparse_) return sparse_->activeCells();
+    const GridShape& g = options().grid;
+    return std::vector<uint8_t>(size_t(g.cellsX) * g.cellsY * g.cellsZ, 1);
+}
+
+std::vector<std::pair<std::string, uint32_t>> SmokeGrid::lastStepDispatches() const {
+    if (!sparse_) return solver_->lastStepDispatches();
+    std::vector<std::pair<std::string, uint32_t>> passes = {
+        {"rebuild_bricks", sparse_->lastRebuildDispatches()}};
+    const auto& stages = sparse_->lastStepDispatches();
+    passes.insert(passes.end(), stages.begin(), stages.end());
+    return passes;
+}
+
 void SmokeGrid::place(glm::vec3 low, glm::vec3 high, glm::vec3 fallback,
                       std::optional<float> floorHeight, glm::vec3 root) {
-    const GridShape& shape = solver_->options().grid;
+    const GridShape& shape = options().grid;
     const glm::vec3 extent =
         glm::vec3(float(shape.cellsX), float(shape.cellsY), float(shape.cellsZ)) * shape.cellSize;
     if (low.x > high.x) low = high = fallback + glm::vec3(0.0f, 0.5f * extent.y, 0.0f);
@@ -37,7 +83,7 @@ void SmokeGrid::place(glm::vec3 low, glm::vec3 high, glm::vec3 fallback,
 }
 
 bool SmokeGrid::recordFollow(VkCommandBuffer cmd, glm::vec3 root) {
-    if (!settings_.follow) return false;
+    if (!settings_.follow || !solver_) return false;
     const float h = solver_->options().grid.cellSize;
     glm::vec3 moved = root - rootAtPlacement_;
     moved.y = 0.0f;
@@ -51,22 +97,52 @@ bool SmokeGrid::recordFollow(VkCommandBuffer cmd, glm::vec3 root) {
 
 void SmokeGrid::beginFrame() {
     measured_ = false;
+    rebuilt_ = false;
 }
 
 void SmokeGrid::recordStep(VkCommandBuffer cmd, uint32_t emitters, gpu::GpuTimer* timer) {
-    solver_->setEmitterBuffer(emitters_, emitters);
     if (timer) timer->setPrefix(settings_.name + "/");
-    solver_->recordStep(cmd, timer);
+    if (sparse_) {
+        // The active set before the step: live cells by the grid's sleep thresholds (the speed's
+        // as the dense grid's: threshold x cell size / dt), the emitters' footprints, and one
+        // brick around them, the most the step's advection can carry smoke (8 cells a step: 24
+        // m/s at 5 cm and 60 steps a second).
+        const SolverOptions& o = sparse_->options();
+        sparse_->setEmitterBuffer(emitters_, emitters);
+        if (timer) timer->begin(cmd, "rebuild_bricks");
+        sparse_->recordRebuild(cmd, settings_.sleepThreshold,
+                               settings_.sleepThreshold * o.grid.cellSize / o.dt, kBrickSize);
+        if (timer) timer->end(cmd);
+        sparse_->recordStep(cmd, timer);
+        rebuilt_ = true;
+    } else {
+        solver_->setEmitterBuffer(emitters_, emitters);
+        solver_->recordStep(cmd, timer);
+    }
     if (timer) timer->setPrefix("");
 }
 
 void SmokeGrid::recordMeasureActivity(VkCommandBuffer cmd) {
-    solver_->recordMeasureActivity(cmd, activity_);
     measured_ = true;
+    if (sparse_) return; // its rebuild measures: a grid with no live cell keeps no brick
+    solver_->recordMeasureActivity(cmd, activity_);
 }
 
 SmokeGrid::Activity SmokeGrid::finishFrame() {
     Activity a;
+    if (sparse_) {
+        if (!rebuilt_) return a;
+        const SparseSmokeSolver::RebuildCounts counts = sparse_->finishRebuild();
+        a.activeBricks = counts.active;
+        a.refusedBricks = counts.refused;
+        if (!counts.error.empty() && !budgetReported_) {
+            a.budgetLine = settings_.name + ": " + counts.error;
+            budgetReported_ = true;
+        }
+        // Settled: no effect was live this frame (measured_) and no brick holds a live cell.
+        if (measured_ && counts.active == 0 && counts.refused == 0) awake_ = false;
+        return a;
+    }
     if (!measured_) return a;
     a.measured = true;
     uint32_t bits[2];
@@ -81,7 +157,8 @@ SmokeGrid::Activity SmokeGrid::finishFrame() {
 }
 
 uint64_t SmokeGrid::memoryBytes() const {
-    return solver_->memoryBytes() + emitters_.size + activity_.size;
+    return (sparse_ ? sparse_->memoryBytes() : solver_->memoryBytes()) + emitters_.size +
+           activity_.size;
 }
 
 } // namespace mfx::fluid

@@ -9,6 +9,11 @@
 //   * sleep: a grid none of whose effects is live measures its largest pigment alpha and speed
 //     after each frame; once both are below the threshold (speed: threshold x cell size / dt) it
 //     sleeps: zero dispatches until an effect is live again.
+// A sparse grid (settings.sparse: fluid/sparse_smoke_solver.h) stands still over its virtual
+// domain, the stage: it rebuilds its active bricks before each step (live cells above the sleep
+// thresholds, the emitters' footprints, one brick of reach around them), so smoke stays where it
+// was left; it sleeps once no effect is live and no brick is active, and it holds at most
+// maxBricks bricks, the budget (the first frame that wants more gets one line, budgetLine).
 // Which effects feed the grid and when is the simulation's business (sim/scene_simulation.h).
 #pragma once
 
@@ -16,6 +21,7 @@
 #include "core/gpu/timer.h"
 #include "core/result.h"
 #include "fluid/smoke_solver.h"
+#include "fluid/sparse_smoke_solver.h"
 
 #include <glm/glm.hpp>
 
@@ -32,6 +38,8 @@ struct SmokeGridSettings {
     bool follow = false;
     float sleepThreshold = 1e-4f;
     uint32_t emitterCapacity = 1; // records one step may splat
+    bool sparse = false;          // options.grid is a virtual domain of 8^3 bricks
+    uint32_t maxBricks = 4096;    // sparse: the budget of stored bricks
 };
 
 class SmokeGrid {
@@ -62,13 +70,30 @@ public:
         bool measured = false;
         float largestAlpha = 0.0f;
         float largestSpeed = 0.0f; // world units per second
+        // A sparse grid that stepped: its bricks after the frame's last rebuild.
+        uint32_t activeBricks = 0;
+        uint32_t refusedBricks = 0;
+        std::string budgetLine; // the first frame past the budget only
     };
     Activity finishFrame();
 
     const std::string& name() const { return settings_.name; }
     const SmokeGridSettings& settings() const { return settings_; }
-    const SmokeSolver& solver() const { return *solver_; }
-    SmokeSolver& solver() { return *solver_; }
+    bool sparse() const { return sparse_ != nullptr; }
+    const SolverOptions& options() const;
+    // The dense solver (not for a sparse grid).
+    const SmokeSolver& solver() const;
+    SmokeSolver& solver();
+    // The sparse solver, or null for a dense grid.
+    const SparseSmokeSolver* sparseSolver() const { return sparse_.get(); }
+    SparseSmokeSolver* sparseSolver() { return sparse_.get(); }
+    // The fields (a sparse grid's whole virtual domain, 0 where nothing is stored), read back
+    // (waits for the GPU).
+    FieldState state();
+    // One flag per cell: 1 where the grid stores values (every cell of a dense grid).
+    std::vector<uint8_t> storedCells() const;
+    // The passes of the last recordStep with their dispatches (a sparse grid's rebuild first).
+    std::vector<std::pair<std::string, uint32_t>> lastStepDispatches() const;
     glm::vec3 origin() const { return origin_; }             // the world position of its low corner
     glm::vec3 placedOrigin() const { return placedOrigin_; } // where place() put it
     bool awake() const { return awake_; }
@@ -79,6 +104,9 @@ public:
 private:
     SmokeGridSettings settings_;
     std::unique_ptr<SmokeSolver> solver_;
+    std::unique_ptr<SparseSmokeSolver> sparse_;
+    bool rebuilt_ = false; // a sparse rebuild was recorded this frame
+    bool budgetReported_ = false;
     gpu::Buffer emitters_;
     gpu::Buffer activity_; // two floats as uint bits: largest pigment alpha, largest speed
     glm::vec3 origin_{0.0f};

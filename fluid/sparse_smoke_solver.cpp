@@ -142,9 +142,11 @@ SparseSmokeSolver::SparseSmokeSolver(const gpu::Context& ctx, const SolverOption
     parameters_ =
         gpu::createBuffer(ctx, sizeof(shared::FluidParameters), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                           gpu::MemoryUsage::Upload, "sparse fluid parameters");
-    emitters_ = gpu::createBuffer(ctx, 16 * sizeof(shared::FluidEmitter),
-                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload,
-                                  "sparse fluid emitters");
+    ownEmitters_ = gpu::createBuffer(ctx, 16 * sizeof(shared::FluidEmitter),
+                                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload,
+                                     "sparse fluid emitters");
+    emitterBuffer_ = ownEmitters_.get();
+    emitterBufferSize_ = ownEmitters_.size;
     table_ =
         gpu::createBuffer(ctx, layout_.table().size() * sizeof(uint32_t),
                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
@@ -311,6 +313,7 @@ void SparseSmokeSolver::startGpuLayout() {
 void SparseSmokeSolver::recordRebuild(VkCommandBuffer cmd, float alphaThreshold,
                                       float speedThreshold, uint32_t reachCells) {
     if (!gpuLayout_) startGpuLayout();
+    const uint32_t dispatchesBefore = dispatches_;
     const uint32_t bricks = uint32_t(layout_.table().size());
     shared::SparseRebuildParameters rebuild{};
     rebuild.thresholds = glm::vec4(alphaThreshold, speedThreshold, 0.0f, 0.0f);
@@ -339,10 +342,11 @@ void SparseSmokeSolver::recordRebuild(VkCommandBuffer cmd, float alphaThreshold,
         prog.bind(cmd, w);
         prog.push(cmd, shared::FluidDispatch{0, 0, 0, 0});
         if (items > 0) vkCmdDispatch(cmd, flatGroups(items), 1, 1);
+        dispatches_ += items > 0 ? 1 : 0;
     };
     if (emitterCount_ > 0)
-        flat("sparse_mark_emitter_bricks", 0,
-             {gpu::bindBuffer(2, emitters_), gpu::bindBuffer(3, wantedScratch_)}, emitterCount_);
+        flat("sparse_mark_emitter_bricks", 0, {emitterWrite(2), gpu::bindBuffer(3, wantedScratch_)},
+             emitterCount_);
     listBarrier(cmd);
     // The lists are rebuilt from here on: empty them.
     for (const gpu::Buffer* list : {&active_, &activated_}) {
@@ -380,6 +384,7 @@ void SparseSmokeSolver::recordRebuild(VkCommandBuffer cmd, float alphaThreshold,
     gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                        VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
     fieldBarrier(cmd);
+    lastRebuildDispatches_ = dispatches_ - dispatchesBefore;
 }
 
 SparseSmokeSolver::RebuildCounts SparseSmokeSolver::finishRebuild() {
@@ -486,13 +491,26 @@ FieldState SparseSmokeSolver::state() {
 Status SparseSmokeSolver::setEmitters(std::span<const shared::FluidEmitter> emitters) {
     if (Status valid = validateEmitters(emitters); !valid) return valid;
     const VkDeviceSize bytes = emitters.size_bytes();
-    if (bytes > emitters_.size)
-        emitters_ = gpu::createBuffer(ctx_, std::max<VkDeviceSize>(bytes, 2 * emitters_.size),
-                                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload,
-                                      "sparse fluid emitters");
-    if (bytes > 0) std::memcpy(emitters_.mapped, emitters.data(), bytes);
-    emitterCount_ = uint32_t(emitters.size());
+    if (bytes > ownEmitters_.size)
+        ownEmitters_ = gpu::createBuffer(ctx_, std::max<VkDeviceSize>(bytes, 2 * ownEmitters_.size),
+                                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                         gpu::MemoryUsage::Upload, "sparse fluid emitters");
+    if (bytes > 0) std::memcpy(ownEmitters_.mapped, emitters.data(), bytes);
+    setEmitterBuffer(ownEmitters_, uint32_t(emitters.size()));
     return Ok{};
+}
+
+void SparseSmokeSolver::setEmitterBuffer(const gpu::Buffer& buffer, uint32_t count) {
+    emitterBuffer_ = buffer.get();
+    emitterBufferSize_ = buffer.size;
+    emitterCount_ = std::min<uint32_t>(count, uint32_t(buffer.size / sizeof(shared::FluidEmitter)));
+}
+
+gpu::DescriptorWrite SparseSmokeSolver::emitterWrite(uint32_t binding) const {
+    gpu::DescriptorWrite w;
+    w.binding = binding;
+    w.buffer = {emitterBuffer_, 0, emitterBufferSize_};
+    return w;
 }
 
 void SparseSmokeSolver::writeParameters() {
@@ -509,6 +527,7 @@ void SparseSmokeSolver::dispatch(VkCommandBuffer cmd, gpu::Program& prog, const 
     prog.bind(cmd, writes);
     prog.push(cmd, shared::FluidDispatch{0, 0, 0, 0});
     vkCmdDispatchIndirect(cmd, list.get(), 0);
+    ++dispatches_;
 }
 
 // --- Stages -------------------------------------------------------------------------------------
@@ -516,7 +535,7 @@ void SparseSmokeSolver::dispatch(VkCommandBuffer cmd, gpu::Program& prog, const 
 void SparseSmokeSolver::splatImpulses(VkCommandBuffer cmd) {
     if (emitterCount_ == 0) return;
     Writes w = common(active_);
-    w.push_back(gpu::bindBuffer(3, emitters_));
+    w.push_back(emitterWrite(3));
     for (uint32_t c = 0; c < 3; ++c)
         w.push_back(gpu::bindBuffer(4 + c, velocity_[currentVelocity_[c]][c]));
     w.push_back(gpu::bindBuffer(7, pigment_[currentPigment_]));
@@ -662,9 +681,19 @@ void SparseSmokeSolver::recordStage(VkCommandBuffer cmd, Stage stage, gpu::GpuTi
 void SparseSmokeSolver::recordStep(VkCommandBuffer cmd, gpu::GpuTimer* timer) {
     writeParameters();
     listBarrier(cmd); // the lists and table written before → the indirect dispatches
+    lastStepDispatches_.clear();
     for (uint32_t substep = 0; substep < options_.substeps; ++substep)
-        for (Stage stage : kStepOrder)
+        for (Stage stage : kStepOrder) {
+            const uint32_t before = dispatches_;
             recordStageOnly(cmd, stage, timer);
+            const std::string name = stageName(stage);
+            auto it = std::find_if(lastStepDispatches_.begin(), lastStepDispatches_.end(),
+                                   [&](const auto& entry) { return entry.first == name; });
+            if (it == lastStepDispatches_.end())
+                lastStepDispatches_.emplace_back(name, dispatches_ - before);
+            else
+                it->second += dispatches_ - before;
+        }
 }
 
 void SparseSmokeSolver::step() {
@@ -677,7 +706,8 @@ void SparseSmokeSolver::runStage(Stage stage) {
 
 uint64_t SparseSmokeSolver::memoryBytes() const {
     uint64_t bytes = divergence_.size + table_.size + active_.size + activated_.size +
-                     parameters_.size + emitters_.size;
+                     parameters_.size + ownEmitters_.size + brickState_.size + wantedScratch_.size +
+                     freeSlots_.size + refused_.size + counters_.size + rebuildParameters_.size;
     for (int set = 0; set < 2; ++set) {
         for (const gpu::Buffer& b : velocity_[set])
             bytes += b.size;

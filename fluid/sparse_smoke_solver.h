@@ -93,6 +93,22 @@ public:
     uint64_t lastSharedFaceMismatches() const { return sharedFaceMismatches_; }
 
     Status setEmitters(std::span<const shared::FluidEmitter> emitters);
+    // As SmokeSolver::setEmitterBuffer: the first `count` records of `buffer` (written on the GPU,
+    // e.g. by SegmentEmitters) are the next rebuild's and step's emitters. The buffer must outlive
+    // their recording.
+    void setEmitterBuffer(const gpu::Buffer& buffer, uint32_t count);
+    // The stages of the last recordStep with their dispatch counts, in order (as SmokeSolver's).
+    const std::vector<std::pair<std::string, uint32_t>>& lastStepDispatches() const {
+        return lastStepDispatches_;
+    }
+    uint32_t lastRebuildDispatches() const { return lastRebuildDispatches_; }
+    // For drawing the smoke (render/smoke_pass.h): the live pigment atlas (vec4 per cell, slot s
+    // at elements s * MFX_BRICK_CELLS + brickCellIndex), the brick table (slot per virtual brick,
+    // x fastest, MFX_NO_SLOT where none) and the active list (BrickListHeader, two workgroups of
+    // 8x8x4 a brick, then the bricks). Valid until the next step or rebuild is recorded.
+    const gpu::Buffer& pigmentAtlas() const { return pigment_[currentPigment_]; }
+    const gpu::Buffer& brickTable() const { return table_; }
+    const gpu::Buffer& activeList() const { return active_; }
 
     // As SmokeSolver: one whole step, or one stage alone (with the sub-step dt). Vorticity
     // confinement and viscosity are off on the sparse domain, so those stages record nothing.
@@ -101,7 +117,7 @@ public:
     void step();
     void runStage(Stage stage);
 
-    // Bytes of GPU memory of the atlas, the brick table and the lists.
+    // Bytes of GPU memory of the atlas, the brick table, the lists and the rebuild's buffers.
     uint64_t memoryBytes() const;
     uint32_t passesPerStep() const { return uint32_t(kStepOrder.size()) * options_.substeps; }
 
@@ -122,6 +138,7 @@ private:
     Writes common(const gpu::Buffer& list) const;
     void dispatch(VkCommandBuffer cmd, gpu::Program& program, const Writes& writes,
                   const gpu::Buffer& list);
+    gpu::DescriptorWrite emitterWrite(uint32_t binding) const;
     void recordStageOnly(VkCommandBuffer cmd, Stage stage, gpu::GpuTimer* timer);
 
     void splatImpulses(VkCommandBuffer cmd);
@@ -160,8 +177,13 @@ private:
     gpu::Buffer rebuildParameters_;
     bool gpuLayout_ = false; // recordRebuild has run: the GPU owns the table
     gpu::Buffer parameters_;
-    gpu::Buffer emitters_;
+    gpu::Buffer ownEmitters_; // setEmitters' records
+    VkBuffer emitterBuffer_ = VK_NULL_HANDLE;
+    VkDeviceSize emitterBufferSize_ = 0;
     uint32_t emitterCount_ = 0;
+    uint32_t dispatches_ = 0; // recorded so far (lastStepDispatches)
+    std::vector<std::pair<std::string, uint32_t>> lastStepDispatches_;
+    uint32_t lastRebuildDispatches_ = 0;
     uint64_t sharedFaceMismatches_ = 0;
 };
 

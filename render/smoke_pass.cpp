@@ -46,6 +46,19 @@ uint32_t divisorOf(SmokeResolution resolution) {
     return resolution == SmokeResolution::Full ? 1u : 2u;
 }
 
+// The march's program (a dense grid's) for a fluid buffer of 1 / divisor of the picture.
+gpu::GraphicsProgramDesc marchDesc(uint32_t divisor) {
+    gpu::GraphicsProgramDesc march;
+    march.name = "smoke";
+    march.vertex = shaders::smoke_vert;
+    march.fragment = shaders::smoke_frag;
+    march.pushConstantSize = sizeof(shared::SmokeDraw);
+    march.specialization = {divisor};
+    march.colorFormats = {kFluidColorFormat, kFluidDistanceFormat};
+    march.blend = gpu::BlendMode::Opaque;
+    return march;
+}
+
 } // namespace
 
 SmokePass::SmokePass(const gpu::Context& ctx) : ctx_(ctx) {
@@ -68,14 +81,7 @@ SmokePass::Programs& SmokePass::programsFor(uint32_t divisor) {
     auto it = programs_.find(divisor);
     if (it != programs_.end()) return it->second;
     Programs programs;
-    gpu::GraphicsProgramDesc march;
-    march.name = "smoke";
-    march.vertex = shaders::smoke_vert;
-    march.fragment = shaders::smoke_frag;
-    march.pushConstantSize = sizeof(shared::SmokeDraw);
-    march.specialization = {divisor};
-    march.colorFormats = {kFluidColorFormat, kFluidDistanceFormat};
-    march.blend = gpu::BlendMode::Opaque;
+    const gpu::GraphicsProgramDesc march = marchDesc(divisor);
     programs.march = gpu::createGraphicsProgram(ctx_, march);
     gpu::GraphicsProgramDesc composite = march;
     composite.name = "smoke_composite";
@@ -114,17 +120,35 @@ void SmokePass::findPigmentBounds(VkCommandBuffer cmd, std::span<const Volume> v
     for (size_t i = 0; i < volumes.size(); ++i)
         vkCmdUpdateBuffer(cmd, bounds_[i].get(), 0, sizeof(empty), &empty);
     // The solver's writes (compute, copies) and the emptied boxes before the search and the march.
+    // (A sparse grid's active list is also read as the bounds search's indirect arguments.)
     gpu::memoryBarrier(
         cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
         VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
-        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
+            VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
         VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
-            VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+            VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
     for (size_t i = 0; i < volumes.size(); ++i) {
         const fluid::GridShape& shape = volumes[i].shape;
         shared::PigmentBoundsDispatch d{};
         d.size = glm::uvec4(shape.cellsX, shape.cellsY, shape.cellsZ, 0u);
         d.threshold = look.pigmentThreshold;
+        if (const fluid::SparseSmokeSolver* sparse = volumes[i].sparse) {
+            if (!sparseBounds_) {
+                gpu::ComputeProgramDesc desc;
+                desc.name = "pigment_bounds_sparse";
+                desc.spirv = shaders::pigment_bounds_comp_sparse;
+                desc.pushConstantSize = sizeof(shared::PigmentBoundsDispatch);
+                sparseBounds_ = gpu::createComputeProgram(ctx_, desc);
+            }
+            sparseBounds_->bind(cmd, {gpu::bindBuffer(0, sparse->pigmentAtlas()),
+                                      gpu::bindBuffer(1, bounds_[i]),
+                                      gpu::bindBuffer(2, sparse->brickTable()),
+                                      gpu::bindBuffer(3, sparse->activeList())});
+            sparseBounds_->push(cmd, d);
+            vkCmdDispatchIndirect(cmd, sparse->activeList().get(), 0);
+            continue;
+        }
         gpu::Program& bounds = boundsFor(*volumes[i].pigment);
         bounds.bind(cmd, {gpu::bindImage(0, *volumes[i].pigment, VK_IMAGE_LAYOUT_GENERAL),
                           gpu::bindBuffer(1, bounds_[i])});
@@ -151,8 +175,13 @@ uint32_t SmokePass::draw(VkCommandBuffer cmd, RenderTarget& target,
         if (!visible) continue;
         const scene::SmokeSpec* smoke =
             grid.effects.empty() ? nullptr : simulation.trajectories()[grid.effects[0]].smoke;
-        volumes.push_back({&grid.grid.solver().pigmentImage(), grid.grid.solver().options().grid,
-                           grid.grid.origin(), smoke ? smoke->shading : scene::SmokeShading{}});
+        const scene::SmokeShading shading = smoke ? smoke->shading : scene::SmokeShading{};
+        if (const fluid::SparseSmokeSolver* sparse = grid.grid.sparseSolver())
+            volumes.push_back(
+                {nullptr, sparse->options().grid, grid.grid.origin(), shading, sparse});
+        else
+            volumes.push_back({&grid.grid.solver().pigmentImage(),
+                               grid.grid.solver().options().grid, grid.grid.origin(), shading});
     }
     if (volumes.empty()) return 0;
     const scene::LightSpec key =
@@ -233,11 +262,26 @@ void SmokePass::draw(VkCommandBuffer cmd, RenderTarget& target, std::span<const 
         vkCmdSetViewport(cmd, 0, 1, &viewport);
         const VkRect2D scissor{{0, 0}, {fluidSize.width, fluidSize.height}};
         vkCmdSetScissor(cmd, 0, 1, &scissor);
-        programs.march.bind(
-            cmd, {gpu::bindImage(0, *v.pigment, VK_IMAGE_LAYOUT_GENERAL, volumeSampler_.get()),
-                  gpu::bindImage(1, target.depth, read, nearest), gpu::bindBuffer(2, bounds_[i]),
-                  gpu::bindBuffer(3, styles_[i])});
-        programs.march.push(cmd, d);
+        if (v.sparse) {
+            if (!programs.sparseMarch) {
+                gpu::GraphicsProgramDesc desc = marchDesc(divisor);
+                desc.name = "smoke_sparse";
+                desc.fragment = shaders::smoke_frag_sparse;
+                programs.sparseMarch = gpu::createGraphicsProgram(ctx_, desc);
+            }
+            programs.sparseMarch->bind(cmd, {gpu::bindBuffer(0, v.sparse->pigmentAtlas()),
+                                             gpu::bindImage(1, target.depth, read, nearest),
+                                             gpu::bindBuffer(2, bounds_[i]),
+                                             gpu::bindBuffer(3, styles_[i]),
+                                             gpu::bindBuffer(4, v.sparse->brickTable())});
+            programs.sparseMarch->push(cmd, d);
+        } else {
+            programs.march.bind(
+                cmd, {gpu::bindImage(0, *v.pigment, VK_IMAGE_LAYOUT_GENERAL, volumeSampler_.get()),
+                      gpu::bindImage(1, target.depth, read, nearest),
+                      gpu::bindBuffer(2, bounds_[i]), gpu::bindBuffer(3, styles_[i])});
+            programs.march.push(cmd, d);
+        }
         vkCmdDraw(cmd, kBoxVertices, 1, 0, 0);
         vkCmdEndRendering(cmd);
 

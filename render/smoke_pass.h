@@ -25,6 +25,7 @@
 
 #include <array>
 #include <map>
+#include <optional>
 #include <span>
 #include <tuple>
 #include <vector>
@@ -66,12 +67,15 @@ public:
                   const SmokeLook& look = {});
 
     // One pigment volume (rgba32f, GENERAL layout) of `shape` whose low corner is at `origin`,
-    // shaded as `shading` says (its grid's first smoke effect's).
+    // shaded as `shading` says (its grid's first smoke effect's). Or, with `sparse`, a sparse
+    // grid's pigment atlas over its virtual domain `shape` (pigment unused): the bounds search
+    // runs over its active bricks and the march skips its empty ones (shaders/render/smoke.frag).
     struct Volume {
         const gpu::Image* pigment = nullptr;
         fluid::GridShape shape;
         glm::vec3 origin{0.0f};
         scene::SmokeShading shading;
+        const fluid::SparseSmokeSolver* sparse = nullptr;
     };
     void draw(VkCommandBuffer cmd, RenderTarget& target, std::span<const Volume> volumes,
               const SceneCamera& camera, const scene::LightSpec& key, const SmokeLook& look = {});
@@ -80,6 +84,7 @@ private:
     // The march and composite programs for one fluid buffer divisor (1 or 2).
     struct Programs {
         gpu::Program march, composite;
+        std::optional<gpu::Program> sparseMarch; // made when a sparse volume is first drawn
     };
     // The smoke's premultiplied colour and the scene distance its march used.
     struct FluidBuffer {
@@ -98,6 +103,7 @@ private:
         return boundsPrograms_[pigment.format == VK_FORMAT_R16G16B16A16_SFLOAT ? 1 : 0];
     }
     std::array<gpu::Program, 2> boundsPrograms_; // for rgba32f and rgba16f pigment
+    std::optional<gpu::Program> sparseBounds_;   // for a sparse atlas, made when first used
     std::map<uint32_t, Programs> programs_;      // by divisor, made when first used
     gpu::UniqueSampler volumeSampler_, nearestSampler_;
     FluidBuffer fluid_;

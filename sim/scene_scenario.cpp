@@ -39,7 +39,7 @@ Result<SceneImpulses> recordSceneImpulses(const gpu::Context& ctx, const scene::
     SceneImpulses out;
     out.scene = scene.file;
     out.grid = grid.name();
-    out.options = grid.solver().options();
+    out.options = grid.options();
     out.stepsPerSecond = smokeOnly.output.fps * float(grid.settings().stepsPerFrame);
     bool started = false;
     for (uint32_t frame = 0; frame < sim.frameCount() && out.steps.size() < maxSteps; ++frame) {

@@ -112,6 +112,8 @@ Result<std::unique_ptr<SceneSimulation>> SceneSimulation::create(const gpu::Cont
         fluid::SmokeGridSettings settings;
         settings.name = "smoke" + std::to_string(sim->grids_.size());
         settings.follow = e.follow;
+        settings.sparse = e.sparse();
+        settings.maxBricks = e.maxBricks;
         settings.sleepThreshold = std::numeric_limits<float>::max();
         settings.emitterCapacity = 0;
         for (size_t i : effects) {
@@ -297,10 +299,12 @@ void SceneSimulation::recordSmoke(VkCommandBuffer cmd, SmokeGrid& grid, uint32_t
         grid.emittersThisFrame += emitters;
         if (grid.captured) captureStep(cmd, grid, uint64_t(step), emitters);
         g.recordStep(cmd, emitters, &timer_);
-        for (const auto& [stage, count] : g.solver().lastStepDispatches())
+        for (const auto& [stage, count] : g.lastStepDispatches())
             addPass(g.name() + "/" + stage, count);
     }
-    if (g.awake() && !anyLiveThisFrame) {
+    if (g.awake() && !anyLiveThisFrame && g.sparse()) {
+        g.recordMeasureActivity(cmd); // no dispatch: the rebuild before each step measured
+    } else if (g.awake() && !anyLiveThisFrame) {
         const std::string name = g.name() + "/measure_activity";
         timer_.begin(cmd, name);
         g.recordMeasureActivity(cmd);
@@ -379,6 +383,10 @@ SimulationFrameStats SceneSimulation::finishFrame() {
         state.measured = activity.measured;
         state.largestAlpha = activity.largestAlpha;
         state.largestSpeed = activity.largestSpeed;
+        state.sparse = grid.grid.sparse();
+        state.activeBricks = activity.activeBricks;
+        state.refusedBricks = activity.refusedBricks;
+        state.budgetLine = activity.budgetLine;
         stats.grids.push_back(state);
     }
     stats.fluidBytes = fluidBytes();

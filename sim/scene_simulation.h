@@ -14,7 +14,9 @@
 //     (segment_emitters: impulse velocity, colour as pigment, strength by attenuation), in the
 //     grid's own frame; the grid is placed around the effects' vertices over their windows;
 //   * a grid none of whose effects is live keeps stepping while its smoke settles, until it
-//     sleeps (SmokeGrid::finishFrame).
+//     sleeps (SmokeGrid::finishFrame);
+//   * a sparse grid ("domain": "sparse") stands still, centred like a dense one, over a virtual
+//     domain (the stage), and steps only the bricks with smoke: smoke left behind stays.
 // Statistics per frame: every pass that ran, with its dispatches and GPU milliseconds, and the
 // fluid memory.
 #pragma once
@@ -47,7 +49,13 @@ struct GridFrameState {
     uint32_t emitters = 0;     // splatted this frame
     bool measured = false;     // measured its activity (no effect live)
     float largestAlpha = 0.0f; // when measured
-    float largestSpeed = 0.0f; // when measured, world units per second
+    float largestSpeed = 0.0f; // when measured, world units per second (dense grids)
+    // A sparse grid: its active and refused bricks after the frame's last rebuild, and, on the
+    // first frame that wanted more bricks than its budget, the line that says so.
+    bool sparse = false;
+    uint32_t activeBricks = 0;
+    uint32_t refusedBricks = 0;
+    std::string budgetLine;
 };
 
 // The emitter records one smoke step splatted (SceneSimulation::capturedEmitters).

@@ -96,6 +96,29 @@ TEST(SceneFile, EveryKeyIsRead) {
     EXPECT_NEAR(scene::clipTimeAt(s, fighter, 1.4f), 0.2f, 1e-5f);
 }
 
+// "domain": "sparse": a virtual domain of 256^3 cells unless "grid" says otherwise (rounded up to
+// whole bricks), a budget of 4096 bricks unless "max_bricks" does; a dense grid is as it was.
+TEST(SceneFile, SmokeAsksForTheSparseDomain) {
+    const scene::Scene s = parse(R"({"effects": [
+        {"type": "smoke", "name": "a", "domain": "sparse"},
+        {"type": "smoke", "name": "b", "domain": "sparse", "grid": [512, 121, 256],
+         "max_bricks": 900},
+        {"type": "smoke", "name": "c"}]})");
+    ASSERT_EQ(s.effects.size(), 3u);
+    const scene::SmokeGridSpec& a = s.effects[0].as<scene::SmokeSpec>()->grid;
+    const scene::SmokeGridSpec& b = s.effects[1].as<scene::SmokeSpec>()->grid;
+    const scene::SmokeGridSpec& c = s.effects[2].as<scene::SmokeSpec>()->grid;
+    EXPECT_TRUE(a.sparse());
+    EXPECT_EQ(a.cells, (std::array<uint32_t, 3>{256, 256, 256}));
+    EXPECT_EQ(a.maxBricks, 4096u);
+    EXPECT_FLOAT_EQ(a.cellSize, 0.05f);
+    EXPECT_EQ(b.cells, (std::array<uint32_t, 3>{512, 128, 256})); // in whole bricks
+    EXPECT_EQ(b.maxBricks, 900u);
+    EXPECT_FALSE(c.sparse());
+    EXPECT_EQ(c.cells, (std::array<uint32_t, 3>{48, 48, 48}));
+    EXPECT_FALSE(a == c); // a sparse and a dense effect never share a grid
+}
+
 // The built-in default is docs/scenes/hero.json: the combo, toon, its three effects, post on.
 TEST(SceneFile, DefaultSceneIsTheHeroCombo) {
     const scene::Scene s = scene::defaultScene();
@@ -180,6 +203,30 @@ const BadScene kBadScenes[] = {
      "effects[0].grid[1]: expected a whole number"},
     {"GridTooSmall", R"({"effects": [{"type": "smoke", "grid": [2, 32, 32]}]})",
      "effects[0].grid[0]: 2 is outside [4, 256]"},
+    {"SparseGridTooLarge",
+     R"({"effects": [{"type": "smoke", "domain": "sparse", "grid": [4096, 64, 64]}]})",
+     "effects[0].grid[0]: 4096 is outside [8, 2048]"},
+    {"DenseGridPastTheDenseLimit", R"({"effects": [{"type": "smoke", "grid": [512, 64, 64]}]})",
+     "effects[0].grid[0]: 512 is outside [4, 256]"},
+    {"UnknownDomain", R"({"effects": [{"type": "smoke", "domain": "adaptive"}]})",
+     "effects[0].domain: \"adaptive\" is not one of: dense, sparse"},
+    {"MaxBricksOnADenseGrid", R"({"effects": [{"type": "smoke", "max_bricks": 100}]})",
+     "effects[0].max_bricks: only for \"domain\": \"sparse\""},
+    {"ZeroMaxBricks", R"({"effects": [{"type": "smoke", "domain": "sparse", "max_bricks": 0}]})",
+     "effects[0].max_bricks: 0 is outside 1..1048576"},
+    {"SparseWithMultigrid",
+     R"({"effects": [{"type": "smoke", "domain": "sparse", "pressure": "multigrid"}]})",
+     "effects[0].pressure: only for \"domain\": \"dense\" (the sparse domain solves with jacobi"},
+    {"SparseWithBfecc",
+     R"({"effects": [{"type": "smoke", "domain": "sparse", "advection": "bfecc"}]})",
+     "effects[0].advection: only for \"domain\": \"dense\""},
+    {"SparseWithFp16", R"({"effects": [{"type": "smoke", "domain": "sparse", "storage": "fp16"}]})",
+     "effects[0].storage: only for \"domain\": \"dense\""},
+    {"SparseWithVorticity",
+     R"({"effects": [{"type": "smoke", "domain": "sparse", "vorticity": 0.5}]})",
+     "effects[0].vorticity: only for \"domain\": \"dense\""},
+    {"SparseFollowing", R"({"effects": [{"type": "smoke", "domain": "sparse", "follow": true}]})",
+     "effects[0].follow: only for \"domain\": \"dense\""},
     {"SmokeKeyOnSpeedLines", R"({"effects": [{"type": "speed_lines", "jacobi": 20}]})",
      "effects[0].jacobi: not a key of speed_lines effects"},
     {"UnknownEffectKey", R"({"effects": [{"type": "motion_blur", "colour_": [1, 0, 0]}]})",

@@ -30,10 +30,29 @@
 // The ray is marched only inside the box of cells that hold pigment (shaders/render/smoke.vert), with
 // its samples at the same places as a march over the whole grid would put them, so the box moving
 // from frame to frame does not move the samples.
+//
+// Built twice: for a dense grid's pigment image (a sampler3D, trilinear, 0 outside), and with
+// MFX_SPARSE_PIGMENT for a sparse grid (fluid/sparse_smoke_solver.h): the pigment atlas and the
+// brick table as storage buffers, the trilinear sample taken by hand from the eight cells (0 where
+// no brick is stored, as the solver reads them), and the march skipping empty bricks: a sample
+// whose point lies inside an unstored brick, at least half a cell from its sides, reads only that
+// brick's cells, so it is 0; the march jumps past every such sample at once, to the first beyond
+// the brick's inner box. What it skips is exactly what it would have added (nothing); the
+// samples it takes are the dense march's.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 
+#ifdef MFX_SPARSE_PIGMENT
+#include "shared/sparse_fluid.h"
+layout(std430, binding = 0) readonly buffer PigmentAtlas {
+    vec4 atlas[];
+};
+layout(std430, binding = 4) readonly buffer BrickTable {
+    uint brickSlot[];
+};
+#else
 layout(binding = 0) uniform sampler3D pigment;
+#endif
 layout(binding = 1) uniform sampler2D sceneDepth;
 
 #include "smoke_common.glsl"
@@ -45,10 +64,57 @@ layout(std140, binding = 3) uniform Style {
 layout(location = 0) out vec4 outColor;     // premultiplied
 layout(location = 1) out float outDistance; // marchedDistance() of the scene distance used
 
+#ifdef MFX_SPARSE_PIGMENT
+// The slot of brick b, or MFX_NO_SLOT (not stored, or outside the domain).
+uint slotOf(ivec3 b) {
+    ivec3 n = ivec3(draw.gridSize.xyz) / int(MFX_BRICK_SIZE);
+    if (any(lessThan(b, ivec3(0))) || any(greaterThanEqual(b, n))) return MFX_NO_SLOT;
+    return brickSlot[b.x + n.x * (b.y + n.y * b.z)];
+}
+
+vec4 cellPigment(ivec3 q) {
+    uint slot = slotOf(q >> 3);
+    if (slot == MFX_NO_SLOT) return vec4(0.0);
+    ivec3 l = q & 7;
+    return atlas[slot * MFX_BRICK_CELLS + uint(l.x + 8 * (l.y + 8 * l.z))];
+}
+
+// Trilinear between cell centres, as the dense image's sampler.
+vec4 sampleGrid(vec3 world) {
+    vec3 g = (world - draw.gridOrigin.xyz) / draw.gridOrigin.w - 0.5;
+    ivec3 q = ivec3(floor(g));
+    vec3 f = g - vec3(q);
+    vec4 x00 = mix(cellPigment(q), cellPigment(q + ivec3(1, 0, 0)), f.x);
+    vec4 x10 = mix(cellPigment(q + ivec3(0, 1, 0)), cellPigment(q + ivec3(1, 1, 0)), f.x);
+    vec4 x01 = mix(cellPigment(q + ivec3(0, 0, 1)), cellPigment(q + ivec3(1, 0, 1)), f.x);
+    vec4 x11 = mix(cellPigment(q + ivec3(0, 1, 1)), cellPigment(q + ivec3(1, 1, 1)), f.x);
+    return mix(mix(x00, x10, f.y), mix(x01, x11, f.y), f.z);
+}
+
+// The last sample index whose point is still inside the inner box of the unstored brick holding
+// p (the brick shrunk by half a cell: its samples read that brick's cells alone), or `i` where p
+// is not in such a box. Sample k lies at t = gridEnter + (k + 0.5) step.
+int lastEmptySample(int i, vec3 p, vec3 inv, float gridEnter, float step) {
+    vec3 g = (p - draw.gridOrigin.xyz) / draw.gridOrigin.w;
+    ivec3 b = ivec3(floor(g / float(MFX_BRICK_SIZE)));
+    ivec3 n = ivec3(draw.gridSize.xyz) / int(MFX_BRICK_SIZE);
+    if (any(lessThan(b, ivec3(0))) || any(greaterThanEqual(b, n)) ||
+        brickSlot[b.x + n.x * (b.y + n.y * b.z)] != MFX_NO_SLOT)
+        return i;
+    vec3 low = vec3(b * int(MFX_BRICK_SIZE)) + 0.5;
+    vec3 high = low + float(MFX_BRICK_SIZE) - 1.0;
+    if (any(lessThan(g, low)) || any(greaterThan(g, high))) return i;
+    vec3 world0 = draw.gridOrigin.xyz + draw.gridOrigin.w * low;
+    vec3 world1 = draw.gridOrigin.xyz + draw.gridOrigin.w * high;
+    float leave = crossBox(inv, world0, world1).y;
+    return max(i, int(floor((leave - gridEnter) / step - 0.5)));
+}
+#else
 vec4 sampleGrid(vec3 world) {
     vec3 uvw = (world - draw.gridOrigin.xyz) / (draw.gridOrigin.w * draw.gridSize.xyz);
     return texture(pigment, uvw);
 }
+#endif
 
 // The ramp at x, piecewise linear. No branch here or below reads the style's buffer (lavapipe
 // compiles a shader variant for each value a uniform-buffer branch takes): each step moves towards
@@ -128,6 +194,13 @@ void main() {
     for (int i = first; i < end && transmittance > 0.01; ++i) {
         float t = gridEnter + (float(i) + 0.5) * step;
         vec3 p = eye + t * dir;
+#ifdef MFX_SPARSE_PIGMENT
+        int last = lastEmptySample(i, p, inv, gridEnter, step);
+        if (last > i) {
+            i = last; // samples i..last read an empty brick alone: 0
+            continue;
+        }
+#endif
         vec4 s = sampleGrid(p);
         float density = max(s.a, 0.0) * scale;
         if (density <= 1e-5) continue;

@@ -2,6 +2,8 @@
 
 #include "core/scene/json_object.h"
 
+#include <cmath>
+
 namespace mfx::scene {
 
 using detail::Object;
@@ -14,7 +16,8 @@ std::vector<std::string> SmokeSpec::keys() {
                       "surface_step", "max_emitters", "sleep_threshold",
                       "follow",       "look",         "glow",
                       "cel_bands",    "anisotropy",   "pressure",
-                      "advection",    "storage"});
+                      "advection",    "storage",      "domain",
+                      "max_bricks"});
 }
 
 const std::vector<std::string>& smokePressureSolvers() {
@@ -32,6 +35,11 @@ const std::vector<std::string>& smokeStorages() {
     return names;
 }
 
+const std::vector<std::string>& smokeDomains() {
+    static const std::vector<std::string> names = {"dense", "sparse"};
+    return names;
+}
+
 SmokeShading smokeShading(SmokePreset preset) {
     SmokeShading s;
     s.preset = preset;
@@ -43,26 +51,51 @@ std::unique_ptr<EffectKindSpec> SmokeSpec::parse(const Object& o) {
     auto e = std::make_unique<SmokeSpec>();
     readTrail(o, e->trail);
     SmokeGridSpec& g = e->grid;
+    // The solver keys the sparse domain does not have (yet: fluid/solver_options.h,
+    // validateSparseOptions): given, they make the grid dense; with "domain": "sparse" they are
+    // refused, and a sparse grid does not read them.
+    const char* denseKey = nullptr;
+    for (const char* key : {"pressure", "advection", "storage", "vorticity", "follow"})
+        if (!denseKey && o.given(key)) denseKey = key;
+    g.domain = o.choice("domain", g.domain,
+                        denseKey && !o.given("domain") ? std::vector<std::string>{"dense"}
+                                                       : smokeDomains());
+    const bool sparse = g.sparse();
+    if (sparse && denseKey)
+        detail::fail(o.at(denseKey), "only for \"domain\": \"dense\" (the sparse domain solves "
+                                     "with jacobi and semi-lagrangian advection in fp32, without "
+                                     "vorticity confinement, and stands still)");
+    if (sparse) g.cells = {256, 256, 256};
     if (o.has("grid")) {
-        const std::vector<double> cells = o.numbers("grid", 3, 3, 4, 256);
+        // The dense grid's cells are all stored; the sparse domain's only where there is smoke,
+        // in whole bricks of 8 cells a side (a size between is rounded up).
+        const std::vector<double> cells =
+            o.numbers("grid", 3, 3, sparse ? 8 : 4, sparse ? 2048 : 256);
         for (size_t a = 0; a < 3; ++a) {
             if (cells[a] != std::floor(cells[a]))
                 detail::fail(o.at("grid") + "[" + std::to_string(a) + "]",
                              "expected a whole number");
-            g.cells[a] = uint32_t(cells[a]);
+            g.cells[a] = sparse ? (uint32_t(cells[a]) + 7u) / 8u * 8u : uint32_t(cells[a]);
         }
     }
     g.cellSize = float(o.number("cell_size", g.cellSize, 0.0, 10.0, true));
     g.jacobi = o.integer("jacobi", g.jacobi, 0, 10000);
-    g.pressure = o.choice("pressure", g.pressure, smokePressureSolvers());
-    g.advection = o.choice("advection", g.advection, smokeAdvectionSchemes());
-    g.storage = o.choice("storage", g.storage, smokeStorages());
+    if (!sparse) {
+        g.pressure = o.choice("pressure", g.pressure, smokePressureSolvers());
+        g.advection = o.choice("advection", g.advection, smokeAdvectionSchemes());
+        g.storage = o.choice("storage", g.storage, smokeStorages());
+    }
     g.fade = float(o.number("fade", g.fade, 0.0, 100.0));
     g.drag = float(o.number("drag", g.drag, 0.0, 100.0));
     g.stepsPerSecond = float(o.number("steps_per_second", g.stepsPerSecond, 1.0, 1000.0));
-    g.follow = o.boolean("follow", g.follow);
+    if (!sparse) g.follow = o.boolean("follow", g.follow);
     g.buoyancy = float(o.number("buoyancy", g.buoyancy, -100.0, 100.0));
-    g.vorticity = float(o.number("vorticity", g.vorticity, 0.0, 100.0));
+    if (!sparse) g.vorticity = float(o.number("vorticity", g.vorticity, 0.0, 100.0));
+    if (sparse) {
+        g.maxBricks = o.integer("max_bricks", g.maxBricks, 1, 1u << 20);
+    } else if (o.given("max_bricks")) {
+        detail::fail(o.at("max_bricks"), "only for \"domain\": \"sparse\"");
+    }
     e->impulseScale = float(o.number("impulse_k", e->impulseScale, 0.0, 100.0));
     e->radius = float(o.number("radius", e->radius, 0.0, 10.0, true));
     e->strength = float(o.number("strength", e->strength, 0.0, 1000.0));

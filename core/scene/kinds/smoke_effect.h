@@ -45,6 +45,12 @@ struct SmokeGridSpec {
     std::string pressure = "jacobi";           // jacobi, rbgs, multigrid, mgpcg
     std::string advection = "semi-lagrangian"; // semi-lagrangian, maccormack, bfecc
     std::string storage = "fp32";              // fp32, fp16 (fields stored in 16 bits)
+    // dense: a box of `cells` around the effects; sparse: a virtual domain of `cells` (default
+    // 256^3, multiples of 8) of which only the 8^3-cell bricks with smoke are stored and stepped
+    // (fluid/sparse_smoke_solver.h), at most maxBricks of them at once.
+    std::string domain = "dense";
+    uint32_t maxBricks = 4096;
+    bool sparse() const { return domain == "sparse"; }
     bool operator==(const SmokeGridSpec&) const = default;
 };
 
@@ -52,6 +58,7 @@ struct SmokeGridSpec {
 const std::vector<std::string>& smokePressureSolvers();
 const std::vector<std::string>& smokeAdvectionSchemes();
 const std::vector<std::string>& smokeStorages();
+const std::vector<std::string>& smokeDomains();
 
 struct SmokeSpec : TrailEffect<SmokeSpec> {
     static constexpr const char* kType = "smoke";
