@@ -3,10 +3,15 @@
 // loops so the scene runs as long as asked; the first frames (pipeline compiles) are not timed.
 // Prints a table of median GPU milliseconds per pass and the whole frame's median wall time
 // (record + submit + wait, as a viewer waits for it) and frames per second; --json on request.
+// With --sparse N, the same scene again with its smoke on a sparse domain of N^3 cells at the same
+// cell size, in the same process: both tables, then the smoke's GPU ms a step of each and their
+// ratio, memory and active bricks.
 #include "apps/commands.h"
 #include "apps/progress.h"
 
 #include "core/gpu/commands.h"
+#include "core/scene/json_object.h"
+#include "core/scene/kinds/smoke_effect.h"
 #include "render/scene_player.h"
 #include "sim/scene_simulation.h"
 
@@ -31,38 +36,34 @@ std::string simulationRow(const std::string& pass) {
     return stage;
 }
 
-} // namespace
-
-int runBenchFrame(const cli::ParsedArgs& parsed) {
-    auto timed = cli::parseUnsigned(parsed.value("frames", "60"), 1, 100000, "--frames");
-    auto warmup = cli::parseUnsigned(parsed.value("warmup", "5"), 0, 1000, "--warmup");
-    const Result<uint32_t> samples = parseSamples(parsed);
-    if (reportFirstError(timed, warmup, samples)) return kExitUsage;
-    cli::ParsedArgs sceneArgs = parsed;
-    sceneArgs.values.erase("frames"); // --frames counts timed frames here
-    SceneArgument argument;
-    int exitCode = kExitOk;
-    if (!loadSceneArgument(sceneArgs, argument, exitCode, "960x540")) return exitCode;
-    scene::Scene& s = argument.scene;
-    s.character.loop = true;
-    s.output.frames = warmup.value() + timed.value();
-    std::ofstream jsonFile;
-    if (!openOutputFile(parsed.value("json"), jsonFile)) return kExitFailure;
-
-    const std::unique_ptr<gpu::Context> context = createTimingContext(parsed, "the passes");
-    if (!context) return kExitFailure;
-    const gpu::Context& ctx = *context;
-    const std::unique_ptr<sim::SceneSimulation> created =
-        createSceneSimulation(ctx, argument, exitCode);
-    if (!created) return exitCode;
-    sim::SceneSimulation& sim = *created;
-    render::ScenePlayer player(ctx, sim, s.output.width, s.output.height,
-                               VkSampleCountFlagBits(samples.value()));
-
-    std::vector<std::string> rowOrder; // first appearance
+// One scene's frames: each pass's GPU ms per timed frame (rows, in first-appearance order), the
+// whole frame's GPU and wall ms, and its smoke: GPU ms of a step (the smoke passes of a frame over
+// its steps, in frames where a grid stepped), the sparse grids' active bricks, the fluid memory.
+struct FrameRun {
+    std::vector<std::string> rowOrder;
     std::map<std::string, std::vector<double>> rows;
-    std::vector<double> frameWall, frameGpu;
-    Progress progress("benchmarking", sim.frameCount());
+    std::vector<double> frameWall, frameGpu, smokeStepMs, activeBricks;
+    uint64_t fluidBytes = 0; // the largest of any frame
+    std::array<uint32_t, 3> grid{0, 0, 0};
+    uint32_t stepsPerFrame = 0;
+    bool sparse = false;
+    uint32_t samples = 0;
+};
+
+FrameRun runFrames(const gpu::Context& ctx, sim::SceneSimulation& sim, uint32_t warmup,
+                   uint32_t samples, const char* label) {
+    const scene::Scene& s = sim.scene();
+    render::ScenePlayer player(ctx, sim, s.output.width, s.output.height,
+                               VkSampleCountFlagBits(samples));
+    FrameRun run;
+    run.samples = uint32_t(player.renderer().sceneTarget().samples);
+    if (!sim.smokeGrids().empty()) {
+        const fluid::SmokeGrid& g = sim.smokeGrids().front().grid;
+        run.grid = {g.options().grid.cellsX, g.options().grid.cellsY, g.options().grid.cellsZ};
+        run.stepsPerFrame = g.settings().stepsPerFrame;
+        run.sparse = g.sparse();
+    }
+    Progress progress(label, sim.frameCount());
     for (uint32_t f = 0; f < sim.frameCount(); ++f) {
         const auto start = std::chrono::steady_clock::now();
         const sim::SimulationFrameStats stats = player.play(f);
@@ -71,66 +72,181 @@ int runBenchFrame(const cli::ParsedArgs& parsed) {
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
                 .count();
         progress.update(f + 1);
-        if (f < warmup.value()) continue;
+        if (f < warmup) continue;
         std::map<std::string, double> frame;
-        double gpu = 0.0;
+        double gpu = 0.0, smoke = 0.0;
         auto add = [&](const std::string& name, double ms) {
-            if (!rows.count(name) && !frame.count(name)) rowOrder.push_back(name); // pass order
+            if (!run.rows.count(name) && !frame.count(name))
+                run.rowOrder.push_back(name); // pass order
             frame[name] += ms;
             gpu += ms;
         };
-        for (const sim::PassRecord& p : stats.passes) // the drawing's as "render/<pass>"
-            add(p.name.rfind("render/", 0) == 0 ? p.name : simulationRow(p.name), p.gpuMs);
+        for (const sim::PassRecord& p : stats.passes) { // the drawing's as "render/<pass>"
+            const std::string row =
+                p.name.rfind("render/", 0) == 0 ? p.name : simulationRow(p.name);
+            add(row, p.gpuMs);
+            if (row.rfind("smoke/", 0) == 0) smoke += p.gpuMs;
+        }
         // A pass missing from some frames (a grid asleep) counts 0 there.
-        const size_t timedSoFar = frameWall.size();
-        for (const std::string& name : rowOrder) {
-            std::vector<double>& series = rows[name];
+        const size_t timedSoFar = run.frameWall.size();
+        for (const std::string& name : run.rowOrder) {
+            std::vector<double>& series = run.rows[name];
             series.resize(timedSoFar, 0.0);
             series.push_back(frame.count(name) ? frame[name] : 0.0);
         }
-        frameWall.push_back(wall);
-        frameGpu.push_back(gpu);
+        run.frameWall.push_back(wall);
+        run.frameGpu.push_back(gpu);
+        if (stats.awakeGrids > 0 && run.stepsPerFrame > 0)
+            run.smokeStepMs.push_back(smoke / double(run.stepsPerFrame));
+        for (const sim::GridFrameState& g : stats.grids)
+            if (g.sparse && g.awake) run.activeBricks.push_back(double(g.activeBricks));
+        run.fluidBytes = std::max(run.fluidBytes, stats.fluidBytes);
     }
     progress.finish();
+    return run;
+}
 
-    const double wallMs = median(frameWall), gpuMs = median(frameGpu);
-    std::array<uint32_t, 3> grid{0, 0, 0};
-    uint32_t stepsPerFrame = 0;
-    if (!sim.smokeGrids().empty()) {
-        const fluid::GridShape& g = sim.smokeGrids().front().grid.options().grid;
-        grid = {g.cellsX, g.cellsY, g.cellsZ};
-        stepsPerFrame = sim.smokeGrids().front().grid.settings().stepsPerFrame;
-    }
+void printRun(const gpu::Context& ctx, const scene::Scene& s, const FrameRun& run, uint32_t timed,
+              uint32_t warmup) {
+    const double gpuMs = median(run.frameGpu), wallMs = median(run.frameWall);
     std::printf("frame benchmark on %s (%s)\n%s at %ux%u, %u samples per pixel, smoke grid "
-                "%ux%ux%u (%u steps per frame); median of %u frames after %u warm-up frames\n\n",
+                "%ux%ux%u%s (%u steps per frame); median of %u frames after %u warm-up frames\n\n",
                 ctx.info().name.c_str(), ctx.info().driverInfo.c_str(), s.file.c_str(),
-                s.output.width, s.output.height, uint32_t(player.renderer().sceneTarget().samples),
-                grid[0], grid[1], grid[2], stepsPerFrame, timed.value(), warmup.value());
+                s.output.width, s.output.height, run.samples, run.grid[0], run.grid[1], run.grid[2],
+                run.sparse ? " sparse" : "", run.stepsPerFrame, timed, warmup);
     std::printf("%-32s %10s %8s\n", "pass", "GPU ms", "share");
-    nlohmann::json passes = nlohmann::json::object();
-    for (const std::string& name : rowOrder) {
-        const double ms = median(rows[name]);
-        passes[name] = ms;
+    for (const std::string& name : run.rowOrder) {
+        const double ms = median(run.rows.at(name));
         std::printf("%-32s %10.2f %7.1f%%\n", name.c_str(), ms, gpuMs > 0 ? 100.0 * ms / gpuMs : 0);
     }
     std::printf("%-32s %10.2f\n", "GPU, whole frame", gpuMs);
     std::printf("%-32s %10.2f   (%.1f frames per second)\n", "wall, whole frame", wallMs,
                 1000.0 / wallMs);
-    if (jsonFile.is_open())
-        jsonFile << nlohmann::json{{"device", ctx.info().name},
-                                   {"driver", ctx.info().driverInfo},
-                                   {"scene", s.file},
-                                   {"size", {s.output.width, s.output.height}},
-                                   {"grid", grid},
-                                   {"steps_per_frame", stepsPerFrame},
-                                   {"samples", uint32_t(player.renderer().sceneTarget().samples)},
-                                   {"frames", timed.value()},
-                                   {"frame_ms", wallMs},
-                                   {"gpu_ms", gpuMs},
-                                   {"fps", 1000.0 / wallMs},
-                                   {"passes", passes}}
-                        .dump(2)
-                 << "\n";
+}
+
+nlohmann::json runJson(const FrameRun& run) {
+    nlohmann::json passes = nlohmann::json::object();
+    for (const std::string& name : run.rowOrder)
+        passes[name] = median(run.rows.at(name));
+    const double wallMs = median(run.frameWall);
+    nlohmann::json j = {{"grid", run.grid},
+                        {"sparse", run.sparse},
+                        {"steps_per_frame", run.stepsPerFrame},
+                        {"samples", run.samples},
+                        {"frame_ms", wallMs},
+                        {"gpu_ms", median(run.frameGpu)},
+                        {"fps", 1000.0 / wallMs},
+                        {"smoke_step_ms", median(run.smokeStepMs)},
+                        {"fluid_bytes", run.fluidBytes},
+                        {"passes", passes}};
+    if (run.sparse) j["active_bricks"] = median(run.activeBricks);
+    return j;
+}
+
+// The scene with every smoke effect on a sparse domain of `cells`^3 at its own cell size (the
+// dense-only solver keys back at the sparse domain's own).
+Result<scene::Scene> sparseScene(scene::Scene s, uint32_t cells) {
+    for (scene::EffectSpec& e : s.effects) {
+        scene::SmokeSpec* smoke = e.as<scene::SmokeSpec>();
+        if (!smoke) continue;
+        scene::SmokeGridSpec& g = smoke->grid;
+        if (g.pressure != "jacobi" || g.advection != "semi-lagrangian" || g.storage != "fp32" ||
+            g.vorticity != 0.0f)
+            return Error{s.file + ": smoke effect \"" + e.name +
+                         "\" asks for a solver option the sparse domain does not have (pressure " +
+                         g.pressure + ", advection " + g.advection + ", storage " + g.storage +
+                         ", vorticity " + scene::detail::formatNumber(g.vorticity) + ")"};
+        g.domain = "sparse";
+        g.cells = {cells, cells, cells};
+        g.follow = false;
+    }
+    return s;
+}
+
+} // namespace
+
+int runBenchFrame(const cli::ParsedArgs& parsed) {
+    auto timed = cli::parseUnsigned(parsed.value("frames", "60"), 1, 100000, "--frames");
+    auto warmup = cli::parseUnsigned(parsed.value("warmup", "5"), 0, 1000, "--warmup");
+    auto sparseCells = cli::parseUnsigned(parsed.value("sparse", "0"), 0, 2048, "--sparse");
+    const Result<uint32_t> samples = parseSamples(parsed);
+    if (reportFirstError(timed, warmup, sparseCells, samples)) return kExitUsage;
+    if (sparseCells.value() % 8 != 0) {
+        printError("--sparse: " + std::to_string(sparseCells.value()) +
+                   " is not a multiple of 8 (the sparse domain's bricks are 8 cells a side)");
+        return kExitUsage;
+    }
+    cli::ParsedArgs sceneArgs = parsed;
+    sceneArgs.values.erase("frames"); // --frames counts timed frames here
+    SceneArgument argument;
+    int exitCode = kExitOk;
+    if (!loadSceneArgument(sceneArgs, argument, exitCode, "960x540")) return exitCode;
+    scene::Scene& s = argument.scene;
+    s.character.loop = true;
+    s.output.frames = warmup.value() + timed.value();
+    SceneArgument sparseArgument;
+    if (sparseCells.value() > 0) {
+        Result<scene::Scene> converted = sparseScene(s, sparseCells.value());
+        if (!converted) {
+            printError(converted.error().message);
+            return kExitFailure;
+        }
+        sparseArgument.scene = std::move(converted).value();
+        sparseArgument.character = argument.character;
+    }
+    std::ofstream jsonFile;
+    if (!openOutputFile(parsed.value("json"), jsonFile)) return kExitFailure;
+
+    const std::unique_ptr<gpu::Context> context = createTimingContext(parsed, "the passes");
+    if (!context) return kExitFailure;
+    const gpu::Context& ctx = *context;
+    FrameRun run, sparseRun;
+    {
+        const std::unique_ptr<sim::SceneSimulation> created =
+            createSceneSimulation(ctx, argument, exitCode);
+        if (!created) return exitCode;
+        run = runFrames(ctx, *created, warmup.value(), samples.value(), "benchmarking");
+    }
+    printRun(ctx, s, run, timed.value(), warmup.value());
+    nlohmann::json json = runJson(run);
+    json["device"] = ctx.info().name;
+    json["driver"] = ctx.info().driverInfo;
+    json["scene"] = s.file;
+    json["size"] = {s.output.width, s.output.height};
+    json["frames"] = timed.value();
+    if (sparseCells.value() > 0) {
+        {
+            const std::unique_ptr<sim::SceneSimulation> created =
+                createSceneSimulation(ctx, sparseArgument, exitCode);
+            if (!created) return exitCode;
+            sparseRun = runFrames(ctx, *created, warmup.value(), samples.value(),
+                                  "benchmarking the sparse domain");
+        }
+        std::printf("\n");
+        printRun(ctx, sparseArgument.scene, sparseRun, timed.value(), warmup.value());
+        // The smoke's cost a step, dense as the scene has it against the sparse domain, same run.
+        const double denseStep = median(run.smokeStepMs),
+                     sparseStep = median(sparseRun.smokeStepMs);
+        const double mib = 1.0 / (1024.0 * 1024.0);
+        std::printf(
+            "\nsmoke a step (every smoke pass of a frame over its steps, frames with a grid "
+            "awake), same run\n");
+        std::printf("%-26s %14s %14s\n", "", "dense", "sparse");
+        std::printf("%-26s %14s %14s\n", "grid",
+                    (std::to_string(run.grid[0]) + "x" + std::to_string(run.grid[1]) + "x" +
+                     std::to_string(run.grid[2]))
+                        .c_str(),
+                    (std::to_string(sparseRun.grid[0]) + "^3 virtual").c_str());
+        std::printf("%-26s %14.3f %14.3f\n", "GPU ms a step (median)", denseStep, sparseStep);
+        std::printf("%-26s %14.1f %14.1f\n", "fluid MiB (largest)", double(run.fluidBytes) * mib,
+                    double(sparseRun.fluidBytes) * mib);
+        std::printf("%-26s %14s %14.0f\n", "active bricks (median)", "-",
+                    median(sparseRun.activeBricks));
+        std::printf("sparse / dense: %.2f a step\n", denseStep > 0 ? sparseStep / denseStep : 0.0);
+        json["sparse_run"] = runJson(sparseRun);
+        json["sparse_over_dense_step"] = denseStep > 0 ? sparseStep / denseStep : 0.0;
+    }
+    if (jsonFile.is_open()) jsonFile << json.dump(2) << "\n";
     return finishValidation(ctx, kExitOk);
 }
 

@@ -154,6 +154,9 @@ CommandLine benchFrameCommandLine() {
     command.option("size", "WxH", "image size (default 960x540)")
         .option("frames", "N", "timed frames (default 60)")
         .option("warmup", "N", "frames run first and not timed (default 5)")
+        .option("sparse", "N",
+                "also run the scene with its smoke on a sparse domain of N^3 cells (a multiple "
+                "of 8, same cell size) and compare the smoke's GPU ms a step, same run")
         .samples()
         .json();
     return command;

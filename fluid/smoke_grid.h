@@ -10,11 +10,12 @@
 //     after each frame; once both are below the threshold (speed: threshold x cell size / dt) it
 //     sleeps: zero dispatches until an effect is live again.
 // A sparse grid (settings.sparse: fluid/sparse_smoke_solver.h) stands still over its virtual
-// domain, the stage: it rebuilds its active bricks before each step (live cells above the sleep
-// thresholds, the emitters' footprints, one brick of reach around them), so smoke stays where it
-// was left; it sleeps once no effect is live and no brick is active, and it holds at most
-// maxBricks bricks, the budget (the first frame that wants more gets one line, budgetLine).
-// Which effects feed the grid and when is the simulation's business (sim/scene_simulation.h).
+// domain, the stage: it rebuilds its active bricks before each step (cells with pigment above the
+// sleep threshold or air faster than liveSpeed, the emitters' footprints, one brick of reach
+// around them), so smoke stays where it was left; it sleeps once no effect is live and no brick is
+// active, and it holds at most maxBricks bricks, the budget (the first frame that wants more gets
+// one line, budgetLine). Which effects feed the grid and when is the simulation's business
+// (sim/scene_simulation.h).
 #pragma once
 
 #include "core/gpu/resources.h"
@@ -40,6 +41,9 @@ struct SmokeGridSettings {
     uint32_t emitterCapacity = 1; // records one step may splat
     bool sparse = false;          // options.grid is a virtual domain of 8^3 bricks
     uint32_t maxBricks = 4096;    // sparse: the budget of stored bricks
+    // Sparse: a brick with no pigment above sleepThreshold stays live while the air in one of its
+    // cells moves faster than this (world units a second).
+    float liveSpeed = 0.1f;
 };
 
 class SmokeGrid {

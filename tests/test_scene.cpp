@@ -102,7 +102,7 @@ TEST(SceneFile, SmokeAsksForTheSparseDomain) {
     const scene::Scene s = parse(R"({"effects": [
         {"type": "smoke", "name": "a", "domain": "sparse"},
         {"type": "smoke", "name": "b", "domain": "sparse", "grid": [512, 121, 256],
-         "max_bricks": 900},
+         "max_bricks": 900, "live_speed": 0.5},
         {"type": "smoke", "name": "c"}]})");
     ASSERT_EQ(s.effects.size(), 3u);
     const scene::SmokeGridSpec& a = s.effects[0].as<scene::SmokeSpec>()->grid;
@@ -114,6 +114,8 @@ TEST(SceneFile, SmokeAsksForTheSparseDomain) {
     EXPECT_FLOAT_EQ(a.cellSize, 0.05f);
     EXPECT_EQ(b.cells, (std::array<uint32_t, 3>{512, 128, 256})); // in whole bricks
     EXPECT_EQ(b.maxBricks, 900u);
+    EXPECT_FLOAT_EQ(a.liveSpeed, 0.1f);
+    EXPECT_FLOAT_EQ(b.liveSpeed, 0.5f);
     EXPECT_FALSE(c.sparse());
     EXPECT_EQ(c.cells, (std::array<uint32_t, 3>{48, 48, 48}));
     EXPECT_FALSE(a == c); // a sparse and a dense effect never share a grid
@@ -212,6 +214,8 @@ const BadScene kBadScenes[] = {
      "effects[0].domain: \"adaptive\" is not one of: dense, sparse"},
     {"MaxBricksOnADenseGrid", R"({"effects": [{"type": "smoke", "max_bricks": 100}]})",
      "effects[0].max_bricks: only for \"domain\": \"sparse\""},
+    {"LiveSpeedOnADenseGrid", R"({"effects": [{"type": "smoke", "live_speed": 0.5}]})",
+     "effects[0].live_speed: only for \"domain\": \"sparse\""},
     {"ZeroMaxBricks", R"({"effects": [{"type": "smoke", "domain": "sparse", "max_bricks": 0}]})",
      "effects[0].max_bricks: 0 is outside 1..1048576"},
     {"SparseWithMultigrid",

@@ -17,7 +17,7 @@ std::vector<std::string> SmokeSpec::keys() {
                       "follow",       "look",         "glow",
                       "cel_bands",    "anisotropy",   "pressure",
                       "advection",    "storage",      "domain",
-                      "max_bricks"});
+                      "max_bricks",   "live_speed"});
 }
 
 const std::vector<std::string>& smokePressureSolvers() {
@@ -93,8 +93,10 @@ std::unique_ptr<EffectKindSpec> SmokeSpec::parse(const Object& o) {
     if (!sparse) g.vorticity = float(o.number("vorticity", g.vorticity, 0.0, 100.0));
     if (sparse) {
         g.maxBricks = o.integer("max_bricks", g.maxBricks, 1, 1u << 20);
-    } else if (o.given("max_bricks")) {
-        detail::fail(o.at("max_bricks"), "only for \"domain\": \"sparse\"");
+        g.liveSpeed = float(o.number("live_speed", g.liveSpeed, 0.0, 1000.0));
+    } else {
+        for (const char* key : {"max_bricks", "live_speed"})
+            if (o.given(key)) detail::fail(o.at(key), "only for \"domain\": \"sparse\"");
     }
     e->impulseScale = float(o.number("impulse_k", e->impulseScale, 0.0, 100.0));
     e->radius = float(o.number("radius", e->radius, 0.0, 10.0, true));

@@ -50,6 +50,7 @@ struct SmokeGridSpec {
     // (fluid/sparse_smoke_solver.h), at most maxBricks of them at once.
     std::string domain = "dense";
     uint32_t maxBricks = 4096;
+    float liveSpeed = 0.1f; // sparse: air faster than this (m/s) keeps a brick without smoke
     bool sparse() const { return domain == "sparse"; }
     bool operator==(const SmokeGridSpec&) const = default;
 };
