@@ -72,6 +72,15 @@ int cellElementAt(ivec3 q) {
     return slot == MFX_NO_SLOT ? -1 : cellElementIn(slot, q - b * kBrick);
 }
 
+// Where the cell at brick-local position l of `at`'s brick is stored, l one step from the
+// invocation's cell: in its own slot while l stays in the brick (no table lookup), else as
+// cellElementAt (q: the cell in the domain).
+int nearbyCellElement(BrickCell at, ivec3 l, ivec3 q) {
+    if (all(greaterThanEqual(l, ivec3(0))) && all(lessThan(l, ivec3(kBrick))))
+        return cellElementIn(at.slot, l);
+    return cellElementAt(q);
+}
+
 // Where face q of component c (0 <= q[c] <= n[c]) is stored, or -1: in the brick of the cell
 // above it along c, else as layer 8 of the brick below.
 int faceElementAt(int c, ivec3 q) {

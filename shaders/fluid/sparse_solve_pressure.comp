@@ -27,10 +27,11 @@ void main() {
     for (int s = 0; s < 6; ++s) {
         int axis = s >> 1;
         bool high = (s & 1) != 0;
-        ivec3 neighbour = q;
-        neighbour[axis] += high ? 1 : -1;
+        ivec3 step = ivec3(0);
+        step[axis] = high ? 1 : -1;
+        ivec3 neighbour = q + step;
         if (neighbour[axis] >= 0 && neighbour[axis] < n[axis]) {
-            int e = cellElementAt(neighbour);
+            int e = nearbyCellElement(at, at.local + step, neighbour);
             sum += e < 0 ? 0.0 : pressureIn[e];
             count += 1.0;
         } else if (boundaryKind(axis, high) == MFX_BOUNDARY_OPEN) {
