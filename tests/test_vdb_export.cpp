@@ -12,6 +12,7 @@
 
 #include <openvdb/openvdb.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <set>
 
@@ -208,10 +209,45 @@ TEST_F(VdbSceneTest, EachFramesFileHoldsTheGridsStateWhereTheGridStands) {
     }
     EXPECT_EQ(out.files, 4u);
     fluid::SmokeGrid& grid = sim.smokeGrids()[0].grid;
-    const FieldState s = grid.solver().state();
+    const FieldState s = grid.state();
     expectFileHolds(
         out.dir + "/kick_smoke_0003.vdb", s, grid.origin(), [](glm::vec3 p) { return p; },
         [](glm::uvec3) { return true; });
+}
+
+// The same for a sparse scene grid: its files hold the stored cells alone, with the values its
+// atlas holds there.
+TEST_F(VdbSceneTest, ASparseGridsFilesHoldItsStoredCells) {
+    Result<scene::Scene> parsed = scene::parseScene(R"({
+        "character": {"clip": "roundhouse_kick"},
+        "output": {"fps": 30, "frames": 4},
+        "effects": [{"type": "smoke", "name": "sparse_smoke", "bones": ["foot_r"],
+                     "domain": "sparse", "grid": [32, 32, 32], "cell_size": 0.1}]})",
+                                                    "vdb.json");
+    ASSERT_TRUE(parsed.ok()) << parsed.error().message;
+    const anim::Character fighter = anim::makeFighter();
+    auto created = sim::SceneSimulation::create(ctx(), parsed.value(), fighter);
+    ASSERT_TRUE(created.ok()) << created.error().message;
+    sim::SceneSimulation& sim = *created.value();
+    app::VdbOutput out;
+    out.on = true;
+    out.dir = std::string(MFX_TEST_OUTPUT_DIR) + "/vdb";
+    std::filesystem::create_directories(out.dir);
+    for (uint32_t f = 0; f < 4; ++f) {
+        sim.runFrame(f);
+        ASSERT_TRUE(app::writeFrameVdbs(sim, f, out).ok());
+    }
+    fluid::SmokeGrid& grid = sim.smokeGrids()[0].grid;
+    ASSERT_TRUE(grid.sparse());
+    const FieldState s = grid.state();
+    const std::vector<uint8_t> stored = grid.storedCells();
+    const size_t storedCount = size_t(std::count(stored.begin(), stored.end(), uint8_t(1)));
+    EXPECT_GT(storedCount, 0u);
+    EXPECT_LT(storedCount, stored.size());
+    const GridShape& g = grid.options().grid;
+    expectFileHolds(
+        out.dir + "/sparse_smoke_0003.vdb", s, grid.origin(), [](glm::vec3 p) { return p; },
+        [&](glm::uvec3 q) { return stored[g.index(q.x, q.y, q.z)] != 0; });
 }
 
 TEST(VdbCli, ABadUpAxisIsOneErrorLine) {
