@@ -2,6 +2,7 @@
 
 #include "core/gpu/commands.h"
 #include "core/gpu/context.h"
+#include "fluid/stage_dispatches.h"
 #include "shaders/shared/fluid.h"
 
 #include <algorithm>
@@ -433,13 +434,7 @@ void SmokeSolver::recordStep(VkCommandBuffer cmd, gpu::GpuTimer* timer) {
         for (Stage stage : kStepOrder) {
             const uint32_t before = dispatches_;
             recordStageOnly(cmd, stage, timer);
-            const std::string name = stageName(stage);
-            auto it = std::find_if(lastStepDispatches_.begin(), lastStepDispatches_.end(),
-                                   [&](const auto& entry) { return entry.first == name; });
-            if (it == lastStepDispatches_.end())
-                lastStepDispatches_.emplace_back(name, dispatches_ - before);
-            else
-                it->second += dispatches_ - before;
+            countStageDispatches(lastStepDispatches_, stage, dispatches_ - before);
         }
 }
 

@@ -3,6 +3,7 @@
 #include "core/gpu/commands.h"
 #include "core/gpu/context.h"
 #include "fluid/smoke_fields.h"
+#include "fluid/stage_dispatches.h"
 #include "shaders/embedded.h"
 #include "shaders/shared/sparse_fluid.h"
 
@@ -686,13 +687,7 @@ void SparseSmokeSolver::recordStep(VkCommandBuffer cmd, gpu::GpuTimer* timer) {
         for (Stage stage : kStepOrder) {
             const uint32_t before = dispatches_;
             recordStageOnly(cmd, stage, timer);
-            const std::string name = stageName(stage);
-            auto it = std::find_if(lastStepDispatches_.begin(), lastStepDispatches_.end(),
-                                   [&](const auto& entry) { return entry.first == name; });
-            if (it == lastStepDispatches_.end())
-                lastStepDispatches_.emplace_back(name, dispatches_ - before);
-            else
-                it->second += dispatches_ - before;
+            countStageDispatches(lastStepDispatches_, stage, dispatches_ - before);
         }
 }
 

@@ -10,6 +10,7 @@
 #include "sim/scene_simulation.h"
 #include "tests/gpu_test.h"
 #include "tests/moving_point.h"
+#include "tests/scene_sim_util.h"
 
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
@@ -18,19 +19,6 @@ namespace mfx::test {
 namespace {
 
 using SceneSimulationTest = GpuTest;
-
-scene::Scene parseScene(const std::string& text) {
-    Result<scene::Scene> s = scene::parseScene(text, "test.json");
-    EXPECT_TRUE(s.ok()) << s.error().message;
-    return s ? std::move(s).value() : scene::Scene{};
-}
-
-std::unique_ptr<sim::SceneSimulation> simulate(const gpu::Context& ctx, const scene::Scene& s,
-                                               const anim::Character& character) {
-    auto created = sim::SceneSimulation::create(ctx, s, character);
-    EXPECT_TRUE(created.ok()) << created.error().message;
-    return created ? std::move(created).value() : nullptr;
-}
 
 bool ran(const sim::SimulationFrameStats& stats, const std::string& name) {
     for (const sim::PassRecord& p : stats.passes)

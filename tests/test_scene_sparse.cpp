@@ -9,6 +9,7 @@
 #include "sim/scene_simulation.h"
 #include "tests/gpu_test.h"
 #include "tests/moving_point.h"
+#include "tests/scene_sim_util.h"
 
 #include <cmath>
 
@@ -16,19 +17,6 @@ namespace mfx::test {
 namespace {
 
 using SparseSceneTest = GpuTest;
-
-scene::Scene parseScene(const std::string& text) {
-    Result<scene::Scene> s = scene::parseScene(text, "test.json");
-    EXPECT_TRUE(s.ok()) << s.error().message;
-    return s ? std::move(s).value() : scene::Scene{};
-}
-
-std::unique_ptr<sim::SceneSimulation> simulate(const gpu::Context& ctx, const scene::Scene& s,
-                                               const anim::Character& character) {
-    auto created = sim::SceneSimulation::create(ctx, s, character);
-    EXPECT_TRUE(created.ok()) << created.error().message;
-    return created ? std::move(created).value() : nullptr;
-}
 
 // The pigment-weighted centre of a grid's smoke in the world, and its total alpha.
 struct Smoke {

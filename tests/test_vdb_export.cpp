@@ -9,6 +9,7 @@
 #include "tests/cli_run.h"
 #include "tests/fluid_test_util.h"
 #include "tests/gpu_test.h"
+#include "tests/scene_sim_util.h"
 
 #include <openvdb/openvdb.h>
 
@@ -185,30 +186,38 @@ TEST(VdbExport, AFileThatCannotBeWrittenIsOneErrorNamingIt) {
 
 using VdbSceneTest = GpuTest;
 
-// A scene's smoke, frame by frame through the commands' writer: each file holds its grid's state
-// where the grid stands in the world.
-TEST_F(VdbSceneTest, EachFramesFileHoldsTheGridsStateWhereTheGridStands) {
-    Result<scene::Scene> parsed = scene::parseScene(R"({
-        "character": {"clip": "roundhouse_kick"},
-        "output": {"fps": 30, "frames": 4},
-        "effects": [{"type": "smoke", "name": "kick_smoke", "bones": ["foot_r"],
-                     "grid": [16, 16, 16], "cell_size": 0.1}]})",
-                                                    "vdb.json");
-    ASSERT_TRUE(parsed.ok()) << parsed.error().message;
-    const anim::Character fighter = anim::makeFighter();
-    auto created = sim::SceneSimulation::create(ctx(), parsed.value(), fighter);
-    ASSERT_TRUE(created.ok()) << created.error().message;
-    sim::SceneSimulation& sim = *created.value();
-    app::VdbOutput out;
+// The first 4 frames of a scene (`smoke`: its one smoke effect's keys), each frame's files written
+// through the commands' writer into `out`.
+std::unique_ptr<sim::SceneSimulation> runWritingVdbs(const gpu::Context& ctx,
+                                                     const std::string& smoke,
+                                                     const anim::Character& fighter,
+                                                     app::VdbOutput& out) {
+    const scene::Scene s = parseScene(R"({"character": {"clip": "roundhouse_kick"},
+        "output": {"fps": 30, "frames": 4}, "effects": [{"type": "smoke", )" +
+                                      smoke + "}]}");
+    auto sim = simulate(ctx, s, fighter);
+    if (!sim) return nullptr;
     out.on = true;
     out.dir = std::string(MFX_TEST_OUTPUT_DIR) + "/vdb";
     std::filesystem::create_directories(out.dir);
     for (uint32_t f = 0; f < 4; ++f) {
-        sim.runFrame(f);
-        ASSERT_TRUE(app::writeFrameVdbs(sim, f, out).ok());
+        sim->runFrame(f);
+        EXPECT_TRUE(app::writeFrameVdbs(*sim, f, out).ok());
     }
+    return sim;
+}
+
+// A scene's smoke, frame by frame through the commands' writer: each file holds its grid's state
+// where the grid stands in the world.
+TEST_F(VdbSceneTest, EachFramesFileHoldsTheGridsStateWhereTheGridStands) {
+    const anim::Character fighter = anim::makeFighter();
+    app::VdbOutput out;
+    auto sim = runWritingVdbs(ctx(), R"("name": "kick_smoke", "bones": ["foot_r"],
+        "grid": [16, 16, 16], "cell_size": 0.1)",
+                              fighter, out);
+    ASSERT_TRUE(sim);
     EXPECT_EQ(out.files, 4u);
-    fluid::SmokeGrid& grid = sim.smokeGrids()[0].grid;
+    fluid::SmokeGrid& grid = sim->smokeGrids()[0].grid;
     const FieldState s = grid.state();
     expectFileHolds(
         out.dir + "/kick_smoke_0003.vdb", s, grid.origin(), [](glm::vec3 p) { return p; },
@@ -218,26 +227,13 @@ TEST_F(VdbSceneTest, EachFramesFileHoldsTheGridsStateWhereTheGridStands) {
 // The same for a sparse scene grid: its files hold the stored cells alone, with the values its
 // atlas holds there.
 TEST_F(VdbSceneTest, ASparseGridsFilesHoldItsStoredCells) {
-    Result<scene::Scene> parsed = scene::parseScene(R"({
-        "character": {"clip": "roundhouse_kick"},
-        "output": {"fps": 30, "frames": 4},
-        "effects": [{"type": "smoke", "name": "sparse_smoke", "bones": ["foot_r"],
-                     "domain": "sparse", "grid": [32, 32, 32], "cell_size": 0.1}]})",
-                                                    "vdb.json");
-    ASSERT_TRUE(parsed.ok()) << parsed.error().message;
     const anim::Character fighter = anim::makeFighter();
-    auto created = sim::SceneSimulation::create(ctx(), parsed.value(), fighter);
-    ASSERT_TRUE(created.ok()) << created.error().message;
-    sim::SceneSimulation& sim = *created.value();
     app::VdbOutput out;
-    out.on = true;
-    out.dir = std::string(MFX_TEST_OUTPUT_DIR) + "/vdb";
-    std::filesystem::create_directories(out.dir);
-    for (uint32_t f = 0; f < 4; ++f) {
-        sim.runFrame(f);
-        ASSERT_TRUE(app::writeFrameVdbs(sim, f, out).ok());
-    }
-    fluid::SmokeGrid& grid = sim.smokeGrids()[0].grid;
+    auto sim = runWritingVdbs(ctx(), R"("name": "sparse_smoke", "bones": ["foot_r"],
+        "domain": "sparse", "grid": [32, 32, 32], "cell_size": 0.1)",
+                              fighter, out);
+    ASSERT_TRUE(sim);
+    fluid::SmokeGrid& grid = sim->smokeGrids()[0].grid;
     ASSERT_TRUE(grid.sparse());
     const FieldState s = grid.state();
     const std::vector<uint8_t> stored = grid.storedCells();
