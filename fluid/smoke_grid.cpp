@@ -78,6 +78,7 @@ void SmokeGrid::place(glm::vec3 low, glm::vec3 high, glm::vec3 fallback,
     if (low.x > high.x) low = high = fallback + glm::vec3(0.0f, 0.5f * extent.y, 0.0f);
     origin_ = 0.5f * (low + high) - 0.5f * extent;
     if (floorHeight && origin_.y < *floorHeight && low.y >= *floorHeight) origin_.y = *floorHeight;
+    if (settings_.origin) origin_ = *settings_.origin;
     placedOrigin_ = origin_;
     rootAtPlacement_ = root;
 }

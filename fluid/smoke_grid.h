@@ -44,6 +44,8 @@ struct SmokeGridSettings {
     // Sparse: a brick with no pigment above sleepThreshold stays live while the air in one of its
     // cells moves faster than this (world units a second).
     float liveSpeed = 0.1f;
+    // Where the grid's low corner stands in the world, instead of place()'s centring.
+    std::optional<glm::vec3> origin;
 };
 
 class SmokeGrid {
@@ -52,7 +54,8 @@ public:
 
     // Centres the grid on the box [low, high] (low > high: no box; it stands centred on
     // `fallback`, its base there), on the floor at `floorHeight` when the box is above it; `root`
-    // is where the character's root is now, the origin of follow().
+    // is where the character's root is now, the origin of follow(). A grid whose settings give
+    // its origin stands there instead.
     void place(glm::vec3 low, glm::vec3 high, glm::vec3 fallback, std::optional<float> floorHeight,
                glm::vec3 root);
     // With follow: keeps the grid where it was placed relative to the root, along the floor, by

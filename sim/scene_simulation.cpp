@@ -115,6 +115,7 @@ Result<std::unique_ptr<SceneSimulation>> SceneSimulation::create(const gpu::Cont
         settings.sparse = e.sparse();
         settings.maxBricks = e.maxBricks;
         settings.liveSpeed = e.liveSpeed;
+        settings.origin = e.origin;
         settings.sleepThreshold = std::numeric_limits<float>::max();
         settings.emitterCapacity = 0;
         for (size_t i : effects) {

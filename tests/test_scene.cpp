@@ -102,7 +102,7 @@ TEST(SceneFile, SmokeAsksForTheSparseDomain) {
     const scene::Scene s = parse(R"({"effects": [
         {"type": "smoke", "name": "a", "domain": "sparse"},
         {"type": "smoke", "name": "b", "domain": "sparse", "grid": [512, 121, 256],
-         "max_bricks": 900, "live_speed": 0.5},
+         "max_bricks": 900, "live_speed": 0.5, "origin": [-3, 0, -6.5]},
         {"type": "smoke", "name": "c"}]})");
     ASSERT_EQ(s.effects.size(), 3u);
     const scene::SmokeGridSpec& a = s.effects[0].as<scene::SmokeSpec>()->grid;
@@ -116,6 +116,9 @@ TEST(SceneFile, SmokeAsksForTheSparseDomain) {
     EXPECT_EQ(b.maxBricks, 900u);
     EXPECT_FLOAT_EQ(a.liveSpeed, 0.1f);
     EXPECT_FLOAT_EQ(b.liveSpeed, 0.5f);
+    EXPECT_FALSE(a.origin.has_value());
+    ASSERT_TRUE(b.origin.has_value());
+    EXPECT_EQ(*b.origin, glm::vec3(-3.0f, 0.0f, -6.5f));
     EXPECT_FALSE(c.sparse());
     EXPECT_EQ(c.cells, (std::array<uint32_t, 3>{48, 48, 48}));
     EXPECT_FALSE(a == c); // a sparse and a dense effect never share a grid
@@ -214,6 +217,8 @@ const BadScene kBadScenes[] = {
      "effects[0].domain: \"adaptive\" is not one of: dense, sparse"},
     {"MaxBricksOnADenseGrid", R"({"effects": [{"type": "smoke", "max_bricks": 100}]})",
      "effects[0].max_bricks: only for \"domain\": \"sparse\""},
+    {"OriginOnADenseGrid", R"({"effects": [{"type": "smoke", "origin": [0, 0, 0]}]})",
+     "effects[0].origin: only for \"domain\": \"sparse\""},
     {"LiveSpeedOnADenseGrid", R"({"effects": [{"type": "smoke", "live_speed": 0.5}]})",
      "effects[0].live_speed: only for \"domain\": \"sparse\""},
     {"ZeroMaxBricks", R"({"effects": [{"type": "smoke", "domain": "sparse", "max_bricks": 0}]})",

@@ -68,7 +68,7 @@ TEST_F(SparseSceneTest, SmokeStaysWhereItWasLeftWhileTheCharacterMovesOn) {
         if (f == 10) left = smokeOf(grid); // 1/30 s after the last emission
     }
     const Smoke later = smokeOf(grid);
-    const glm::dvec3 pointNow(1.5 * 30.0 / 30.0, 0.6, 0.0); // at t = 1 s
+    const glm::dvec3 pointNow(-1.5 + 1.5 * 1.0, 0.6, 0.0); // from x = -1.5 at 1.5 m/s, t = 1 s
     std::printf("smoke left at x = %.2f m (frame 10), at x = %.2f m at frame 30; the point at "
                 "x = %.2f m; at most %u of 128 bricks active\n",
                 left.centre.x, later.centre.x, pointNow.x, mostBricks);
@@ -79,6 +79,32 @@ TEST_F(SparseSceneTest, SmokeStaysWhereItWasLeftWhileTheCharacterMovesOn) {
     // Only the bricks along the point's path: well under the domain's 8 x 2 x 2 = 32... of 128.
     EXPECT_GT(mostBricks, 0u);
     EXPECT_LT(mostBricks, 64u);
+}
+
+// "origin" stands the domain's low corner where the scene says: the domain is the world box
+// origin + grid x cell_size, and the point's smoke lands in it.
+TEST_F(SparseSceneTest, OriginPutsTheDomainWhereTheSceneSays) {
+    const anim::Character point = movingPoint();
+    const scene::Scene s = parseScene(R"({
+        "character": {"source": "point.gltf"},
+        "output": {"fps": 30, "frames": 6},
+        "effects": [{"type": "smoke", "domain": "sparse", "grid": [64, 16, 16],
+                     "cell_size": 0.1, "origin": [-2, 0, -0.8], "radius": 0.15,
+                     "strength": 4}]})");
+    auto sim = simulate(ctx(), s, point);
+    ASSERT_TRUE(sim);
+    fluid::SmokeGrid& grid = sim->smokeGrids()[0].grid;
+    EXPECT_EQ(grid.origin(), glm::vec3(-2.0f, 0.0f, -0.8f));
+    for (uint32_t f = 0; f < 6; ++f)
+        sim->runFrame(f);
+    EXPECT_EQ(grid.origin(), glm::vec3(-2.0f, 0.0f, -0.8f));
+    const Smoke smoke = smokeOf(grid);
+    ASSERT_GT(smoke.alpha, 0.1);
+    // The point slides along x at 0.6 m height from x = -1.5 (-1.25 at frame 5): its smoke is
+    // there.
+    EXPECT_NEAR(smoke.centre.x, -1.35, 0.25);
+    EXPECT_NEAR(smoke.centre.y, 0.6, 0.2);
+    EXPECT_NEAR(smoke.centre.z, 0.0, 0.2);
 }
 
 // The kick's foot smoke in a sparse 64^3 domain and a dense 64^3 grid of the same box: the same

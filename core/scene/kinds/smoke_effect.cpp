@@ -17,7 +17,7 @@ std::vector<std::string> SmokeSpec::keys() {
                       "follow",       "look",         "glow",
                       "cel_bands",    "anisotropy",   "pressure",
                       "advection",    "storage",      "domain",
-                      "max_bricks",   "live_speed"});
+                      "max_bricks",   "live_speed",   "origin"});
 }
 
 const std::vector<std::string>& smokePressureSolvers() {
@@ -94,8 +94,9 @@ std::unique_ptr<EffectKindSpec> SmokeSpec::parse(const Object& o) {
     if (sparse) {
         g.maxBricks = o.integer("max_bricks", g.maxBricks, 1, 1u << 20);
         g.liveSpeed = float(o.number("live_speed", g.liveSpeed, 0.0, 1000.0));
+        if (o.has("origin")) g.origin = o.vec3("origin", glm::vec3(0.0f), -1e4, 1e4);
     } else {
-        for (const char* key : {"max_bricks", "live_speed"})
+        for (const char* key : {"max_bricks", "live_speed", "origin"})
             if (o.given(key)) detail::fail(o.at(key), "only for \"domain\": \"sparse\"");
     }
     e->impulseScale = float(o.number("impulse_k", e->impulseScale, 0.0, 100.0));

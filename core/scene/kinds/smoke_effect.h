@@ -8,6 +8,8 @@
 #include "core/scene/kinds/trail_effects.h"
 
 #include <array>
+#include <glm/glm.hpp>
+#include <optional>
 
 namespace mfx::scene {
 
@@ -51,6 +53,9 @@ struct SmokeGridSpec {
     std::string domain = "dense";
     uint32_t maxBricks = 4096;
     float liveSpeed = 0.1f; // sparse: air faster than this (m/s) keeps a brick without smoke
+    // Sparse: the world position of the domain's low corner, so its box is origin + cells x
+    // cell size; absent, the domain is centred on its effects' paths, standing on the floor.
+    std::optional<glm::vec3> origin;
     bool sparse() const { return domain == "sparse"; }
     bool operator==(const SmokeGridSpec&) const = default;
 };
