@@ -196,11 +196,11 @@ Status writeFrameVdbs(sim::SceneSimulation& sim, uint32_t frame, VdbOutput& out)
             if (name.empty()) name = g.grid.name();
         }
         const fluid::FieldState state = g.grid.state();
-        std::vector<uint8_t> stored;
-        if (g.grid.sparse()) stored = g.grid.storedCells();
+        const std::vector<uint8_t> stored =
+            g.grid.sparse() ? g.grid.storedCells() : std::vector<uint8_t>{};
         fluid::VdbFrame vdb;
         vdb.state = &state;
-        if (g.grid.sparse()) vdb.storedCells = &stored;
+        vdb.storedCells = stored.empty() ? nullptr : &stored;
         vdb.origin = g.grid.origin();
         vdb.up = out.up;
         char file[32];

@@ -57,8 +57,7 @@ FieldState SmokeGrid::state() {
 
 std::vector<uint8_t> SmokeGrid::storedCells() const {
     if (sparse_) return sparse_->activeCells();
-    const GridShape& g = options().grid;
-    return std::vector<uint8_t>(size_t(g.cellsX) * g.cellsY * g.cellsZ, 1);
+    return std::vector<uint8_t>(options().grid.cellCount(), 1);
 }
 
 std::vector<std::pair<std::string, uint32_t>> SmokeGrid::lastStepDispatches() const {
@@ -124,10 +123,13 @@ void SmokeGrid::recordStep(VkCommandBuffer cmd, uint32_t emitters, gpu::GpuTimer
     if (timer) timer->setPrefix("");
 }
 
-void SmokeGrid::recordMeasureActivity(VkCommandBuffer cmd) {
+uint32_t SmokeGrid::recordMeasureActivity(VkCommandBuffer cmd, gpu::GpuTimer* timer) {
     measured_ = true;
-    if (sparse_) return; // its rebuild measures: a grid with no live cell keeps no brick
+    if (sparse_) return 0; // its rebuild measures: a grid with no live cell keeps no brick
+    if (timer) timer->begin(cmd, settings_.name + "/measure_activity");
     solver_->recordMeasureActivity(cmd, activity_);
+    if (timer) timer->end(cmd);
+    return 1;
 }
 
 SmokeGrid::Activity SmokeGrid::finishFrame() {

@@ -72,7 +72,9 @@ public:
     // with the grid's name.
     void recordStep(VkCommandBuffer cmd, uint32_t emitters, gpu::GpuTimer* timer);
     // Awake with no effect live this frame: measures the largest pigment alpha and speed.
-    void recordMeasureActivity(VkCommandBuffer cmd);
+    // Returns the dispatches it recorded (timed as "<name>/measure_activity"): 1, or 0 for a
+    // sparse grid, whose rebuild before each step measures.
+    uint32_t recordMeasureActivity(VkCommandBuffer cmd, gpu::GpuTimer* timer);
     struct Activity {
         bool measured = false;
         float largestAlpha = 0.0f;

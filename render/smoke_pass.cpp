@@ -175,13 +175,10 @@ uint32_t SmokePass::draw(VkCommandBuffer cmd, RenderTarget& target,
         if (!visible) continue;
         const scene::SmokeSpec* smoke =
             grid.effects.empty() ? nullptr : simulation.trajectories()[grid.effects[0]].smoke;
-        const scene::SmokeShading shading = smoke ? smoke->shading : scene::SmokeShading{};
-        if (const fluid::SparseSmokeSolver* sparse = grid.grid.sparseSolver())
-            volumes.push_back(
-                {nullptr, sparse->options().grid, grid.grid.origin(), shading, sparse});
-        else
-            volumes.push_back({&grid.grid.solver().pigmentImage(),
-                               grid.grid.solver().options().grid, grid.grid.origin(), shading});
+        const fluid::SparseSmokeSolver* sparse = grid.grid.sparseSolver();
+        volumes.push_back({sparse ? nullptr : &grid.grid.solver().pigmentImage(),
+                           grid.grid.options().grid, grid.grid.origin(),
+                           smoke ? smoke->shading : scene::SmokeShading{}, sparse});
     }
     if (volumes.empty()) return 0;
     const scene::LightSpec key =

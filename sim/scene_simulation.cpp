@@ -304,15 +304,9 @@ void SceneSimulation::recordSmoke(VkCommandBuffer cmd, SmokeGrid& grid, uint32_t
         for (const auto& [stage, count] : g.lastStepDispatches())
             addPass(g.name() + "/" + stage, count);
     }
-    if (g.awake() && !anyLiveThisFrame && g.sparse()) {
-        g.recordMeasureActivity(cmd); // no dispatch: the rebuild before each step measured
-    } else if (g.awake() && !anyLiveThisFrame) {
-        const std::string name = g.name() + "/measure_activity";
-        timer_.begin(cmd, name);
-        g.recordMeasureActivity(cmd);
-        timer_.end(cmd);
-        addPass(name, 1);
-    }
+    if (g.awake() && !anyLiveThisFrame)
+        if (const uint32_t dispatches = g.recordMeasureActivity(cmd, &timer_))
+            addPass(g.name() + "/measure_activity", dispatches);
 }
 
 void SceneSimulation::setCaptureEmitters(bool capture) {

@@ -108,10 +108,7 @@ vec4 sampleGrid(vec3 world) {
 int lastEmptySample(int i, vec3 p, vec3 inv, float gridEnter, float step) {
     vec3 g = (p - draw.gridOrigin.xyz) / draw.gridOrigin.w;
     ivec3 b = ivec3(floor(g / float(MFX_BRICK_SIZE)));
-    ivec3 n = ivec3(draw.gridSize.xyz) / int(MFX_BRICK_SIZE);
-    if (any(lessThan(b, ivec3(0))) || any(greaterThanEqual(b, n)) ||
-        brickSlot[b.x + n.x * (b.y + n.y * b.z)] != MFX_NO_SLOT)
-        return i;
+    if (slotOf(b) != MFX_NO_SLOT) return i; // (a brick outside the domain has none: it reads 0)
     vec3 low = vec3(b * int(MFX_BRICK_SIZE)) + 0.5;
     vec3 high = low + float(MFX_BRICK_SIZE) - 1.0;
     if (any(lessThan(g, low)) || any(greaterThan(g, high))) return i;
