@@ -6,6 +6,9 @@
 #                     build and run it again with AddressSanitizer + UndefinedBehaviorSanitizer
 #   ./build.sh deps   only install the missing packages
 #   ./build.sh build  install and build (build/), nothing else
+#   ./build.sh fuzz [seconds]
+#                     build the libFuzzer harnesses with clang (build-fuzz/) and run each for
+#                     `seconds` (default 60) on the seed corpus; findings land in build-fuzz/findings
 #
 # Environment: MOTIONFX_JOBS (default 2) build jobs; MOTIONFX_SKIP_ASAN=1 skips the sanitizer pass
 # of `test`; MOTIONFX_BUILD_DIR (default build) the build directory.
@@ -24,11 +27,17 @@ PACKAGES=(
     libopenvdb-dev libboost-iostreams-dev python3-openvdb
 )
 
+# The fuzzers need clang and its libFuzzer runtime; only `fuzz` installs them.
+FUZZ_PACKAGES=(clang libclang-rt-dev)
+
 say() { printf '\n== %s\n' "$*"; }
 
+# install_dependencies [package...]: the given packages (default: PACKAGES) that are missing.
 install_dependencies() {
+    local wanted=("$@")
+    [ ${#wanted[@]} -gt 0 ] || wanted=("${PACKAGES[@]}")
     local missing=()
-    for package in "${PACKAGES[@]}"; do
+    for package in "${wanted[@]}"; do
         if ! dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed"; then
             missing+=("$package")
         fi
@@ -51,13 +60,46 @@ install_dependencies() {
         "${missing[@]}"
 }
 
-# build DIR [extra cmake arguments...]
+# Each stage's wall time, printed as a table at the end of `test` (and `fuzz`).
+STAGE_NAMES=()
+STAGE_SECONDS=()
+# stage NAME COMMAND...: runs COMMAND, recording how long it took under NAME.
+stage() {
+    local name=$1
+    shift
+    local start=$SECONDS
+    "$@"
+    STAGE_NAMES+=("$name")
+    STAGE_SECONDS+=($((SECONDS - start)))
+}
+stage_table() {
+    say "stage times"
+    local total=0
+    for i in "${!STAGE_NAMES[@]}"; do
+        printf '  %-28s %6d s\n' "${STAGE_NAMES[$i]}" "${STAGE_SECONDS[$i]}"
+        total=$((total + STAGE_SECONDS[i]))
+    done
+    printf '  %-28s %6d s\n' "total" "$total"
+}
+
+# build DIR [cmake arguments...] [-- build targets...]
 build() {
     local dir=$1
     shift
-    say "configuring and building in $dir"
-    cmake -S "$ROOT" -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo "$@"
-    cmake --build "$dir" -j "$JOBS"
+    local configure=() targets=()
+    while [ $# -gt 0 ] && [ "$1" != "--" ]; do
+        configure+=("$1")
+        shift
+    done
+    [ $# -gt 0 ] && shift
+    targets=("$@")
+    say "configuring and building in $dir${targets[*]:+ (${targets[*]})}"
+    cmake -S "$ROOT" -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo "${configure[@]}"
+    if [ ${#targets[@]} -gt 0 ]; then
+        cmake --build "$dir" -j "$JOBS" --target "${targets[@]}"
+    else
+        cmake --build "$dir" -j "$JOBS"
+    fi
 }
 
 run_tests() {
@@ -66,6 +108,51 @@ run_tests() {
     say "running the tests in $dir"
     # Each test is a process of its own; two at a time on the 2-core CI machine.
     ctest --test-dir "$dir" --output-on-failure -j "$JOBS" --timeout 600 "$@"
+}
+
+run_sanitized_tests() {
+    # The long numerical solver runs (thousands of steps of arithmetic on fixed-size arrays,
+    # no input from outside) take most of the sanitizer pass's time and run in the normal
+    # pass above; everything else, bad-input tests included, runs under the sanitizers (the
+    # sparse solver's host code too: its short tests grow, refuse and rebuild the same way).
+    local exclude='^FluidStability/|^Scenarios/|TaylorGreen|^SparseSolverTest[.].*For(100|2000)Steps'
+
+    # The loader unloads the Vulkan driver and the validation layer before exit, which leaves
+    # LeakSanitizer unable to tell their memory from ours. Preloading both keeps them mapped:
+    # lavapipe's memory then stays reachable, and the validation layer's own leaks are
+    # suppressed by name (tests/sanitizers/lsan.supp). Any other leak fails the test.
+    LD_PRELOAD="$(g++ -print-file-name=libasan.so) libVkLayer_khronos_validation.so libvulkan_lvp.so" \
+    ASAN_OPTIONS=abort_on_error=1:detect_leaks=1 \
+    LSAN_OPTIONS="suppressions=$ROOT/tests/sanitizers/lsan.supp:print_suppressions=0" \
+    UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+        run_tests "$BUILD_DIR-asan" -E "$exclude"
+}
+
+# fuzz SECONDS: builds the harnesses of tests/fuzz with clang and runs each for SECONDS.
+fuzz() {
+    local seconds=$1
+    local dir="$BUILD_DIR-fuzz"
+    CC=clang CXX=clang++ build "$dir" -DMOTIONFX_FUZZ=ON -DMOTIONFX_BUILD_TESTS=OFF \
+        -DMOTIONFX_BUILD_APPS=OFF -- motionfx_fuzz_gltf motionfx_fuzz_scene
+    local -A seeds=(
+        [gltf]="$ROOT/tests/fuzz/corpus/gltf $ROOT/../shared/gltf-bad $ROOT/../shared/assets"
+        [scene]="$ROOT/tests/fuzz/corpus/scene $ROOT/docs/scenes"
+    )
+    for harness in gltf scene; do
+        # New inputs go to the first folder (kept between runs); the seeds are read only.
+        local corpus="$dir/corpus/$harness" findings="$dir/findings/$harness/"
+        mkdir -p "$corpus" "$findings"
+        local existing=()
+        for folder in ${seeds[$harness]}; do
+            [ -d "$folder" ] && existing+=("$folder")
+        done
+        say "fuzzing $harness for $seconds s (new inputs: $corpus; findings: $findings)"
+        # -timeout: an input taking 10 s is a hang; -rss_limit_mb: past 2 GB is unbounded memory.
+        ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+            "$dir/tests/fuzz/motionfx_fuzz_$harness" -max_total_time="$seconds" -timeout=10 \
+            -rss_limit_mb=2048 -dict="$ROOT/tests/fuzz/$harness.dict" -artifact_prefix="$findings" \
+            -print_final_stats=1 "$corpus" "${existing[@]}"
+    done
 }
 
 command=${1:-run}
@@ -79,36 +166,34 @@ build)
     ;;
 run)
     install_dependencies
-    build "$BUILD_DIR"
+    # Only the program: the test suite is built by `test`.
+    build "$BUILD_DIR" -- motionfx
     say "rendering the built-in default into out/"
     "$BUILD_DIR/apps/motionfx" render --out out
     ;;
 test)
-    install_dependencies
-    build "$BUILD_DIR"
-    run_tests "$BUILD_DIR"
+    stage "install packages" install_dependencies
+    stage "build" build "$BUILD_DIR"
+    stage "tests" run_tests "$BUILD_DIR"
     if [ "${MOTIONFX_SKIP_ASAN:-0}" != 1 ]; then
-        build "$BUILD_DIR-asan" -DMOTIONFX_SANITIZE=ON
-        # The long numerical solver runs (thousands of steps of arithmetic on fixed-size arrays,
-        # no input from outside) take most of the sanitizer pass's time and run in the normal
-        # pass above; everything else, bad-input tests included, runs under the sanitizers (the
-        # sparse solver's host code too: its short tests grow, refuse and rebuild the same way).
-        ASAN_EXCLUDE='^FluidStability/|^Scenarios/|TaylorGreen|^SparseSolverTest[.].*For(100|2000)Steps'
-
-        # The loader unloads the Vulkan driver and the validation layer before exit, which leaves
-        # LeakSanitizer unable to tell their memory from ours. Preloading both keeps them mapped:
-        # lavapipe's memory then stays reachable, and the validation layer's own leaks are
-        # suppressed by name (tests/sanitizers/lsan.supp). Any other leak fails the test.
-        LD_PRELOAD="$(g++ -print-file-name=libasan.so) libVkLayer_khronos_validation.so libvulkan_lvp.so" \
-        ASAN_OPTIONS=abort_on_error=1:detect_leaks=1 \
-        LSAN_OPTIONS="suppressions=$ROOT/tests/sanitizers/lsan.supp:print_suppressions=0" \
-        UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-            run_tests "$BUILD_DIR-asan" -E "$ASAN_EXCLUDE"
+        stage "build (sanitizers)" build "$BUILD_DIR-asan" -DMOTIONFX_SANITIZE=ON
+        stage "tests (sanitizers)" run_sanitized_tests
     fi
+    stage_table
     say "all tests passed"
     ;;
+fuzz)
+    seconds=${2:-60}
+    if ! [[ "$seconds" =~ ^[0-9]+$ ]] || [ "$seconds" -lt 1 ]; then
+        echo "build.sh fuzz: seconds must be a whole number >= 1, got '$seconds'" >&2
+        exit 2
+    fi
+    stage "install packages" install_dependencies "${PACKAGES[@]}" "${FUZZ_PACKAGES[@]}"
+    stage "fuzz" fuzz "$seconds"
+    stage_table
+    ;;
 *)
-    echo "usage: ./build.sh [run|test|deps|build]" >&2
+    echo "usage: ./build.sh [run|test|deps|build|fuzz [seconds]]" >&2
     exit 2
     ;;
 esac

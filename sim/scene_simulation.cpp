@@ -161,16 +161,15 @@ bool SceneSimulation::effectLive(const scene::EffectSpec& e, float time) const {
 }
 
 // The grid is centred on the bounds its effects' vertices sweep over their windows (sampled at
-// the frame rate), and stands on the floor (y = stage.floorHeight) when the stage has one and the
-// bounds allow.
+// the frame rate, at most scene::kMaxSampledFrames frames an effect), and stands on the floor (y =
+// stage.floorHeight) when the stage has one and the bounds allow.
 void SceneSimulation::placeGrid(SmokeGrid& grid) {
     glm::vec3 low(std::numeric_limits<float>::max()), high(std::numeric_limits<float>::lowest());
     const anim::Clip& clip = scene::sceneClip(scene_, character_);
     for (size_t i : grid.effects) {
         const TrajectoryEffect& effect = trajectories_[i];
-        for (uint32_t f = 0; f < frames_; ++f) {
+        for (uint32_t f : scene::liveSampledFrames(scene_, *effect.spec, frames_)) {
             const float t = frameTime(f);
-            if (!effectLive(*effect.spec, t)) continue;
             const anim::Pose pose = anim::samplePose(
                 character_, &clip, scene::clipTimeAt(scene_, character_, t), anim::Wrap::Clamp);
             const auto transforms = trajectory::vertexTransforms(

@@ -406,3 +406,93 @@ TEST(GltfImportHandMade, MissingFileNamesIt) {
 }
 
 } // namespace
+
+namespace {
+
+// --- Files that reach outside their folder, and files that ask for more than they hold ---------
+
+// The rigged triangle with its buffer in `uri` (relative to the test's folder), whose bytes are
+// also written to `written` (a path under the test output folder) so that a read would succeed.
+json triangleWithBufferAt(const std::string& uri, const std::string& written) {
+    const Document d = riggedTriangle();
+    std::filesystem::create_directories(std::filesystem::path(written).parent_path());
+    std::ofstream(written, std::ios::binary)
+        .write(reinterpret_cast<const char*>(d.bin.data()), std::streamsize(d.bin.size()));
+    json gltf = d.gltf;
+    gltf["buffers"] = json::array({{{"byteLength", d.bin.size()}, {"uri", uri}}});
+    return gltf;
+}
+
+TEST(GltfImportHandMade, BufferUriLeavingTheFolderIsRefused) {
+    // Each URI names a real file of the right length outside the glTF's folder: before, it was
+    // read and its bytes used as vertices.
+    const std::string outside = std::string(MFX_TEST_OUTPUT_DIR) + "/outside.bin";
+    const std::string leaves = "leads outside the glTF file's folder";
+    for (const auto& [name, uri] : std::vector<std::pair<std::string, std::string>>{
+             {"dots.gltf", "../outside.bin"},
+             {"percent.gltf", "%2e%2e/outside.bin"},
+             {"percent_slash.gltf", "..%2Foutside.bin"},
+             {"inner_dots.gltf", "sub/../../outside.bin"},
+             {"absolute.gltf", outside},
+         }) {
+        const std::string message = refusal(name, triangleWithBufferAt(uri, outside));
+        EXPECT_CONTAINS(message, "buffers[0].uri: \"" + uri + "\" " + leaves);
+    }
+}
+
+TEST(GltfImportHandMade, BufferThroughALinkOutOfTheFolderIsRefused) {
+    const std::string outside = std::string(MFX_TEST_OUTPUT_DIR) + "/outside_linked.bin";
+    json gltf = triangleWithBufferAt("linked.bin", outside);
+    std::filesystem::remove(outputPath("linked.bin"));
+    std::filesystem::create_symlink(outside, outputPath("linked.bin"));
+    EXPECT_CONTAINS(refusal("linked.gltf", gltf), "buffers[0].uri: \"linked.bin\" leads outside");
+}
+
+TEST(GltfImportHandMade, BufferInASubfolderLoads) {
+    json gltf = triangleWithBufferAt("sub/inner.bin", outputPath("sub/inner.bin"));
+    EXPECT_EQ(load(writeGltf("subfolder.gltf", gltf)).meshes.size(), 1u);
+    gltf["buffers"][0]["uri"] = "sub%2Finner.bin"; // percent-encoded, still inside
+    EXPECT_EQ(load(writeGltf("subfolder_encoded.gltf", gltf)).meshes.size(), 1u);
+}
+
+TEST(GltfImportHandMade, ImageUriLeavingTheFolderIsRefused) {
+    // Images are never decoded, but tinygltf reads their bytes: the same rule holds.
+    json gltf = riggedTriangle().withEmbeddedBuffer();
+    gltf["images"] = json::array({{{"uri", "../../../../../../etc/passwd"}}});
+    EXPECT_CONTAINS(refusal("image_outside.gltf", gltf),
+                    "images[0].uri: \"../../../../../../etc/passwd\" leads outside");
+}
+
+TEST(GltfImportHandMade, ZeroAccessorCopiedByManyNodesPassesTheVertexBudget) {
+    // A kilobyte of JSON: one accessor of 2.1 million zeros without a bufferView (the most one may
+    // hold is 16 million), its mesh instanced by 4 nodes: 8.4 million vertices, past the import's
+    // 4 million. Before, each copy was made in full; with more primitives and nodes, tens of GB.
+    json gltf = {{"asset", {{"version", "2.0"}}}};
+    gltf["accessors"] =
+        json::array({{{"componentType", kFloat}, {"type", "VEC3"}, {"count", 2100000}}});
+    gltf["meshes"] = json::array({{{"primitives", {{{"attributes", {{"POSITION", 0}}}}}}}});
+    gltf["nodes"] = json::array();
+    for (int n = 0; n < 4; ++n)
+        gltf["nodes"].push_back({{"mesh", 0}});
+    EXPECT_CONTAINS(refusal("zero_copies.gltf", gltf),
+                    "meshes[0]: the file's meshes (a copy for each node using one) hold more than "
+                    "4194304 vertices in all (the import's limit)");
+}
+
+TEST(GltfImportHandMade, ZeroAccessorReadByManyPrimitivesPassesTheVertexBudget) {
+    // One mesh of 1000 primitives, each with the same 2.1 million zeros as its POSITION: 2.1
+    // billion vertices asked for by 20 KB of JSON. Charged as each primitive is read, the third
+    // passes the import's 4 million (before, the whole mesh was read first: 200 GB).
+    json gltf = {{"asset", {{"version", "2.0"}}}};
+    gltf["accessors"] =
+        json::array({{{"componentType", kFloat}, {"type", "VEC3"}, {"count", 2100000}}});
+    json primitives = json::array();
+    for (int p = 0; p < 1000; ++p)
+        primitives.push_back({{"attributes", {{"POSITION", 0}}}});
+    gltf["meshes"] = json::array({{{"primitives", primitives}}});
+    EXPECT_CONTAINS(refusal("zero_primitives.gltf", gltf),
+                    "meshes[0].primitives[1]: the file's meshes (a copy for each node using one) "
+                    "hold more than 4194304 vertices in all (the import's limit)");
+}
+
+} // namespace

@@ -7,6 +7,7 @@
 #include "core/anim/gltf_import.h"
 
 #include "core/enum_names.h"
+#include "core/json_shape.h"
 
 #include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
@@ -67,15 +68,31 @@ Result<Bytes> readBytes(const std::filesystem::path& path) {
 
 // --- tinygltf's file system and image hooks ----------------------------------------------------
 
-// External buffers are looked up next to the .gltf only: tinygltf would also try the working
-// directory, which could silently pick up an unrelated file.
+// External buffers and images are looked up in the glTF file's folder only, and only there: a
+// URI that leads out of it ("../../etc/passwd", "%2e%2e/", an absolute path, a link that points
+// elsewhere) is refused. tinygltf would also try the working directory, which could silently
+// pick up an unrelated file.
 struct ExternalFiles {
-    std::string directory; // absolute, ends with '/'
+    std::string directory;           // absolute, ends with '/': what tinygltf joins URIs to
+    std::filesystem::path canonical; // the same folder with links and dots resolved
 };
+
+// Whether `path` names something strictly inside `folder` (canonical) once its links and dots
+// are resolved.
+bool insideFolder(const std::filesystem::path& folder, const std::filesystem::path& path) {
+    std::error_code error;
+    const std::filesystem::path resolved = std::filesystem::weakly_canonical(path, error);
+    if (error || folder.empty()) return false;
+    const auto [f, r] =
+        std::mismatch(folder.begin(), folder.end(), resolved.begin(), resolved.end());
+    return f == folder.end() && r != resolved.end();
+}
 
 bool externalFileExists(const std::string& path, void* user) {
     const auto* files = static_cast<const ExternalFiles*>(user);
-    if (path.rfind(files->directory, 0) != 0) return false;
+    if (path.rfind(files->directory, 0) != 0 || path.find('\0') != std::string::npos ||
+        !insideFolder(files->canonical, path))
+        return false;
     std::error_code error;
     return std::filesystem::is_regular_file(path, error);
 }
@@ -88,7 +105,7 @@ std::string keepPath(const std::string& path, void*) {
 // special files; this one reads regular files of bounded size only.
 bool readExternalFile(Bytes* out, std::string* err, const std::string& path, void* user) {
     if (!externalFileExists(path, user)) {
-        *err += "not a regular file next to the glTF file";
+        *err += "not a regular file inside the glTF file's folder";
         return false;
     }
     Result<Bytes> bytes = readBytes(path);
@@ -275,11 +292,54 @@ Status eachElement(const Json& root, const char* name,
     return Ok{};
 }
 
-Status checkBufferShape(const Json& buffer, const std::string& where, bool glb) {
+// A URI as tinygltf reads it: %XX decoded, '+' a space (glTF 2.0, 3.3: URIs are RFC 3986).
+std::string decodeUri(const std::string& uri) {
+    auto hex = [](char c) -> int {
+        if (c >= '0' && c <= '9') return c - '0';
+        if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+        if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+        return 0;
+    };
+    std::string out;
+    for (size_t i = 0; i < uri.size(); ++i) {
+        if (uri[i] == '+') {
+            out += ' ';
+        } else if (uri[i] == '%' && i + 2 < uri.size()) {
+            out += char(hex(uri[i + 1]) * 16 + hex(uri[i + 2]));
+            i += 2;
+        } else {
+            out += uri[i];
+        }
+    }
+    return out;
+}
+
+// An external file's URI must stay inside `folder` (the glTF file's, canonical); data: URIs hold
+// their bytes and are decoded by tinygltf.
+Status checkUri(const Json& element, const std::string& where,
+                const std::filesystem::path& folder) {
+    const auto it = element.find("uri");
+    if (it == element.end() || !it->is_string()) return Ok{};
+    const std::string& uri = it->get_ref<const std::string&>();
+    if (uri.rfind("data:", 0) == 0 && uri.find(";base64,") != std::string::npos) return Ok{};
+    const std::string path = decodeUri(uri);
+    const bool control =
+        std::any_of(path.begin(), path.end(), [](char c) { return (unsigned char)(c) < 0x20; });
+    if (path.empty() || control || std::filesystem::path(path).is_absolute() ||
+        !insideFolder(folder, folder / path))
+        return Error{where + ".uri: \"" + firstLine(uri) +
+                     "\" leads outside the glTF file's folder; buffers and images must lie "
+                     "inside it or be data: URIs"};
+    return Ok{};
+}
+
+Status checkBufferShape(const Json& buffer, const std::string& where, bool glb,
+                        const std::filesystem::path& folder) {
     if (Status s = requireAll(buffer, {{"byteLength", Kind::Unsigned}}, where); !s) return s;
     // Only a GLB's first buffer may leave out its URI: it is the BIN chunk.
     if (glb && where == "buffers[0]" && !buffer.contains("uri")) return Ok{};
-    return require(buffer, "uri", Kind::String, where);
+    if (Status s = require(buffer, "uri", Kind::String, where); !s) return s;
+    return checkUri(buffer, where, folder);
 }
 
 Status checkBufferViewShape(const Json& view, const std::string& where) {
@@ -371,38 +431,15 @@ Status checkAnimationShape(const Json& animation, const std::string& where) {
     });
 }
 
-// Far deeper than any glTF document needs (the schema itself nests about eight levels).
-constexpr int kMaxJsonDepth = 64;
+// Far deeper than any glTF document needs (the schema itself nests about eight levels), and more
+// values than a real file's JSON holds (its bulk data is in buffers): each value becomes a node in
+// nlohmann's tree and again in tinygltf's structs, hundreds of bytes each.
+constexpr JsonLimits kGltfJsonLimits{64, size_t(1) << 20};
 
-// The deepest nesting of arrays and objects in JSON text (brackets inside strings do not count).
-int nestingDepth(std::span<const unsigned char> text) {
-    int depth = 0;
-    int deepest = 0;
-    bool inString = false;
-    bool escaped = false;
-    for (unsigned char c : text) {
-        if (inString) {
-            if (escaped)
-                escaped = false;
-            else if (c == '\\')
-                escaped = true;
-            else if (c == '"')
-                inString = false;
-        } else if (c == '"') {
-            inString = true;
-        } else if (c == '[' || c == '{') {
-            deepest = std::max(deepest, ++depth);
-        } else if (c == ']' || c == '}') {
-            --depth;
-        }
-    }
-    return deepest;
-}
-
-Status checkJsonShape(std::span<const unsigned char> text, bool glb) {
+Status checkGltfJson(std::span<const unsigned char> text, bool glb,
+                     const std::filesystem::path& folder) {
     // tinygltf converts `extras` recursively: deep nesting would overflow its stack.
-    if (nestingDepth(text) > kMaxJsonDepth)
-        return Error{"the JSON nests deeper than " + std::to_string(kMaxJsonDepth) + " levels"};
+    if (Status shape = checkJsonShape(text, kGltfJsonLimits); !shape) return shape;
     Json root;
     try {
         root = Json::parse(text.begin(), text.end());
@@ -424,8 +461,9 @@ Status checkJsonShape(std::span<const unsigned char> text, bool glb) {
     if (Status s = require(root["asset"], "version", Kind::String, "asset"); !s) return s;
     const std::pair<const char*, std::function<Status(const Json&, const std::string&)>> arrays[] =
         {
-            {"buffers",
-             [&](const Json& e, const std::string& w) { return checkBufferShape(e, w, glb); }},
+            {"buffers", [&](const Json& e,
+                            const std::string& w) { return checkBufferShape(e, w, glb, folder); }},
+            {"images", [&](const Json& e, const std::string& w) { return checkUri(e, w, folder); }},
             {"bufferViews", &checkBufferViewShape},
             {"accessors", &checkAccessorShape},
             {"meshes",
@@ -447,7 +485,7 @@ Status checkJsonShape(std::span<const unsigned char> text, bool glb) {
 Result<tinygltf::Model> parseModel(const Bytes& bytes, const std::filesystem::path& file) {
     std::error_code error;
     std::filesystem::path directory = std::filesystem::absolute(file, error).parent_path();
-    ExternalFiles files{directory.string()};
+    ExternalFiles files{directory.string(), std::filesystem::weakly_canonical(directory, error)};
     if (files.directory.empty() || files.directory.back() != '/') files.directory += '/';
 
     tinygltf::TinyGLTF loader;
@@ -461,13 +499,14 @@ Result<tinygltf::Model> parseModel(const Bytes& bytes, const std::filesystem::pa
     if (isGlb(bytes)) {
         Result<GlbChunks> chunks = splitGlb(bytes);
         if (!chunks) return chunks.error();
-        if (Status s = checkJsonShape(chunks.value().json, true); !s) return s.error();
+        if (Status s = checkGltfJson(chunks.value().json, true, files.canonical); !s)
+            return s.error();
         const Bytes glb = rebuildGlb(chunks.value());
         loaded = loader.LoadBinaryFromMemory(&model, &err, &warn, glb.data(), unsigned(glb.size()),
                                              files.directory);
     } else {
         if (bytes.empty()) return Error{"the file is empty"};
-        if (Status s = checkJsonShape(bytes, false); !s) return s.error();
+        if (Status s = checkGltfJson(bytes, false, files.canonical); !s) return s.error();
         loaded = loader.LoadASCIIFromString(&model, &err, &warn,
                                             reinterpret_cast<const char*>(bytes.data()),
                                             unsigned(bytes.size()), files.directory);
@@ -632,8 +671,45 @@ bool fitsIn(uint64_t offset, uint64_t count, uint64_t stride, uint64_t elementBy
     return (count - 1) <= (room - elementBytes) / stride;
 }
 
+// What one file may make the importer produce, in total. glTF lets a file of a kilobyte ask for
+// any amount: an accessor without a bufferView is that many zeros, a mesh is copied once for each
+// node that instances it, a sampler's key times once for each channel that uses it. Each is
+// bounded on its own; this bounds their sum. A refusal names the element that passes a limit and
+// the limit. The limits are far beyond a game character (tens of thousands of vertices, a few MB)
+// and keep an import under about 1 GB however the file is built.
+struct ImportBudget {
+    static constexpr uint64_t kMaxElements = uint64_t(1) << 25; // accessor elements read
+    static constexpr uint64_t kMaxVertices = uint64_t(1) << 22; // mesh vertices, copies included
+    static constexpr uint64_t kMaxBytes = uint64_t(768) << 20;  // bytes of what is read and made
+
+    uint64_t elements = 0;
+    uint64_t vertices = 0;
+    uint64_t bytes = 0;
+
+    Status spend(const std::string& where, uint64_t moreElements, uint64_t moreVertices,
+                 uint64_t moreBytes) {
+        elements += moreElements;
+        vertices += moreVertices;
+        bytes += moreBytes;
+        if (elements > kMaxElements)
+            return Error{where + ": the file's accessors hold more than " +
+                         std::to_string(kMaxElements) + " elements in all (the import's limit)"};
+        if (vertices > kMaxVertices)
+            return Error{where +
+                         ": the file's meshes (a copy for each node using one) hold more "
+                         "than " +
+                         std::to_string(kMaxVertices) + " vertices in all (the import's limit)"};
+        if (bytes > kMaxBytes)
+            return Error{where + ": the import would make more than " +
+                         std::to_string(kMaxBytes >> 20) + " MiB of data (the import's limit)"};
+        return Ok{};
+    }
+};
+
+// Opens accessor `index` and charges `budget` for its elements, read as `elementBytes` each.
 Result<AccessorData> openAccessor(const tinygltf::Model& model, int index, const std::string& where,
-                                  const Format& format) {
+                                  const Format& format, ImportBudget& budget,
+                                  size_t elementBytesRead) {
     if (index < 0 || size_t(index) >= model.accessors.size())
         return Error{where + ": accessor " + std::to_string(index) + " does not exist"};
     const tinygltf::Accessor& accessor = model.accessors[size_t(index)];
@@ -646,6 +722,10 @@ Result<AccessorData> openAccessor(const tinygltf::Model& model, int index, const
                      (accessor.normalized ? "normalised " : "") +
                      componentName(accessor.componentType) + ", not a format allowed here"};
     if (accessor.count == 0) return Error{name + " has no elements"};
+    if (Status s =
+            budget.spend(name, accessor.count, 0, uint64_t(accessor.count) * elementBytesRead);
+        !s)
+        return s.error();
 
     AccessorData view;
     view.count = accessor.count;
@@ -693,8 +773,10 @@ bool finite(const glm::vec4& v) {
 
 // Every element as a vec4 (components past the type's are 0); NaN and infinities refused.
 Result<std::vector<glm::vec4>> readFloats(const tinygltf::Model& model, int index,
-                                          const std::string& where, const Format& format) {
-    Result<AccessorData> opened = openAccessor(model, index, where, format);
+                                          const std::string& where, const Format& format,
+                                          ImportBudget& budget) {
+    Result<AccessorData> opened =
+        openAccessor(model, index, where, format, budget, sizeof(glm::vec4));
     if (!opened) return opened.error();
     const AccessorData& data = opened.value();
     std::vector<glm::vec4> values(data.count, glm::vec4(0.0f));
@@ -708,8 +790,10 @@ Result<std::vector<glm::vec4>> readFloats(const tinygltf::Model& model, int inde
 }
 
 Result<std::vector<glm::uvec4>> readIntegers(const tinygltf::Model& model, int index,
-                                             const std::string& where, const Format& format) {
-    Result<AccessorData> opened = openAccessor(model, index, where, format);
+                                             const std::string& where, const Format& format,
+                                             ImportBudget& budget) {
+    Result<AccessorData> opened =
+        openAccessor(model, index, where, format, budget, sizeof(glm::uvec4));
     if (!opened) return opened.error();
     const AccessorData& data = opened.value();
     std::vector<glm::uvec4> values(data.count, glm::uvec4(0));
@@ -720,10 +804,11 @@ Result<std::vector<glm::uvec4>> readIntegers(const tinygltf::Model& model, int i
 }
 
 Result<std::vector<glm::mat4>> readMatrices(const tinygltf::Model& model, int index,
-                                            const std::string& where) {
+                                            const std::string& where, ImportBudget& budget) {
     Format format{TINYGLTF_TYPE_MAT4};
     format.floats = true;
-    Result<AccessorData> opened = openAccessor(model, index, where, format);
+    Result<AccessorData> opened =
+        openAccessor(model, index, where, format, budget, sizeof(glm::mat4));
     if (!opened) return opened.error();
     const AccessorData& data = opened.value();
     std::vector<glm::mat4> matrices(data.count);
@@ -856,7 +941,8 @@ Result<Transform> nodeTransform(const tinygltf::Node& node, const std::string& w
     return t;
 }
 
-Status readNodes(const tinygltf::Model& model, const NodeOrder& order, Character& character) {
+Status readNodes(const tinygltf::Model& model, const NodeOrder& order, Character& character,
+                 ImportBudget&) {
     for (int fileIndex : order.order) {
         const tinygltf::Node& source = model.nodes[size_t(fileIndex)];
         const std::string where = at("nodes", size_t(fileIndex));
@@ -878,7 +964,8 @@ Status readNodes(const tinygltf::Model& model, const NodeOrder& order, Character
 
 // --- Skins -------------------------------------------------------------------------------------
 
-Status readSkins(const tinygltf::Model& model, const NodeOrder& order, Character& character) {
+Status readSkins(const tinygltf::Model& model, const NodeOrder& order, Character& character,
+                 ImportBudget& budget) {
     for (size_t s = 0; s < model.skins.size(); ++s) {
         const tinygltf::Skin& source = model.skins[s];
         const std::string where = at("skins", s);
@@ -897,7 +984,7 @@ Status readSkins(const tinygltf::Model& model, const NodeOrder& order, Character
         } else {
             const std::string ibmWhere = where + ".inverseBindMatrices";
             Result<std::vector<glm::mat4>> matrices =
-                readMatrices(model, source.inverseBindMatrices, ibmWhere);
+                readMatrices(model, source.inverseBindMatrices, ibmWhere, budget);
             if (!matrices) return matrices.error();
             if (matrices.value().size() != skin.joints.size())
                 return Error{ibmWhere + ": " + std::to_string(matrices.value().size()) +
@@ -944,7 +1031,7 @@ Status sameCount(size_t count, size_t vertices, const std::string& where) {
 
 // Weights renormalised to sum to 1; all-zero weights bind the vertex to joint 0.
 Status readSkinWeights(const tinygltf::Model& model, const Attributes& attributes,
-                       const std::string& where, Primitive& primitive) {
+                       const std::string& where, Primitive& primitive, ImportBudget& budget) {
     const int* joints = findAttribute(attributes, "JOINTS_0");
     const int* weights = findAttribute(attributes, "WEIGHTS_0");
     if (!joints && !weights) return Ok{};
@@ -954,12 +1041,12 @@ Status readSkinWeights(const tinygltf::Model& model, const Attributes& attribute
     Format jointFormat{TINYGLTF_TYPE_VEC4};
     jointFormat.smallUnsigned = true;
     Result<std::vector<glm::uvec4>> jointValues =
-        readIntegers(model, *joints, where + ".attributes.JOINTS_0", jointFormat);
+        readIntegers(model, *joints, where + ".attributes.JOINTS_0", jointFormat, budget);
     if (!jointValues) return jointValues.error();
     Format weightFormat = floatFormat(TINYGLTF_TYPE_VEC4);
     weightFormat.unsignedNormalized = true;
     Result<std::vector<glm::vec4>> weightValues =
-        readFloats(model, *weights, where + ".attributes.WEIGHTS_0", weightFormat);
+        readFloats(model, *weights, where + ".attributes.WEIGHTS_0", weightFormat, budget);
     if (!weightValues) return weightValues.error();
     const size_t vertices = primitive.positions.size();
     for (auto [count, name] : {std::pair{jointValues.value().size(), "JOINTS_0"},
@@ -984,7 +1071,7 @@ Status readSkinWeights(const tinygltf::Model& model, const Attributes& attribute
 }
 
 Status readIndices(const tinygltf::Model& model, int accessor, const std::string& where,
-                   Primitive& primitive) {
+                   Primitive& primitive, ImportBudget& budget) {
     const size_t vertices = primitive.positions.size();
     if (accessor < 0) {
         if (vertices % 3 != 0)
@@ -1000,7 +1087,8 @@ Status readIndices(const tinygltf::Model& model, int accessor, const std::string
     format.smallUnsigned = true;
     format.unsignedInt = true;
     const std::string indicesWhere = where + ".indices";
-    Result<std::vector<glm::uvec4>> values = readIntegers(model, accessor, indicesWhere, format);
+    Result<std::vector<glm::uvec4>> values =
+        readIntegers(model, accessor, indicesWhere, format, budget);
     if (!values) return values.error();
     if (values.value().size() % 3 != 0)
         return Error{indicesWhere + ": " + std::to_string(values.value().size()) +
@@ -1028,13 +1116,13 @@ Result<glm::vec4> baseColor(const tinygltf::Model& model, int material, const st
 }
 
 Result<Primitive> readPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& source,
-                                const std::string& where) {
+                                const std::string& where, ImportBudget& budget) {
     Primitive primitive;
     const Attributes& attributes = source.attributes;
     const int* position = findAttribute(attributes, "POSITION");
     if (!position) return Error{where + ".attributes: no POSITION"};
     Result<std::vector<glm::vec4>> positions = readFloats(
-        model, *position, where + ".attributes.POSITION", floatFormat(TINYGLTF_TYPE_VEC3));
+        model, *position, where + ".attributes.POSITION", floatFormat(TINYGLTF_TYPE_VEC3), budget);
     if (!positions) return positions.error();
     for (const glm::vec4& p : positions.value())
         primitive.positions.emplace_back(p);
@@ -1043,7 +1131,7 @@ Result<Primitive> readPrimitive(const tinygltf::Model& model, const tinygltf::Pr
     if (const int* normal = findAttribute(attributes, "NORMAL")) {
         const std::string normalWhere = where + ".attributes.NORMAL";
         Result<std::vector<glm::vec4>> normals =
-            readFloats(model, *normal, normalWhere, floatFormat(TINYGLTF_TYPE_VEC3));
+            readFloats(model, *normal, normalWhere, floatFormat(TINYGLTF_TYPE_VEC3), budget);
         if (!normals) return normals.error();
         if (Status s = sameCount(normals.value().size(), vertices, normalWhere); !s)
             return s.error();
@@ -1054,19 +1142,29 @@ Result<Primitive> readPrimitive(const tinygltf::Model& model, const tinygltf::Pr
         const std::string uvWhere = where + ".attributes.TEXCOORD_0";
         Format format = floatFormat(TINYGLTF_TYPE_VEC2);
         format.unsignedNormalized = true;
-        Result<std::vector<glm::vec4>> uvs = readFloats(model, *uv, uvWhere, format);
+        Result<std::vector<glm::vec4>> uvs = readFloats(model, *uv, uvWhere, format, budget);
         if (!uvs) return uvs.error();
         if (Status s = sameCount(uvs.value().size(), vertices, uvWhere); !s) return s.error();
         for (const glm::vec4& t : uvs.value())
             primitive.uvs.emplace_back(t);
     }
-    if (Status s = readSkinWeights(model, attributes, where, primitive); !s) return s.error();
-    if (Status s = readIndices(model, source.indices, where, primitive); !s) return s.error();
+    if (Status s = readSkinWeights(model, attributes, where, primitive, budget); !s)
+        return s.error();
+    if (Status s = readIndices(model, source.indices, where, primitive, budget); !s)
+        return s.error();
     completeNormals(primitive);
     Result<glm::vec4> color = baseColor(model, source.material, where);
     if (!color) return color.error();
     primitive.baseColor = color.value();
     return primitive;
+}
+
+// The bytes a primitive's arrays and struct take.
+uint64_t primitiveBytes(const Primitive& p) {
+    return sizeof(Primitive) + p.positions.size() * sizeof(glm::vec3) +
+           p.normals.size() * sizeof(glm::vec3) + p.uvs.size() * sizeof(glm::vec2) +
+           p.joints.size() * sizeof(glm::uvec4) + p.weights.size() * sizeof(glm::vec4) +
+           p.indices.size() * sizeof(uint32_t);
 }
 
 // A mesh as the file has it, before it is placed by the nodes that use it.
@@ -1075,7 +1173,7 @@ struct FileMesh {
     std::vector<std::string> wheres; // "meshes[m].primitives[p]" of each primitive kept
 };
 
-Result<FileMesh> readMesh(const tinygltf::Model& model, size_t index) {
+Result<FileMesh> readMesh(const tinygltf::Model& model, size_t index, ImportBudget& budget) {
     const tinygltf::Mesh& source = model.meshes[index];
     FileMesh result;
     result.mesh.name = source.name.empty() ? "mesh_" + std::to_string(index) : source.name;
@@ -1085,8 +1183,14 @@ Result<FileMesh> readMesh(const tinygltf::Model& model, size_t index) {
         if (mode < TINYGLTF_MODE_POINTS || mode > TINYGLTF_MODE_TRIANGLE_FAN)
             return Error{where + ".mode: " + std::to_string(mode) + " is not a primitive mode"};
         if (mode != TINYGLTF_MODE_TRIANGLES) continue; // points, lines, strips, fans: skipped
-        Result<Primitive> primitive = readPrimitive(model, source.primitives[p], where);
+        Result<Primitive> primitive = readPrimitive(model, source.primitives[p], where, budget);
         if (!primitive) return primitive.error();
+        // Charged as it is read: a mesh of many primitives reading one accessor of zeros is
+        // stopped before it is whole.
+        if (Status s = budget.spend(where, 0, primitive.value().positions.size(),
+                                    primitiveBytes(primitive.value()));
+            !s)
+            return s.error();
         result.mesh.primitives.push_back(std::move(primitive).value());
         result.wheres.push_back(where);
     }
@@ -1120,7 +1224,23 @@ Status placeMesh(const FileMesh& fileMesh, int skin, int node, const Character& 
     return Ok{};
 }
 
-Status readMeshes(const tinygltf::Model& model, const NodeOrder& order, Character& character) {
+struct MeshSize {
+    uint64_t vertices = 0;
+    uint64_t bytes = 0; // its arrays and the structs that hold them
+};
+
+MeshSize meshSize(const Mesh& mesh) {
+    MeshSize size;
+    size.bytes = sizeof(Mesh) + mesh.name.size();
+    for (const Primitive& p : mesh.primitives) {
+        size.vertices += p.positions.size();
+        size.bytes += primitiveBytes(p);
+    }
+    return size;
+}
+
+Status readMeshes(const tinygltf::Model& model, const NodeOrder& order, Character& character,
+                  ImportBudget& budget) {
     // The nodes instancing each mesh, in the character's node order.
     std::vector<std::vector<int>> users(model.meshes.size());
     for (int fileIndex : order.order) {
@@ -1128,8 +1248,16 @@ Status readMeshes(const tinygltf::Model& model, const NodeOrder& order, Characte
         if (mesh >= 0) users[size_t(mesh)].push_back(fileIndex);
     }
     for (size_t m = 0; m < model.meshes.size(); ++m) {
-        Result<FileMesh> fileMesh = readMesh(model, m);
+        Result<FileMesh> fileMesh = readMesh(model, m, budget);
         if (!fileMesh) return fileMesh.error();
+        // The copies placed below: their bytes each (the file's mesh is held beside them), their
+        // vertices past the first (readMesh charged the file's).
+        const uint64_t copies = std::max<size_t>(users[m].size(), 1);
+        const MeshSize size = meshSize(fileMesh.value().mesh);
+        if (Status s =
+                budget.spend(at("meshes", m), 0, (copies - 1) * size.vertices, copies * size.bytes);
+            !s)
+            return s;
         if (users[m].empty()) {
             Mesh mesh = fileMesh.value().mesh;
             if (Status s = placeMesh(fileMesh.value(), -1, -1, character, mesh); !s) return s;
@@ -1166,14 +1294,14 @@ Result<Interpolation> interpolation(const std::string& name, const std::string& 
 }
 
 Result<Sampler> readSampler(const tinygltf::Model& model, const tinygltf::AnimationSampler& source,
-                            const std::string& where) {
+                            const std::string& where, ImportBudget& budget) {
     Sampler sampler;
     Result<Interpolation> kind = interpolation(source.interpolation, where);
     if (!kind) return kind.error();
     sampler.interpolation = kind.value();
     const std::string inputWhere = where + ".input";
     Result<std::vector<glm::vec4>> times =
-        readFloats(model, source.input, inputWhere, floatFormat(TINYGLTF_TYPE_SCALAR));
+        readFloats(model, source.input, inputWhere, floatFormat(TINYGLTF_TYPE_SCALAR), budget);
     if (!times) return times.error();
     for (size_t k = 0; k < times.value().size(); ++k) {
         const float t = times.value()[k].x;
@@ -1214,15 +1342,20 @@ Status normaliseRotations(Channel& channel, const std::string& where) {
 }
 
 Result<Channel> readChannel(const tinygltf::Model& model, const Sampler& sampler, Path path,
-                            const std::string& samplerWhere) {
+                            const std::string& samplerWhere, ImportBudget& budget) {
     Channel channel;
     channel.path = path;
     channel.interpolation = sampler.interpolation;
+    if (Status s =
+            budget.spend(samplerWhere + ".input", 0, 0, sampler.times.size() * sizeof(float));
+        !s)
+        return s.error();
     channel.times = sampler.times;
     Format format = floatFormat(path == Path::Rotation ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3);
     if (path == Path::Rotation) format.signedNormalized = format.unsignedNormalized = true;
     const std::string outputWhere = samplerWhere + ".output";
-    Result<std::vector<glm::vec4>> values = readFloats(model, sampler.output, outputWhere, format);
+    Result<std::vector<glm::vec4>> values =
+        readFloats(model, sampler.output, outputWhere, format, budget);
     if (!values) return values.error();
     const size_t perKey = sampler.interpolation == Interpolation::CubicSpline ? 3 : 1;
     if (values.value().size() != perKey * sampler.times.size())
@@ -1235,7 +1368,8 @@ Result<Channel> readChannel(const tinygltf::Model& model, const Sampler& sampler
     return channel;
 }
 
-Result<Clip> readClip(const tinygltf::Model& model, size_t index, const NodeOrder& order) {
+Result<Clip> readClip(const tinygltf::Model& model, size_t index, const NodeOrder& order,
+                      ImportBudget& budget) {
     const tinygltf::Animation& source = model.animations[index];
     const std::string where = at("animations", index);
     Clip clip;
@@ -1243,7 +1377,7 @@ Result<Clip> readClip(const tinygltf::Model& model, size_t index, const NodeOrde
     std::vector<Sampler> samplers;
     for (size_t s = 0; s < source.samplers.size(); ++s) {
         Result<Sampler> sampler =
-            readSampler(model, source.samplers[s], at(where + ".samplers", s));
+            readSampler(model, source.samplers[s], at(where + ".samplers", s), budget);
         if (!sampler) return sampler.error();
         samplers.push_back(std::move(sampler).value());
     }
@@ -1259,7 +1393,8 @@ Result<Clip> readClip(const tinygltf::Model& model, size_t index, const NodeOrde
         const std::optional<Path> path = channelPath(channel.target_path);
         if (channel.target_node < 0 || !path) continue;
         const size_t s = size_t(channel.sampler);
-        Result<Channel> read = readChannel(model, samplers[s], *path, at(where + ".samplers", s));
+        Result<Channel> read =
+            readChannel(model, samplers[s], *path, at(where + ".samplers", s), budget);
         if (!read) return read.error();
         read.value().node = order.newIndex[size_t(channel.target_node)];
         clip.duration = std::max(clip.duration, read.value().times.back());
@@ -1268,9 +1403,10 @@ Result<Clip> readClip(const tinygltf::Model& model, size_t index, const NodeOrde
     return clip;
 }
 
-Status readClips(const tinygltf::Model& model, const NodeOrder& order, Character& character) {
+Status readClips(const tinygltf::Model& model, const NodeOrder& order, Character& character,
+                 ImportBudget& budget) {
     for (size_t a = 0; a < model.animations.size(); ++a) {
-        Result<Clip> clip = readClip(model, a, order);
+        Result<Clip> clip = readClip(model, a, order, budget);
         if (!clip) return clip.error();
         character.clips.push_back(std::move(clip).value());
     }
@@ -1290,8 +1426,9 @@ Result<Character> importChecked(const std::filesystem::path& file) {
     if (!order) return order.error();
     Character character;
     character.name = file.stem().string();
+    ImportBudget budget;
     for (auto read : {&readNodes, &readSkins, &readMeshes, &readClips})
-        if (Status s = read(gltf, order.value(), character); !s) return s.error();
+        if (Status s = read(gltf, order.value(), character, budget); !s) return s.error();
     if (Status s = checkInvariants(character); !s) return s.error();
     return character;
 }

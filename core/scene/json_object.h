@@ -178,9 +178,11 @@ public:
             if (!given(key))
                 return fallback.empty() && !choices.empty() ? choices.front() : fallback;
         }
-        const json value = j_.contains(key) ? j_.at(key) : json(fallback);
-        if (!value.is_string()) fail(at(key), "expected a string, got " + typeOf(value));
-        const std::string v = value.get<std::string>();
+        // The file's value is looked at in place: it is only copied once it is known to be a
+        // string (a deep array in its place would make a deep copy).
+        const json* given = j_.contains(key) ? &j_.at(key) : nullptr;
+        if (given && !given->is_string()) fail(at(key), "expected a string, got " + typeOf(*given));
+        const std::string v = given ? given->get<std::string>() : fallback;
         if (std::find(choices.begin(), choices.end(), v) == choices.end())
             fail(at(key), "\"" + v + "\" is not one of: " + join(choices));
         return v;
@@ -292,10 +294,17 @@ private:
         if (!v.is_number()) fail(path, "expected a number, got " + typeOf(v));
         const double d = v.get<double>();
         if (!std::isfinite(d)) fail(path, "must be a finite number");
+        const std::string range =
+            std::string(lowOpen ? "(" : "[") + formatNumber(low) + ", " + formatNumber(high) + "]";
         if (d < low || d > high || (lowOpen && d == low))
-            fail(path, formatNumber(d) + " is outside " + (lowOpen ? "(" : "[") +
-                           formatNumber(low) + ", " + formatNumber(high) + "]");
-        return d;
+            fail(path, formatNumber(d) + " is outside " + range);
+        // Every number of a scene is stored as a 32-bit float: the range holds for what is
+        // stored, not only for the double the file spells (1e-300 is in (0, 100] but becomes 0).
+        const float stored = float(d);
+        if (stored < float(low) || stored > float(high) || (lowOpen && stored <= float(low)))
+            fail(path, formatNumber(d) + " is outside " + range +
+                           " as a 32-bit float (it becomes " + formatNumber(double(stored)) + ")");
+        return double(stored);
     }
     static uint32_t checkInteger(const json& v, const std::string& path, uint32_t low,
                                  uint32_t high) {

@@ -3,6 +3,7 @@
 #include "core/anim/bone_groups.h"
 #include "core/anim/fighter.h"
 #include "core/anim/gltf_import.h"
+#include "core/json_shape.h"
 #include "core/scene/default_scene_json.h"
 #include "core/scene/effect_kinds.h"
 #include "core/scene/json_object.h"
@@ -93,7 +94,7 @@ void readOutput(const Object& o, OutputSpec& out) {
     out.width = o.integer("width", out.width, 16, 8192);
     out.height = o.integer("height", out.height, 16, 8192);
     out.fps = float(o.number("fps", out.fps, 1.0, 240.0));
-    if (o.has("frames") && !o.null("frames")) out.frames = o.integer("frames", 1, 1, 100000);
+    if (o.has("frames") && !o.null("frames")) out.frames = o.integer("frames", 1, 1, kMaxFrames);
 }
 
 void readPost(const Object& o, PostSpec& post) {
@@ -147,12 +148,31 @@ Scene readScene(const json& doc, const std::string& where) {
     return s;
 }
 
+// A scene file nests six levels at most (effects[i].colour_over_life[j].colour) and holds a few
+// hundred values; these bounds leave room for any hand-written or generated scene.
+constexpr JsonLimits kSceneJsonLimits{32, size_t(1) << 16};
+
 // nlohmann's message without its "[json.exception...]" prefix.
 std::string parseMessage(const std::string& what) {
     const size_t close = what.find("] ");
     std::string m = close == std::string::npos ? what : what.substr(close + 2);
     if (m.rfind("parse error at ", 0) == 0) m = m.substr(15);
     return m;
+}
+
+// Where playback ends in the clip: character.end, at most the clip's end.
+float clipEnd(const Scene& scene, const anim::Clip& clip) {
+    return scene.character.end ? std::min(*scene.character.end, clip.duration) : clip.duration;
+}
+
+// The frames the clip lasts at the scene's speed and fps, in double (a slow speed or a long clip
+// can make it any size, infinity included), rounded up.
+double unboundedFrames(const Scene& scene, const anim::Character& character) {
+    const anim::Clip& clip = sceneClip(scene, character);
+    const double seconds =
+        std::max(double(clipEnd(scene, clip)) - double(scene.character.start), 0.0) /
+        double(scene.character.speed);
+    return std::ceil(seconds * double(scene.output.fps));
 }
 
 } // namespace
@@ -202,6 +222,9 @@ CharacterStyle characterStyle(const CharacterSpec& character) {
 }
 
 Result<json> parseSceneJson(const std::string& text, const std::string& where) {
+    // Bounded before parsing: the readers (and nlohmann's copies) recurse once per level.
+    if (Status shape = checkJsonShape(text, kSceneJsonLimits); !shape)
+        return Error{where + ": " + shape.error().message};
     try {
         return json::parse(text);
     } catch (const json::exception& e) { // syntax errors, and numbers too large for a double
@@ -341,6 +364,17 @@ Status checkClip(const Scene& scene, const anim::Character& character) {
         return Error{scene.file + ": character.start: " + formatNumber(scene.character.start) +
                      " is not before the end of clip \"" + clip.name + "\" (" +
                      formatNumber(clip.duration) + " s)"};
+    if (!scene.output.frames) {
+        const double frames = unboundedFrames(scene, character);
+        if (!(frames <= double(kMaxFrames)))
+            return Error{scene.file + ": character.speed: clip \"" + clip.name + "\" from " +
+                         formatNumber(scene.character.start) + " s to " +
+                         formatNumber(clipEnd(scene, clip)) + " s at speed " +
+                         formatNumber(scene.character.speed) + " lasts " + formatNumber(frames) +
+                         " frames at " + formatNumber(scene.output.fps) + " fps; at most " +
+                         std::to_string(kMaxFrames) +
+                         " (give a faster speed, an earlier character.end or output.frames)"};
+    }
     return Ok{};
 }
 
@@ -375,21 +409,19 @@ const anim::Clip& sceneClip(const Scene& scene, const anim::Character& character
 
 float sceneDuration(const Scene& scene, const anim::Character& character) {
     const anim::Clip& clip = sceneClip(scene, character);
-    const float end =
-        scene.character.end ? std::min(*scene.character.end, clip.duration) : clip.duration;
-    return std::max(end - scene.character.start, 0.0f) / scene.character.speed;
+    return std::max(clipEnd(scene, clip) - scene.character.start, 0.0f) / scene.character.speed;
 }
 
 uint32_t frameCount(const Scene& scene, const anim::Character& character) {
     if (scene.output.frames) return *scene.output.frames;
-    return std::max(1u, uint32_t(std::ceil(sceneDuration(scene, character) * scene.output.fps)));
+    const double frames = unboundedFrames(scene, character);
+    return frames <= double(kMaxFrames) ? std::max(1u, uint32_t(frames)) : kMaxFrames;
 }
 
 float clipTimeAt(const Scene& scene, const anim::Character& character, float sceneTime) {
     const anim::Clip& clip = sceneClip(scene, character);
     const float start = scene.character.start;
-    const float end =
-        scene.character.end ? std::min(*scene.character.end, clip.duration) : clip.duration;
+    const float end = clipEnd(scene, clip);
     const float span = std::max(end - start, 1e-6f);
     float t = sceneTime * scene.character.speed;
     if (scene.character.loop)

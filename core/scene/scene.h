@@ -148,13 +148,20 @@ Result<anim::Character> loadCharacter(const Scene& scene, std::string* note = nu
 // The character file loadCharacter reads (relative paths against the scene file's folder); empty
 // for the built-in fighter.
 std::filesystem::path characterFile(const Scene& scene);
-// Checks that the character has the scene's clip and that playback starts inside it.
+// Checks that the character has the scene's clip, that playback starts inside it, and that the
+// frames it lasts (without output.frames) are at most kMaxFrames.
 Status checkClip(const Scene& scene, const anim::Character& character);
 // checkClip, then every effect's bone (plain names, groups and patterns) and mesh names.
 Status checkNames(const Scene& scene, const anim::Character& character);
 
+// The most frames a scene renders (output.frames, or its clip's length at its speed and fps): every
+// per-frame loop over a scene is bounded by it. checkClip refuses a scene whose clip runs longer.
+constexpr uint32_t kMaxFrames = 100000;
+
 // Seconds of scene time the output covers, and the clip time at a scene time.
 float sceneDuration(const Scene& scene, const anim::Character& character);
+// The frames the output has: output.frames, else the duration at the scene's fps, at most
+// kMaxFrames (checkClip has refused a longer scene; the bound keeps this defined regardless).
 uint32_t frameCount(const Scene& scene, const anim::Character& character);
 float clipTimeAt(const Scene& scene, const anim::Character& character, float sceneTime);
 const anim::Clip& sceneClip(const Scene& scene, const anim::Character& character);

@@ -12,9 +12,22 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <set>
 
 namespace mfx::scene {
+
+std::vector<uint32_t> liveSampledFrames(const Scene& scene, const EffectSpec& e, uint32_t frames) {
+    std::vector<uint32_t> live;
+    const float dt = 1.0f / scene.output.fps;
+    for (uint32_t f = 0; f < frames; ++f)
+        if (effectLive(scene, e, float(f) * dt)) live.push_back(f);
+    if (live.size() <= kMaxSampledFrames) return live;
+    std::vector<uint32_t> out;
+    for (size_t k = 0; k < kMaxSampledFrames; ++k)
+        out.push_back(live[k * (live.size() - 1) / (kMaxSampledFrames - 1)]);
+    return out;
+}
 
 namespace {
 
@@ -24,7 +37,6 @@ namespace {
 const glm::vec3 kThreeQuarterView = glm::normalize(glm::vec3(2.6f, 0.55f, 3.4f));
 constexpr float kFrameFill = 0.95f;    // the framed bounds fill at most this much of the frame
 constexpr float kEffectMargin = 0.08f; // the effects' reach beyond the body, in heights
-constexpr size_t kMaxFramedFrames = 240;
 
 std::string formatNumber(double v, int digits = 3) {
     char text[32];
@@ -59,7 +71,7 @@ anim::Pose poseAtSceneTime(const Scene& scene, const anim::Character& character,
 std::vector<uint32_t> sampledFrames(uint32_t frames) {
     std::vector<uint32_t> out;
     const uint32_t step =
-        std::max<uint32_t>(1, uint32_t((frames + kMaxFramedFrames - 1) / kMaxFramedFrames));
+        std::max<uint32_t>(1, uint32_t((frames + kMaxSampledFrames - 1) / kMaxSampledFrames));
     for (uint32_t f = 0; f < frames; f += step)
         out.push_back(f);
     if (out.back() != frames - 1) out.push_back(frames - 1);
@@ -75,34 +87,36 @@ trajectory::Selection selectionOf(const EffectSpec& e) {
 }
 
 // The peak speed of any bone of `bones` (their world origins, metres per second) over the frames
-// where `e` is live.
+// where `e` is live: at each sampled live frame, from the frame before it (when that is live too
+// and the clip does not wrap between them).
 float peakBoneSpeed(const Scene& scene, const anim::Character& character, const EffectSpec& e,
                     const std::vector<std::string>& bones) {
     std::vector<int> nodes;
     for (const std::string& b : bones)
         if (std::optional<int> n = character.findNode(b)) nodes.push_back(*n);
     const glm::mat4 placement = characterPlacement(scene);
-    const uint32_t frames = frameCount(scene, character);
     const float dt = 1.0f / scene.output.fps;
-    float peak = 0.0f;
-    std::vector<glm::vec3> previous;
-    float previousClipTime = 0.0f;
-    for (uint32_t f = 0; f < frames; ++f) {
-        const float t = float(f) * dt;
-        const float clipTime = clipTimeAt(scene, character, t);
-        // Not across a loop's wrap (the pose jumps back there) nor outside the window.
-        const bool isLive = effectLive(scene, e, t);
-        if (!isLive || clipTime < previousClipTime) previous.clear();
-        previousClipTime = clipTime;
-        if (!isLive) continue;
-        const anim::Pose pose = poseAtSceneTime(scene, character, t);
-        std::vector<glm::vec3> now;
+    auto positionsAt = [&](uint32_t f) {
+        const anim::Pose pose = poseAtSceneTime(scene, character, float(f) * dt);
+        std::vector<glm::vec3> out;
         for (int n : nodes)
-            now.push_back(glm::vec3(placement * pose.world[size_t(n)][3]));
-        if (!previous.empty())
-            for (size_t i = 0; i < now.size(); ++i)
-                peak = std::max(peak, glm::length(now[i] - previous[i]) / dt);
-        previous = std::move(now);
+            out.push_back(glm::vec3(placement * pose.world[size_t(n)][3]));
+        return out;
+    };
+    float peak = 0.0f;
+    std::optional<uint32_t> heldFrame; // the last frame whose positions are `held`
+    std::vector<glm::vec3> held;
+    for (uint32_t f : liveSampledFrames(scene, e, frameCount(scene, character))) {
+        if (f == 0 || !effectLive(scene, e, float(f - 1) * dt)) continue;
+        if (clipTimeAt(scene, character, float(f) * dt) <
+            clipTimeAt(scene, character, float(f - 1) * dt))
+            continue; // a loop's wrap: the pose jumps back there
+        const std::vector<glm::vec3> previous =
+            heldFrame == f - 1 ? std::move(held) : positionsAt(f - 1);
+        held = positionsAt(f);
+        heldFrame = f;
+        for (size_t i = 0; i < held.size(); ++i)
+            peak = std::max(peak, glm::length(held[i] - previous[i]) / dt);
     }
     return peak;
 }
@@ -395,22 +409,25 @@ std::vector<std::string> motionlessEffects(const Scene& scene, const anim::Chara
                            .position;
             return p;
         };
-        bool everLive = false;
+        // Each live frame's segment runs from the previous frame's pose to this one; a sample of
+        // them, as for the fastest limb.
+        const std::vector<uint32_t> live = liveSampledFrames(scene, e, frames);
+        const bool everLive = !live.empty();
         float largest = 0.0f;
         Bounds reach = emptyBounds();
-        std::vector<glm::vec3> previous;
-        for (uint32_t f = 0; f < frames; ++f) {
+        std::optional<uint32_t> heldFrame; // the last frame whose positions are `held`
+        std::vector<glm::vec3> held;
+        for (uint32_t f : live) {
             const float t = float(f) * dt;
-            if (!effectLive(scene, e, t)) continue;
-            everLive = true;
-            // Each live frame's segment runs from the previous frame's pose to this one.
-            if (previous.empty()) previous = positions(std::max(t - dt, 0.0f));
-            std::vector<glm::vec3> now = positions(t);
-            for (size_t v = 0; v < now.size(); ++v) {
-                largest = std::max(largest, glm::length(now[v] - previous[v]));
-                include(reach, now[v]);
+            const std::vector<glm::vec3> previous = heldFrame && *heldFrame + 1 == f
+                                                        ? std::move(held)
+                                                        : positions(std::max(t - dt, 0.0f));
+            held = positions(t);
+            heldFrame = f;
+            for (size_t v = 0; v < held.size(); ++v) {
+                largest = std::max(largest, glm::length(held[v] - previous[v]));
+                include(reach, held[v]);
             }
-            previous = std::move(now);
         }
         const std::string window = formatNumber(e.start) + "-" +
                                    (e.end ? formatNumber(*e.end) : std::string("end")) + " s";

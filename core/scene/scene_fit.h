@@ -55,7 +55,14 @@ float characterHeight(const Scene& scene, const anim::Character& character);
 // (so a boundary on a frame time is inside it): the rule every effect is played by.
 bool effectLive(const Scene& scene, const EffectSpec& e, float time);
 
-// The bounds of the placed character over every frame of the scene's played range.
+// The frames (of `frames`) at which effect `e` is live: all of them, or at most kMaxSampledFrames
+// spread evenly over them. What the set-up samples an effect's motion at (its fastest limb,
+// whether it moves, where its smoke goes), so that its cost does not grow with the scene's length.
+constexpr size_t kMaxSampledFrames = 240;
+std::vector<uint32_t> liveSampledFrames(const Scene& scene, const EffectSpec& e, uint32_t frames);
+
+// The bounds of the placed character over the scene's played range (at most kMaxSampledFrames
+// frames of it, spread evenly).
 Bounds animatedBounds(const Scene& scene, const anim::Character& character);
 
 // The uniform scale loadCharacter applies: 1 inside the sane range; `note` (when not null) gets

@@ -1,0 +1,8 @@
+// libFuzzer harness: the glTF importer (tests/fuzz/fuzz_targets.h). Built and run by
+// `./build.sh fuzz [seconds]`.
+#include "tests/fuzz/fuzz_targets.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+    mfx::fuzz::importGltfInput(std::span<const uint8_t>(data, size));
+    return 0;
+}

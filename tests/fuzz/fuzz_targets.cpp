@@ -1,0 +1,72 @@
+#include "tests/fuzz/fuzz_targets.h"
+
+#include "core/anim/gltf_import.h"
+#include "core/scene/scene.h"
+#include "core/scene/scene_document.h"
+#include "core/scene/scene_fit.h"
+
+#include <cstdlib>
+#include <fstream>
+#include <string>
+#include <unistd.h>
+
+namespace mfx::fuzz {
+
+namespace {
+
+void writeFile(const std::filesystem::path& path, std::span<const uint8_t> bytes) {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+}
+
+} // namespace
+
+const std::filesystem::path& scratchFolder() {
+    static const std::filesystem::path folder = [] {
+        const std::filesystem::path parent = std::filesystem::temp_directory_path() /
+                                             ("motionfx_fuzz_" + std::to_string(long(getpid())));
+        const std::filesystem::path inside = parent / "input";
+        std::filesystem::create_directories(inside);
+        // Three floats a vertex, one triangle: what a seed's "uri": "triangle.bin" reads.
+        const float triangle[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+        const auto bytes =
+            std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(triangle), sizeof triangle);
+        writeFile(inside / "triangle.bin", bytes);
+        writeFile(parent / "outside.bin", bytes);
+        std::atexit([] {
+            std::error_code ignored;
+            std::filesystem::remove_all(scratchFolder().parent_path(), ignored);
+        });
+        return inside;
+    }();
+    return folder;
+}
+
+void importGltfInput(std::span<const uint8_t> bytes) {
+    const std::filesystem::path file = scratchFolder() / "input.gltf";
+    writeFile(file, bytes);
+    const Result<anim::Character> character = anim::importGltf(file);
+    if (character) (void)anim::checkInvariants(character.value());
+}
+
+void readSceneInput(std::span<const uint8_t> bytes) {
+    const std::string text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+    Result<scene::Scene> parsed = scene::parseScene(text, "fuzz.json");
+    if (parsed) {
+        scene::Scene s = std::move(parsed).value();
+        s.character.source = "fighter";
+        Result<anim::Character> character = scene::loadCharacter(s);
+        if (character && scene::fitScene(s, character.value()))
+            (void)scene::motionlessEffects(s, character.value(),
+                                           scene::frameCount(s, character.value()));
+    }
+    Result<scene::SceneDocument> document = scene::SceneDocument::fromText(text, "fuzz.json");
+    if (!document) return;
+    for (const std::string& section : scene::sceneSections())
+        (void)document.value().params(section);
+    for (size_t i = 0; i < document.value().scene().effects.size(); ++i)
+        (void)document.value().params("effects[" + std::to_string(i) + "]");
+    (void)document.value().text();
+}
+
+} // namespace mfx::fuzz
