@@ -426,6 +426,24 @@ TEST(CliInspect, MissingFileIsOneLineNamingIt) {
     EXPECT_NE(r.err.find("/nonexistent/dancer.glb"), std::string::npos) << r.err;
 }
 
+TEST(CliInspect, BufferOutsideTheFolderIsOneLineAndNotRead) {
+    // Before, inspect printed the size of the system file this names, and a matching
+    // byteLength loaded its bytes as vertices.
+    const std::string dir = std::string(MFX_TEST_OUTPUT_DIR) + "/cli_outside";
+    std::filesystem::create_directories(dir);
+    const std::string file = dir + "/system.gltf";
+    std::ofstream(file) << R"({"asset": {"version": "2.0"},
+        "buffers": [{"byteLength": 36, "uri": "../../../../../../../../etc/passwd"}]})";
+    const RunResult r = runMotionfx("inspect \"" + file + "\"");
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+    EXPECT_NE(r.err.find("system.gltf: buffers[0].uri: \"../../../../../../../../etc/passwd\" "
+                         "leads outside the glTF file's folder"),
+              std::string::npos)
+        << r.err;
+    EXPECT_EQ(r.out, "");
+}
+
 TEST(CliInspect, NoFileIsABadUsage) {
     const RunResult r = runMotionfx("inspect");
     EXPECT_EQ(r.exitCode, 2);

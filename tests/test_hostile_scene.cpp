@@ -13,6 +13,8 @@
 #include <fstream>
 #include <gtest/gtest.h>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace mfx::test {
 namespace {
@@ -136,6 +138,29 @@ TEST(HostileScene, LongSceneWithManyAutomaticEffectsIsListedQuickly) {
     const RunResult r = runMotionfx("scene \"" + path + "\"", "timeout 300");
     EXPECT_EQ(r.exitCode, 0) << r.err;
     EXPECT_CONTAINS(r.out, "99963 frames");
+}
+
+// The program on each hostile scene: exit 1 and one line naming the file, the key and the limit.
+TEST(HostileScene, ProgramRefusesEachInOneLine) {
+    const std::string dir = std::string(MFX_TEST_OUTPUT_DIR) + "/hostile_scene";
+    std::filesystem::create_directories(dir);
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {R"({"effects": [{"type": )" + nested(1000000) + "}]}",
+         "deep.json: the JSON nests deeper than 32 levels of arrays and objects"},
+        {R"({"character": {"speed": 1e-300}, "effects": [{"type": "speed_lines"}]})",
+         "tiny.json: character.speed: 1e-300 is outside (0, 100] as a 32-bit float"},
+        {R"({"character": {"speed": 1e-6}, "effects": [{"type": "speed_lines"}]})",
+         "slow.json: character.speed: clip \"roundhouse_kick\""},
+    };
+    const char* names[] = {"deep.json", "tiny.json", "slow.json"};
+    for (size_t i = 0; i < cases.size(); ++i) {
+        const std::string path = dir + "/" + names[i];
+        std::ofstream(path) << cases[i].first;
+        const RunResult r = runMotionfx("scene \"" + path + "\"", "timeout 60");
+        EXPECT_EQ(r.exitCode, 1) << names[i];
+        EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+        EXPECT_CONTAINS(r.err, cases[i].second);
+    }
 }
 
 } // namespace

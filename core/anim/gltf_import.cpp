@@ -323,10 +323,10 @@ Status checkUri(const Json& element, const std::string& where,
     const std::string& uri = it->get_ref<const std::string&>();
     if (uri.rfind("data:", 0) == 0 && uri.find(";base64,") != std::string::npos) return Ok{};
     const std::string path = decodeUri(uri);
-    const bool control =
-        std::any_of(path.begin(), path.end(), [](char c) { return (unsigned char)(c) < 0x20; });
-    if (path.empty() || control || std::filesystem::path(path).is_absolute() ||
-        !insideFolder(folder, folder / path))
+    if (path.empty()) return Error{where + ".uri: empty; give a file's name or a data: URI"};
+    if (std::any_of(path.begin(), path.end(), [](char c) { return (unsigned char)(c) < 0x20; }))
+        return Error{where + ".uri: holds a control character once decoded"};
+    if (std::filesystem::path(path).is_absolute() || !insideFolder(folder, folder / path))
         return Error{where + ".uri: \"" + firstLine(uri) +
                      "\" leads outside the glTF file's folder; buffers and images must lie "
                      "inside it or be data: URIs"};
@@ -451,9 +451,10 @@ Status checkGltfJson(std::span<const unsigned char> text, bool glb,
         const bool looksLikeJson =
             !text.empty() && (text[0] == '{' || text[0] == ' ' || text[0] == '\n' ||
                               text[0] == '\r' || text[0] == '\t' || text[0] == 0xEF);
-        return Error{glb || looksLikeJson ? "not valid JSON (" + firstLine(reason) + ")"
-                                          : "neither a GLB file (no 'glTF' magic) nor glTF JSON (" +
-                                                firstLine(reason) + ")"};
+        if (glb || looksLikeJson) return Error{"not valid JSON (" + firstLine(reason) + ")"};
+        // Not JSON at all: the parser's reason would quote the file's first bytes (a file that is
+        // not the user's own, named by a scene, should not be echoed).
+        return Error{"neither a GLB file (no 'glTF' magic) nor glTF JSON"};
     }
     if (!root.is_object()) return Error{"the JSON is not an object"};
     if (Status s = requireAll(root, {{"asset", Kind::Object}}, "glTF"); !s)

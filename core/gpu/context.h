@@ -102,7 +102,7 @@ public:
     const DeviceFeatures& features() const { return features_; }
     const VkPhysicalDeviceLimits& limits() const { return properties_.limits; }
     const VkPhysicalDeviceMemoryProperties& memoryProperties() const { return memory_; }
-    double timestampPeriodNs() const { return properties_.limits.timestampPeriod; }
+    double timestampPeriodNs() const { return double(properties_.limits.timestampPeriod); }
     bool validationEnabled() const { return validation_; }
 
     // Pool for one-shot command buffers on the graphics queue (see commands.h).

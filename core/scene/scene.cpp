@@ -165,14 +165,10 @@ float clipEnd(const Scene& scene, const anim::Clip& clip) {
     return scene.character.end ? std::min(*scene.character.end, clip.duration) : clip.duration;
 }
 
-// The frames the clip lasts at the scene's speed and fps, in double (a slow speed or a long clip
-// can make it any size, infinity included), rounded up.
-double unboundedFrames(const Scene& scene, const anim::Character& character) {
-    const anim::Clip& clip = sceneClip(scene, character);
-    const double seconds =
-        std::max(double(clipEnd(scene, clip)) - double(scene.character.start), 0.0) /
-        double(scene.character.speed);
-    return std::ceil(seconds * double(scene.output.fps));
+// The frames the clip lasts at the scene's speed and fps, rounded up, in float as frameCount has
+// always counted them (a slow speed or a long clip can make it any size, infinity included).
+float unboundedFrames(const Scene& scene, const anim::Character& character) {
+    return std::ceil(sceneDuration(scene, character) * scene.output.fps);
 }
 
 } // namespace
@@ -365,13 +361,14 @@ Status checkClip(const Scene& scene, const anim::Character& character) {
                      " is not before the end of clip \"" + clip.name + "\" (" +
                      formatNumber(clip.duration) + " s)"};
     if (!scene.output.frames) {
-        const double frames = unboundedFrames(scene, character);
-        if (!(frames <= double(kMaxFrames)))
+        const float frames = unboundedFrames(scene, character);
+        if (!(frames <= float(kMaxFrames)))
             return Error{scene.file + ": character.speed: clip \"" + clip.name + "\" from " +
                          formatNumber(scene.character.start) + " s to " +
                          formatNumber(clipEnd(scene, clip)) + " s at speed " +
-                         formatNumber(scene.character.speed) + " lasts " + formatNumber(frames) +
-                         " frames at " + formatNumber(scene.output.fps) + " fps; at most " +
+                         formatNumber(scene.character.speed) + " lasts " +
+                         formatNumber(double(frames)) + " frames at " +
+                         formatNumber(scene.output.fps) + " fps; at most " +
                          std::to_string(kMaxFrames) +
                          " (give a faster speed, an earlier character.end or output.frames)"};
     }
@@ -414,8 +411,8 @@ float sceneDuration(const Scene& scene, const anim::Character& character) {
 
 uint32_t frameCount(const Scene& scene, const anim::Character& character) {
     if (scene.output.frames) return *scene.output.frames;
-    const double frames = unboundedFrames(scene, character);
-    return frames <= double(kMaxFrames) ? std::max(1u, uint32_t(frames)) : kMaxFrames;
+    const float frames = unboundedFrames(scene, character);
+    return frames <= float(kMaxFrames) ? std::max(1u, uint32_t(frames)) : kMaxFrames;
 }
 
 float clipTimeAt(const Scene& scene, const anim::Character& character, float sceneTime) {

@@ -5,7 +5,6 @@
 #include "core/scene/scene_document.h"
 #include "core/scene/scene_fit.h"
 
-#include <cstdlib>
 #include <fstream>
 #include <string>
 #include <unistd.h>
@@ -19,10 +18,19 @@ void writeFile(const std::filesystem::path& path, std::span<const uint8_t> bytes
     out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
 }
 
+// The scratch folder, removed with what it holds when the process exits.
+struct Scratch {
+    std::filesystem::path inside;
+    ~Scratch() {
+        std::error_code ignored;
+        std::filesystem::remove_all(inside.parent_path(), ignored);
+    }
+};
+
 } // namespace
 
 const std::filesystem::path& scratchFolder() {
-    static const std::filesystem::path folder = [] {
+    static const Scratch scratch = [] {
         const std::filesystem::path parent = std::filesystem::temp_directory_path() /
                                              ("motionfx_fuzz_" + std::to_string(long(getpid())));
         const std::filesystem::path inside = parent / "input";
@@ -33,13 +41,9 @@ const std::filesystem::path& scratchFolder() {
             std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(triangle), sizeof triangle);
         writeFile(inside / "triangle.bin", bytes);
         writeFile(parent / "outside.bin", bytes);
-        std::atexit([] {
-            std::error_code ignored;
-            std::filesystem::remove_all(scratchFolder().parent_path(), ignored);
-        });
-        return inside;
+        return Scratch{inside};
     }();
-    return folder;
+    return scratch.inside;
 }
 
 void importGltfInput(std::span<const uint8_t> bytes) {
