@@ -21,6 +21,7 @@
 #include <set>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
 
 namespace mfx::scene {
 
@@ -243,15 +244,25 @@ Result<Scene> parseScene(const std::string& text, const std::string& where) {
 }
 
 Result<std::string> readSceneText(const std::filesystem::path& file) {
+    constexpr size_t kMaxBytes = size_t(64) << 20;
     std::error_code ec;
     if (std::filesystem::is_directory(file, ec))
         return Error{file.string() + ": is a directory, not a scene file"};
+    // A device or a pipe (/dev/zero, a FIFO) would be read for ever: regular files only, their
+    // size checked before reading, and the read itself bounded (a file may grow meanwhile).
+    if (std::filesystem::exists(file, ec) && !std::filesystem::is_regular_file(file, ec))
+        return Error{file.string() + ": not a regular file"};
+    if (const uintmax_t size = std::filesystem::file_size(file, ec); !ec && size > kMaxBytes)
+        return Error{file.string() + ": larger than 64 MiB"};
     std::ifstream in(file, std::ios::binary);
     if (!in) return Error{file.string() + ": cannot read the scene file"};
-    std::ostringstream text;
-    text << in.rdbuf();
-    if (text.str().size() > (64u << 20)) return Error{file.string() + ": larger than 64 MiB"};
-    return text.str();
+    std::string text;
+    std::vector<char> chunk(size_t(1) << 16);
+    while (in.read(chunk.data(), std::streamsize(chunk.size())) || in.gcount() > 0) {
+        text.append(chunk.data(), size_t(in.gcount()));
+        if (text.size() > kMaxBytes) return Error{file.string() + ": larger than 64 MiB"};
+    }
+    return text;
 }
 
 Result<Scene> loadScene(const std::filesystem::path& file) {
