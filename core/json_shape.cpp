@@ -53,11 +53,6 @@ JsonShape measureJson(std::span<const unsigned char> text) {
     return shape;
 }
 
-JsonShape measureJson(std::string_view text) {
-    return measureJson(std::span<const unsigned char>(
-        reinterpret_cast<const unsigned char*>(text.data()), text.size()));
-}
-
 Status checkJsonShape(std::span<const unsigned char> text, const JsonLimits& limits) {
     const JsonShape shape = measureJson(text);
     if (shape.depth > limits.maxDepth)

@@ -22,7 +22,6 @@ struct JsonShape {
 // Measures `text` without parsing it; brackets and commas inside strings do not count. Malformed
 // text is measured as far as it goes (the parser refuses it afterwards).
 JsonShape measureJson(std::span<const unsigned char> text);
-JsonShape measureJson(std::string_view text);
 
 struct JsonLimits {
     int maxDepth = 64;

@@ -8,11 +8,28 @@
 #include "core/gpu/resources.h"
 
 #include <algorithm>
+#include <functional>
 
 namespace mfx::test {
 namespace {
 
 using ValidationHookTest = GpuTest;
+
+// Records `record` into a command buffer that is freed without being submitted: what it checks is
+// seen by the validation layer at record time, and the driver never runs it.
+void recordOnly(const gpu::Context& ctx, const std::function<void(VkCommandBuffer)>& record) {
+    VkCommandBufferAllocateInfo allocate{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    allocate.commandPool = ctx.oneShotPool();
+    allocate.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    allocate.commandBufferCount = 1;
+    VkCommandBuffer cmd = VK_NULL_HANDLE;
+    ASSERT_EQ(vkAllocateCommandBuffers(ctx.device(), &allocate, &cmd), VK_SUCCESS);
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    vkBeginCommandBuffer(cmd, &begin);
+    record(cmd);
+    vkEndCommandBuffer(cmd);
+    vkFreeCommandBuffers(ctx.device(), ctx.oneShotPool(), 1, &cmd);
+}
 
 TEST_F(ValidationHookTest, CatchesABufferWithoutUsage) {
     // VUID-VkBufferCreateInfo-usage-requiredbitmask: usage must not be 0.
@@ -37,17 +54,7 @@ TEST_F(ValidationHookTest, CatchesABufferWithoutUsage) {
 TEST_F(ValidationHookTest, CatchesADispatchWithoutAPipeline) {
     // VUID-vkCmdDispatch-None: a dispatch needs a bound compute pipeline. Only recorded, never
     // submitted: the driver must not run it.
-    VkCommandBufferAllocateInfo allocate{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    allocate.commandPool = ctx().oneShotPool();
-    allocate.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    allocate.commandBufferCount = 1;
-    VkCommandBuffer cmd = VK_NULL_HANDLE;
-    ASSERT_EQ(vkAllocateCommandBuffers(ctx().device(), &allocate, &cmd), VK_SUCCESS);
-    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    vkBeginCommandBuffer(cmd, &begin);
-    vkCmdDispatch(cmd, 1, 1, 1);
-    vkEndCommandBuffer(cmd);
-    vkFreeCommandBuffers(ctx().device(), ctx().oneShotPool(), 1, &cmd);
+    recordOnly(ctx(), [](VkCommandBuffer cmd) { vkCmdDispatch(cmd, 1, 1, 1); });
     EXPECT_GE(ctx().validationErrorCount(), 1u) << "the invalid dispatch went unnoticed";
     ctx().clearValidationMessages();
 }
@@ -75,18 +82,10 @@ TEST_F(ValidationHookTest, CatchesAMissingBarrierBetweenTwoWrites) {
     // submitted.
     const gpu::Buffer buffer = gpu::createBuffer(ctx(), 256, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                                  gpu::MemoryUsage::DeviceLocal, "hazard");
-    VkCommandBufferAllocateInfo allocate{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    allocate.commandPool = ctx().oneShotPool();
-    allocate.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    allocate.commandBufferCount = 1;
-    VkCommandBuffer cmd = VK_NULL_HANDLE;
-    ASSERT_EQ(vkAllocateCommandBuffers(ctx().device(), &allocate, &cmd), VK_SUCCESS);
-    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    vkBeginCommandBuffer(cmd, &begin);
-    vkCmdFillBuffer(cmd, buffer.get(), 0, VK_WHOLE_SIZE, 1u);
-    vkCmdFillBuffer(cmd, buffer.get(), 0, VK_WHOLE_SIZE, 2u);
-    vkEndCommandBuffer(cmd);
-    vkFreeCommandBuffers(ctx().device(), ctx().oneShotPool(), 1, &cmd);
+    recordOnly(ctx(), [&](VkCommandBuffer cmd) {
+        vkCmdFillBuffer(cmd, buffer.get(), 0, VK_WHOLE_SIZE, 1u);
+        vkCmdFillBuffer(cmd, buffer.get(), 0, VK_WHOLE_SIZE, 2u);
+    });
     EXPECT_TRUE(anySyncHazard(ctx().validationMessages()))
         << "the missing barrier went unnoticed: " << describeMessages();
     ctx().clearValidationMessages();

@@ -87,9 +87,10 @@ trajectory::Selection selectionOf(const EffectSpec& e) {
 }
 
 // The peak speed of any bone of `bones` (their world origins, metres per second) over the frames
-// where `e` is live: at each sampled live frame, from the frame before it (when that is live too
-// and the clip does not wrap between them).
+// where `e` is live: at each of `liveFrames` (liveSampledFrames), from the frame before it (when
+// that is live too and the clip does not wrap between them).
 float peakBoneSpeed(const Scene& scene, const anim::Character& character, const EffectSpec& e,
+                    const std::vector<uint32_t>& liveFrames,
                     const std::vector<std::string>& bones) {
     std::vector<int> nodes;
     for (const std::string& b : bones)
@@ -106,7 +107,7 @@ float peakBoneSpeed(const Scene& scene, const anim::Character& character, const 
     float peak = 0.0f;
     std::optional<uint32_t> heldFrame; // the last frame whose positions are `held`
     std::vector<glm::vec3> held;
-    for (uint32_t f : liveSampledFrames(scene, e, frameCount(scene, character))) {
+    for (uint32_t f : liveFrames) {
         if (f == 0 || !effectLive(scene, e, float(f - 1) * dt)) continue;
         if (clipTimeAt(scene, character, float(f) * dt) <
             clipTimeAt(scene, character, float(f - 1) * dt))
@@ -126,6 +127,8 @@ std::string bindFastestLimb(const Scene& scene, const anim::Character& character
     std::string best;
     std::vector<std::string> bestBones;
     float bestSpeed = -1.0f;
+    const std::vector<uint32_t> liveFrames =
+        liveSampledFrames(scene, e, frameCount(scene, character));
     for (const std::string& limb : anim::limbGroupNames()) {
         std::vector<std::string> bones = anim::resolveBoneGroup(character, limb);
         if (bones.empty()) continue;
@@ -133,7 +136,7 @@ std::string bindFastestLimb(const Scene& scene, const anim::Character& character
         trajectory::Selection selection = selectionOf(e);
         selection.bones = bones;
         if (!trajectory::selectSource(character, selection)) continue;
-        const float speed = peakBoneSpeed(scene, character, e, bones);
+        const float speed = peakBoneSpeed(scene, character, e, liveFrames, bones);
         if (speed > bestSpeed) {
             best = limb;
             bestBones = std::move(bones);
