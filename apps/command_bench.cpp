@@ -1,10 +1,17 @@
 // motionfx bench: benchmark programs that print tables (never pass/fail on time).
-//   motionfx bench solver       GPU milliseconds per solver stage and per step, by grid size.
+//   motionfx bench solver       GPU milliseconds per solver stage and per step, by grid size, and
+//                               the roofline: the bytes each stage must move (its model in
+//                               fluid/stage_table.cpp), the rate it reaches, and that rate's share
+//                               of the device's copy bandwidth measured in the same run.
 //   motionfx bench trajectory   split trajectory against the unsplit baseline, by lifetime
 //                               (command_bench_trajectory.cpp).
+#include "apps/bench_report.h"
 #include "apps/commands.h"
+#include "apps/svg_plot.h"
 
+#include "core/gpu/bandwidth.h"
 #include "core/gpu/commands.h"
+#include "core/gpu/context.h"
 #include "core/gpu/timer.h"
 #include "fluid/scenarios.h"
 #include "fluid/smoke_solver.h"
@@ -27,7 +34,27 @@ struct GridResult {
     double stepMs = 0.0;                   // median GPU time of a whole step (sum of its stages)
     double wallMs = 0.0;                   // median CPU wall time of record + submit + wait
     std::map<std::string, double> stageMs; // median per stage
+    std::map<std::string, fluid::StageBytes> stageBytes; // the model, per stage (summed over runs)
+    fluid::StageBytes stepBytes;
 };
+
+// Cells of the box the emitters cover (their spheres' bounds, clipped to the grid): what the
+// splat reads and writes.
+uint64_t splatCells(const fluid::SolverOptions& o, std::span<const shared::FluidEmitter> emitters) {
+    if (emitters.empty()) return 0;
+    const glm::ivec3 n(o.grid.cellsX, o.grid.cellsY, o.grid.cellsZ);
+    glm::ivec3 low = n, high(-1);
+    for (const shared::FluidEmitter& e : emitters) {
+        const glm::vec3 p = glm::vec3(e.positionRadius) / o.grid.cellSize;
+        const float r = e.positionRadius.w / o.grid.cellSize;
+        low = glm::min(low, glm::ivec3(glm::floor(p - r)));
+        high = glm::max(high, glm::ivec3(glm::ceil(p + r)));
+    }
+    low = glm::clamp(low, glm::ivec3(0), n - 1);
+    high = glm::clamp(high, glm::ivec3(0), n - 1);
+    const glm::ivec3 size = glm::max(high - low + 1, glm::ivec3(0));
+    return uint64_t(size.x) * uint64_t(size.y) * uint64_t(size.z);
+}
 
 Result<std::vector<std::array<uint32_t, 3>>> parseGridList(const std::string& text) {
     std::vector<std::array<uint32_t, 3>> grids;
@@ -64,12 +91,14 @@ std::string shapeLabel(const std::array<uint32_t, 3>& s) {
 // Times one grid with one workgroup shape: the median of `steps` steps after 3 warm-up steps.
 Result<GridResult> benchGrid(const gpu::Context& ctx, const std::string& scenarioName,
                              std::array<uint32_t, 3> cells, std::array<uint32_t, 3> workgroup,
-                             uint32_t jacobi, fluid::PressureSolver pressure, uint32_t steps) {
+                             uint32_t jacobi, fluid::PressureSolver pressure, uint32_t steps,
+                             fluid::StorePath store) {
     fluid::Scenario scenario =
         fluid::makeScenario(scenarioName, glm::uvec3(cells[0], cells[1], cells[2])).value();
     scenario.options.jacobiIterations = jacobi;
     scenario.options.pressureSolver = pressure;
     scenario.options.workgroup = workgroup;
+    scenario.options.storePath = store;
     auto solverResult = fluid::SmokeSolver::create(ctx, scenario.options);
     if (!solverResult) return solverResult.error();
     fluid::SmokeSolver& solver = *solverResult.value();
@@ -105,9 +134,19 @@ Result<GridResult> benchGrid(const gpu::Context& ctx, const std::string& scenari
         wallTimes.push_back(wall);
     }
     std::fputc('\n', stderr);
-    GridResult r{cells, workgroup, median(stepTimes), median(wallTimes), {}};
+    GridResult r{cells, workgroup, median(stepTimes), median(wallTimes), {}, {}, {}};
     for (const auto& [name, times] : stageTimes)
         r.stageMs[name] = median(times);
+    const fluid::StageWork work{splatCells(scenario.options, scenario.emitters(0))};
+    for (fluid::Stage stage : fluid::stepOrder()) {
+        const fluid::StageBytes b = fluid::stageEntry(stage).bytes(scenario.options, work);
+        fluid::StageBytes& sum = r.stageBytes[fluid::stageName(stage)];
+        sum.read += b.read * scenario.options.substeps;
+        sum.written += b.written * scenario.options.substeps;
+    }
+    r.stepBytes = fluid::stepBytes(scenario.options, work);
+    r.stepBytes.read *= scenario.options.substeps;
+    r.stepBytes.written *= scenario.options.substeps;
     return r;
 }
 
@@ -120,7 +159,7 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
         printError("--domain must be dense or sparse, not \"" + domain + "\"");
         return kExitUsage;
     }
-    for (const char* sparseOnly : {"virtual", "bricks", "plot"})
+    for (const char* sparseOnly : {"virtual", "bricks"})
         if (parsed.has(sparseOnly)) {
             printError(std::string("--") + sparseOnly + " is an option of --domain sparse");
             return kExitUsage;
@@ -130,11 +169,18 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
     auto steps = cli::parseUnsigned(parsed.value("steps", "10"), 1, 10000, "--steps");
     auto workgroups = parseWorkgroupList(
         parsed.value("workgroups", shapeLabel(fluid::SolverOptions{}.workgroup)));
-    if (reportFirstError(grids, jacobi, steps, workgroups)) return kExitUsage;
+    auto copyMib = cli::parseUnsigned(parsed.value("copy-mib", "256"), 1, 4096, "--copy-mib");
+    if (reportFirstError(grids, jacobi, steps, workgroups, copyMib)) return kExitUsage;
     const auto pressure = fluid::pressureSolverFromName(parsed.value("pressure", "jacobi"));
     if (!pressure) {
         printError("--pressure: no pressure solver \"" + parsed.value("pressure") +
                    "\"; solvers are jacobi, rbgs, multigrid, mgpcg");
+        return kExitUsage;
+    }
+    const auto store = fluid::storePathFromName(parsed.value("store", "auto"));
+    if (!store) {
+        printError("--store: no store path \"" + parsed.value("store") +
+                   "\"; paths are auto, buffer, direct");
         return kExitUsage;
     }
     const std::string scenarioName = parsed.value("scenario", "puff");
@@ -143,23 +189,28 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
         return kExitUsage;
     }
     const std::string jsonPath = parsed.value("json");
-    std::ofstream jsonFile;
+    std::ofstream jsonFile, plotFile;
     if (!openOutputFile(jsonPath, jsonFile)) return kExitFailure;
+    if (!openOutputFile(parsed.value("plot"), plotFile)) return kExitFailure;
 
     const std::unique_ptr<gpu::Context> context = createTimingContext(parsed, "the solver");
     if (!context) return kExitFailure;
     const gpu::Context& ctx = *context;
+    const bool direct = *store == fluid::StorePath::Direct ||
+                        (*store == fluid::StorePath::Auto && !ctx.info().isCpu());
     std::printf("smoke solver benchmark on %s (%s)\nscenario %s, pressure solver %s, %u Jacobi "
-                "sweeps, median of %u steps after 3 warm-up steps; GPU milliseconds from "
-                "timestamp queries\n\n",
+                "sweeps, whole fields stored %s, median of %u steps after 3 warm-up steps; GPU "
+                "milliseconds from timestamp queries\n\n",
                 ctx.info().name.c_str(), ctx.info().driverInfo.c_str(), scenarioName.c_str(),
-                fluid::pressureSolverName(*pressure), jacobi.value(), steps.value());
+                fluid::pressureSolverName(*pressure), jacobi.value(),
+                direct ? "straight into the images" : "into buffers copied into the images",
+                steps.value());
 
     std::vector<GridResult> results;
     for (const auto& cells : grids.value())
         for (const auto& workgroup : workgroups.value()) {
             auto r = benchGrid(ctx, scenarioName, cells, workgroup, jacobi.value(), *pressure,
-                               steps.value());
+                               steps.value(), *store);
             if (!r) {
                 printError(r.error().message);
                 return kExitFailure;
@@ -167,48 +218,155 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
             results.push_back(std::move(r.value()));
         }
 
-    // Table: one row per stage (in step order), one column per grid (and workgroup shape).
+    // The yardstick, after the grids (a GPU has left its idle clock by then): a copy as large as
+    // asked, within one storage buffer binding.
+    const uint64_t copyBytes = std::min<uint64_t>(uint64_t(copyMib.value()) << 20,
+                                                  ctx.limits().maxStorageBufferRange);
+    std::fprintf(stderr, "  copy bandwidth, %.0f MiB ", double(copyBytes) / (1 << 20));
+    const gpu::CopyBandwidth copy = gpu::measureCopyBandwidth(ctx, copyBytes);
+    std::fprintf(stderr, "\n");
+
+    // Table 1: one row per stage (in the table's order), one column per grid (and workgroup).
     const bool shapes = workgroups.value().size() > 1;
-    std::printf("%-24s", "stage (ms)");
-    for (const GridResult& r : results)
-        std::printf(" %12s", shapeLabel(r.grid).c_str());
-    std::printf("\n");
-    if (shapes) {
-        std::printf("%-24s", "workgroup");
-        for (const GridResult& r : results)
-            std::printf(" %12s", shapeLabel(r.workgroup).c_str());
-        std::printf("\n");
+    auto gridLabel = [&](const GridResult& r) {
+        return shapeLabel(r.grid) + (shapes ? " " + shapeLabel(r.workgroup) : "");
+    };
+    MarkdownTable times, rates;
+    times.header = rates.header = {"stage"};
+    for (const GridResult& r : results) {
+        times.header.push_back(gridLabel(r) + " ms");
+        rates.header.push_back(gridLabel(r) + " GB/s (copy %)");
     }
-    for (fluid::Stage stage : fluid::kAllStages) {
-        std::printf("%-24s", fluid::stageName(stage));
+    auto rate = [&](double bytes, double ms) { return ms > 0.0 ? bytes / (ms * 1e6) : 0.0; };
+    auto rateCell = [&](double bytes, double ms) {
+        const double gbps = rate(bytes, ms);
+        if (bytes == 0.0) return std::string("-");
+        return fixed(gbps, 1) + " (" +
+               (copy.gigabytesPerSecond > 0.0
+                    ? fixed(100.0 * gbps / copy.gigabytesPerSecond, 0) + "%"
+                    : std::string("?")) +
+               ")";
+    };
+    for (fluid::Stage stage : fluid::allStages()) {
+        const std::string name = fluid::stageName(stage);
+        std::vector<std::string> t{name}, g{name};
         for (const GridResult& r : results) {
-            auto it = r.stageMs.find(fluid::stageName(stage));
-            std::printf(" %12.3f", it == r.stageMs.end() ? 0.0 : it->second);
+            auto it = r.stageMs.find(name);
+            const double ms = it == r.stageMs.end() ? 0.0 : it->second;
+            auto bytes = r.stageBytes.find(name);
+            t.push_back(fixed(ms, 3));
+            g.push_back(rateCell(bytes == r.stageBytes.end() ? 0.0 : bytes->second.total(), ms));
         }
-        std::printf("\n");
+        times.rows.push_back(t);
+        rates.rows.push_back(g);
     }
-    std::printf("%-24s", "whole step (GPU)");
-    for (const GridResult& r : results)
-        std::printf(" %12.3f", r.stepMs);
-    std::printf("\n%-24s", "whole step (wall)");
-    for (const GridResult& r : results)
-        std::printf(" %12.3f", r.wallMs);
-    std::printf("\n");
+    std::vector<std::string> stepRow{"whole step (GPU)"}, wallRow{"whole step (wall)"},
+        stepRate{"whole step"};
+    for (const GridResult& r : results) {
+        stepRow.push_back(fixed(r.stepMs, 3));
+        wallRow.push_back(fixed(r.wallMs, 3));
+        stepRate.push_back(rateCell(r.stepBytes.total(), r.stepMs));
+    }
+    times.rows.push_back(stepRow);
+    times.rows.push_back(wallRow);
+    rates.rows.push_back(stepRate);
+
+    auto printTable = [](const MarkdownTable& table) {
+        for (size_t i = 0; i < table.header.size(); ++i)
+            std::printf(i == 0 ? "%-24s" : " %22s", table.header[i].c_str());
+        std::printf("\n");
+        for (const auto& row : table.rows) {
+            for (size_t i = 0; i < row.size(); ++i)
+                std::printf(i == 0 ? "%-24s" : " %22s", row[i].c_str());
+            std::printf("\n");
+        }
+    };
+    printTable(times);
+    std::printf("\nroofline: copy bandwidth %.1f GB/s (%.0f MiB read and written, median %.3f ms "
+                "of 10); each stage's rate is the bytes its model must move over its median "
+                "time\n\n",
+                copy.gigabytesPerSecond, double(copy.bytes) / (1 << 20), copy.medianMs);
+    printTable(rates);
+    std::printf("\nthe bytes models (fluid/stage_table.cpp):\n");
+    for (const fluid::StageEntry& entry : fluid::stageTable())
+        std::printf("  %-22s %s\n", entry.name, entry.bytesModel);
+
+    if (parsed.has("markdown")) {
+        std::string body = times.text() + "\nCopy bandwidth " + fixed(copy.gigabytesPerSecond, 1) +
+                           " GB/s; each stage's rate is the bytes its model "
+                           "(fluid/stage_table.cpp) must move over its median time:\n\n" +
+                           rates.text();
+        const std::string title = std::string("Solver stages, ") +
+                                  fluid::pressureSolverName(*pressure) + " pressure (" +
+                                  scenarioName + ")";
+        if (Status written = writeMarkdownSection(parsed.value("markdown"), title, ctx,
+                                                  reproduceCommand("bench solver", parsed), body);
+            !written) {
+            printError(written.error().message);
+            return kExitFailure;
+        }
+    }
+    if (plotFile.is_open()) {
+        PlotPanel panel{"rate each stage reaches against the grid", "cells", "GB/s", true, true,
+                        {}};
+        static const char* colours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
+                                        "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
+        size_t colour = 0;
+        for (fluid::Stage stage : fluid::allStages()) {
+            PlotSeries series{fluid::stageName(stage), colours[colour++ % 10], {}, {}};
+            for (const GridResult& r : results) {
+                auto ms = r.stageMs.find(series.label);
+                auto bytes = r.stageBytes.find(series.label);
+                if (ms == r.stageMs.end() || bytes == r.stageBytes.end() ||
+                    bytes->second.total() == 0.0 || ms->second <= 0.0)
+                    continue;
+                series.x.push_back(double(r.grid[0]) * r.grid[1] * r.grid[2]);
+                series.y.push_back(rate(bytes->second.total(), ms->second));
+            }
+            if (!series.x.empty()) panel.series.push_back(series);
+        }
+        PlotSeries roof{"copy bandwidth", "#000000", {}, {}};
+        for (const GridResult& r : results) {
+            roof.x.push_back(double(r.grid[0]) * r.grid[1] * r.grid[2]);
+            roof.y.push_back(copy.gigabytesPerSecond);
+        }
+        panel.series.push_back(roof);
+        plotFile << svgPlot("smoke solver roofline on " + ctx.info().name, {panel});
+    }
 
     if (jsonFile.is_open()) {
         nlohmann::json list = nlohmann::json::array();
-        for (const GridResult& r : results)
+        for (const GridResult& r : results) {
+            nlohmann::json stages = nlohmann::json::object();
+            for (const auto& [name, ms] : r.stageMs) {
+                auto bytes = r.stageBytes.find(name);
+                const double total = bytes == r.stageBytes.end() ? 0.0 : bytes->second.total();
+                stages[name] = {{"ms", ms},
+                                {"bytes", total},
+                                {"gb_per_s", rate(total, ms)},
+                                {"copy_share", copy.gigabytesPerSecond > 0.0
+                                                   ? rate(total, ms) / copy.gigabytesPerSecond
+                                                   : 0.0}};
+            }
             list.push_back({{"grid", r.grid},
                             {"workgroup", r.workgroup},
                             {"jacobi", jacobi.value()},
                             {"pressure", fluid::pressureSolverName(*pressure)},
                             {"step_ms", r.stepMs},
                             {"wall_ms", r.wallMs},
-                            {"stages", r.stageMs}});
+                            {"step_bytes", r.stepBytes.total()},
+                            {"step_gb_per_s", rate(r.stepBytes.total(), r.stepMs)},
+                            {"stages", stages}});
+        }
         jsonFile << nlohmann::json{{"device", ctx.info().name},
                                    {"driver", ctx.info().driverInfo},
+                                   {"date", todayUtc()},
                                    {"scenario", scenarioName},
                                    {"steps", steps.value()},
+                                   {"copy",
+                                    {{"bytes", copy.bytes},
+                                     {"ms", copy.medianMs},
+                                     {"gb_per_s", copy.gigabytesPerSecond}}},
                                    {"results", list}}
                         .dump(2)
                  << "\n";

@@ -5,11 +5,15 @@
 // (record + submit + wait, as a viewer waits for it) and frames per second; --json on request.
 // With --sparse N, the same scene again with its smoke on a sparse domain of N^3 cells at the same
 // cell size, in the same process: both tables, then the smoke's GPU ms a step of each and their
-// ratio, memory and active bricks.
+// ratio, memory and active bricks. The smoke's ray-march is set against the device's copy
+// bandwidth measured in the same run: the bytes of the pigment volumes it reads over its time.
+#include "apps/bench_report.h"
 #include "apps/commands.h"
 #include "apps/progress.h"
 
+#include "core/gpu/bandwidth.h"
 #include "core/gpu/commands.h"
+#include "core/gpu/context.h"
 #include "core/scene/kinds/smoke_effect.h"
 #include "render/scene_player.h"
 #include "sim/scene_simulation.h"
@@ -42,6 +46,7 @@ struct FrameRun {
     std::vector<std::string> rowOrder;
     std::map<std::string, std::vector<double>> rows;
     std::vector<double> frameWall, frameGpu, smokeStepMs, activeBricks;
+    std::vector<double> marchBytes; // the pigment volumes the smoke pass read, per timed frame
     uint64_t fluidBytes = 0; // the largest of any frame
     std::array<uint32_t, 3> grid{0, 0, 0};
     uint32_t stepsPerFrame = 0;
@@ -100,13 +105,25 @@ FrameRun runFrames(const gpu::Context& ctx, sim::SceneSimulation& sim, uint32_t 
         for (const sim::GridFrameState& g : stats.grids)
             if (g.sparse && g.awake) run.activeBricks.push_back(double(g.activeBricks));
         run.fluidBytes = std::max(run.fluidBytes, stats.fluidBytes);
+        double volumes = 0.0;
+        for (const sim::SceneSimulation::SmokeGrid& g : sim.smokeGrids())
+            volumes += double(g.grid.pigmentVolume().bytes);
+        run.marchBytes.push_back(volumes);
     }
     progress.finish();
     return run;
 }
 
+// The smoke pass's rate: the pigment volumes' bytes over its median time (0 without smoke).
+double marchRate(const FrameRun& run) {
+    auto smoke = run.rows.find("render/smoke");
+    if (smoke == run.rows.end()) return 0.0;
+    const double ms = median(smoke->second);
+    return ms > 0.0 ? median(run.marchBytes) / (ms * 1e6) : 0.0;
+}
+
 void printRun(const gpu::Context& ctx, const scene::Scene& s, const FrameRun& run, uint32_t timed,
-              uint32_t warmup) {
+              uint32_t warmup, const gpu::CopyBandwidth& copy, MarkdownTable* table) {
     const double gpuMs = median(run.frameGpu), wallMs = median(run.frameWall);
     std::printf("frame benchmark on %s (%s)\n%s at %ux%u, %u samples per pixel, smoke grid "
                 "%ux%ux%u%s (%u steps per frame); median of %u frames after %u warm-up frames\n\n",
@@ -121,6 +138,31 @@ void printRun(const gpu::Context& ctx, const scene::Scene& s, const FrameRun& ru
     std::printf("%-32s %10.2f\n", "GPU, whole frame", gpuMs);
     std::printf("%-32s %10.2f   (%.1f frames per second)\n", "wall, whole frame", wallMs,
                 1000.0 / wallMs);
+    const double march = marchRate(run);
+    if (march > 0.0)
+        std::printf("smoke ray-march: %.2f MiB of pigment volume read at %.1f GB/s, %.0f%% of the "
+                    "copy bandwidth (%.1f GB/s)\n",
+                    median(run.marchBytes) / (1 << 20), march,
+                    copy.gigabytesPerSecond > 0 ? 100.0 * march / copy.gigabytesPerSecond : 0.0,
+                    copy.gigabytesPerSecond);
+    if (table) {
+        table->header = {"pass", "GPU ms", "share"};
+        for (const std::string& name : run.rowOrder) {
+            const double ms = median(run.rows.at(name));
+            table->rows.push_back(
+                {name, fixed(ms, 2), fixed(gpuMs > 0 ? 100.0 * ms / gpuMs : 0, 1) + "%"});
+        }
+        table->rows.push_back({"**GPU, whole frame**", "**" + fixed(gpuMs, 2) + "**", ""});
+        table->rows.push_back({"**wall, whole frame**", "**" + fixed(wallMs, 2) + "**",
+                               fixed(1000.0 / wallMs, 1) + " fps"});
+        if (march > 0.0)
+            table->rows.push_back(
+                {"smoke ray-march rate (pigment bytes / render/smoke)",
+                 fixed(march, 1) + " GB/s",
+                 fixed(copy.gigabytesPerSecond > 0 ? 100.0 * march / copy.gigabytesPerSecond : 0,
+                       0) +
+                     "% of copy"});
+    }
 }
 
 nlohmann::json runJson(const FrameRun& run) {
@@ -137,6 +179,8 @@ nlohmann::json runJson(const FrameRun& run) {
                         {"fps", 1000.0 / wallMs},
                         {"smoke_step_ms", median(run.smokeStepMs)},
                         {"fluid_bytes", run.fluidBytes},
+                        {"march_bytes", median(run.marchBytes)},
+                        {"march_gb_per_s", marchRate(run)},
                         {"passes", passes}};
     if (run.sparse) j["active_bricks"] = median(run.activeBricks);
     return j;
@@ -198,18 +242,25 @@ int runBenchFrame(const cli::ParsedArgs& parsed) {
         if (!sparse) return exitCode;
     }
     const FrameRun run = runFrames(ctx, *dense, warmup.value(), samples.value(), "benchmarking");
-    printRun(ctx, s, run, timed.value(), warmup.value());
+    // The yardstick after the frames (a GPU has left its idle clock by then).
+    const gpu::CopyBandwidth copy = gpu::measureCopyBandwidth(
+        ctx, std::min<uint64_t>(uint64_t(256) << 20, ctx.limits().maxStorageBufferRange));
+    MarkdownTable table;
+    printRun(ctx, s, run, timed.value(), warmup.value(), copy, &table);
     nlohmann::json json = runJson(run);
     json["device"] = ctx.info().name;
     json["driver"] = ctx.info().driverInfo;
     json["scene"] = s.file;
     json["size"] = {s.output.width, s.output.height};
     json["frames"] = timed.value();
+    json["date"] = todayUtc();
+    json["copy_gb_per_s"] = copy.gigabytesPerSecond;
     if (sparse) {
         const FrameRun sparseRun = runFrames(ctx, *sparse, warmup.value(), samples.value(),
                                              "benchmarking the sparse domain");
         std::printf("\n");
-        printRun(ctx, sparseArgument.scene, sparseRun, timed.value(), warmup.value());
+        printRun(ctx, sparseArgument.scene, sparseRun, timed.value(), warmup.value(), copy,
+                 nullptr);
         // The smoke's cost a step, dense as the scene has it against the sparse domain, same run.
         const double denseStep = median(run.smokeStepMs),
                      sparseStep = median(sparseRun.smokeStepMs);
@@ -233,6 +284,18 @@ int runBenchFrame(const cli::ParsedArgs& parsed) {
         json["sparse_over_dense_step"] = denseStep > 0 ? sparseStep / denseStep : 0.0;
     }
     if (jsonFile.is_open()) jsonFile << json.dump(2) << "\n";
+    if (parsed.has("markdown")) {
+        const std::string title = "Frame, " + s.file + " at " + std::to_string(s.output.width) +
+                                  "x" + std::to_string(s.output.height) + ", " +
+                                  std::to_string(run.samples) + " samples";
+        if (Status written = writeMarkdownSection(parsed.value("markdown"), title, ctx,
+                                                  reproduceCommand("bench frame", parsed),
+                                                  table.text());
+            !written) {
+            printError(written.error().message);
+            return kExitFailure;
+        }
+    }
     return finishValidation(ctx, kExitOk);
 }
 

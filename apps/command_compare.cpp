@@ -132,7 +132,7 @@ int runCompare(const cli::ParsedArgs& parsed) {
             continue;
         }
         for (uint32_t substep = 0; substep < s.options.substeps; ++substep)
-            for (fluid::Stage stage : fluid::kStepOrder) {
+            for (fluid::Stage stage : fluid::stepOrder()) {
                 gpu.runStage(stage);
                 cpu.runStage(stage, emitters);
                 record(step, stage);

@@ -26,7 +26,7 @@ std::string scenarioNameList() {
 
 std::string stageNameList() {
     std::string list;
-    for (fluid::Stage stage : fluid::kAllStages)
+    for (fluid::Stage stage : fluid::allStages())
         list += (list.empty() ? "" : ", ") + std::string(fluid::stageName(stage));
     return list;
 }
@@ -100,8 +100,10 @@ CommandLine compareCommandLine() {
 CommandLine benchSolverCommandLine() {
     CommandLine command("usage: motionfx bench solver [options]\n\nTimes the GPU smoke solver "
                         "with timestamp queries: the median milliseconds of each stage and of a "
-                        "whole step, per grid size. Pipelines are compiled and warmed up before "
-                        "timing.",
+                        "whole step, per grid size, and against the device's copy bandwidth measured "
+                        "in the same run: the bytes each stage must move, the GB/s it reaches "
+                        "and their share of the copy's. Pipelines are compiled and warmed up "
+                        "before timing.",
                         0, CommandLine::kDevice);
     command.option("grids", "LIST", "comma-separated grids, N or NXxNYxNZ (default 32,64,96,128)")
         .option("jacobi", "N", "Jacobi (or red-black) sweeps per step (default 20)")
@@ -121,7 +123,18 @@ CommandLine benchSolverCommandLine() {
         .option("bricks", "LIST",
                 "sparse: comma-separated active brick counts (default "
                 "8,27,64,125,216,343,512,729,1000)")
-        .option("plot", "FILE", "sparse: write the cost against active bricks as an SVG plot")
+        .option("store", "auto|buffer|direct",
+                "how stages store a whole field: into a buffer copied into the image, straight "
+                "into the image, or by the device (default auto: buffer on a CPU device)")
+        .option("copy-mib", "N",
+                "MiB the copy-bandwidth yardstick copies (default 256, at most one storage "
+                "buffer binding)")
+        .option("plot", "FILE",
+                "write an SVG plot: the rate each stage reaches against the copy bandwidth "
+                "(sparse: the cost against active bricks)")
+        .option("markdown", "FILE",
+                "write the tables as a Markdown section into FILE (e.g. docs/performance.md), "
+                "replacing the section of the same device and command")
         .json();
     return command;
 }
@@ -149,7 +162,9 @@ CommandLine benchFrameCommandLine() {
                         "the built-in one) frame by frame with its clip looping, simulating and "
                         "drawing every frame as `motionfx render` does (without writing images), "
                         "and reports the median GPU milliseconds of each pass (timestamp queries) "
-                        "and the median wall time of a whole frame.",
+                        "and the median wall time of a whole frame; the smoke's ray-march as the "
+                        "rate it reads its pigment volumes at, against the device's copy "
+                        "bandwidth measured in the same run.",
                         1, CommandLine::kDevice);
     command.option("size", "WxH", "image size (default 960x540)")
         .option("frames", "N", "timed frames (default 60)")
@@ -157,6 +172,9 @@ CommandLine benchFrameCommandLine() {
         .option("sparse", "N",
                 "also run the scene with its smoke on a sparse domain of N^3 cells (a multiple "
                 "of 8, same cell size) and compare the smoke's GPU ms a step, same run")
+        .option("markdown", "FILE",
+                "write the pass table as a Markdown section into FILE (e.g. "
+                "docs/performance.md), replacing the section of the same device and command")
         .samples()
         .json();
     return command;

@@ -58,7 +58,7 @@ FieldState referenceRun(const Scenario& scenario, const SolverOptions& options, 
     for (uint32_t s = 0; s < steps; ++s) {
         const std::vector<shared::FluidEmitter> emitters = scenario.emitters(s);
         for (uint32_t sub = 0; sub < options.substeps; ++sub)
-            for (Stage stage : kStepOrder) {
+            for (Stage stage : stepOrder()) {
                 if (exact && stage == Stage::SolvePressure)
                     ref.solvePressureExact();
                 else

@@ -9,20 +9,20 @@
 //   * sleep: a grid none of whose effects is live measures its largest pigment alpha and speed
 //     after each frame; once both are below the threshold (speed: threshold x cell size / dt) it
 //     sleeps: zero dispatches until an effect is live again.
-// A sparse grid (settings.sparse: fluid/sparse_smoke_solver.h) stands still over its virtual
-// domain, the stage: it rebuilds its active bricks before each step (cells with pigment above the
-// sleep threshold or air faster than liveSpeed, the emitters' footprints, one brick of reach
-// around them), so smoke stays where it was left; it sleeps once no effect is live and no brick is
-// active, and it holds at most maxBricks bricks, the budget (the first frame that wants more gets
-// one line, budgetLine). Which effects feed the grid and when is the simulation's business
+// The grid holds its solver through fluid/grid_solver.h, dense or sparse alike. A sparse grid
+// (settings.sparse: fluid/sparse_smoke_solver.h) stands still over its virtual domain, the stage:
+// it rebuilds its active bricks before each step (cells with pigment above the sleep threshold or
+// air faster than liveSpeed, the emitters' footprints, one brick of reach around them), so smoke
+// stays where it was left; it sleeps once no effect is live and no brick is active, and it holds
+// at most maxBricks bricks, the budget (the first frame that wants more gets one line,
+// budgetLine). Which effects feed the grid and when is the simulation's business
 // (sim/scene_simulation.h).
 #pragma once
 
 #include "core/gpu/resources.h"
 #include "core/gpu/timer.h"
 #include "core/result.h"
-#include "fluid/smoke_solver.h"
-#include "fluid/sparse_smoke_solver.h"
+#include "fluid/grid_solver.h"
 
 #include <glm/glm.hpp>
 
@@ -72,8 +72,8 @@ public:
     // with the grid's name.
     void recordStep(VkCommandBuffer cmd, uint32_t emitters, gpu::GpuTimer* timer);
     // Awake with no effect live this frame: measures the largest pigment alpha and speed.
-    // Returns the dispatches it recorded (timed as "<name>/measure_activity"): 1, or 0 for a
-    // sparse grid, whose rebuild before each step measures.
+    // Returns the dispatches it recorded (timed as "<name>/measure_activity"; 0 where the
+    // solver's step measures).
     uint32_t recordMeasureActivity(VkCommandBuffer cmd, gpu::GpuTimer* timer);
     struct Activity {
         bool measured = false;
@@ -88,21 +88,17 @@ public:
 
     const std::string& name() const { return settings_.name; }
     const SmokeGridSettings& settings() const { return settings_; }
-    bool sparse() const { return sparse_ != nullptr; }
-    const SolverOptions& options() const;
-    // The dense solver (not for a sparse grid).
-    const SmokeSolver& solver() const;
-    SmokeSolver& solver();
-    // The sparse solver, or null for a dense grid.
-    const SparseSmokeSolver* sparseSolver() const { return sparse_.get(); }
-    SparseSmokeSolver* sparseSolver() { return sparse_.get(); }
+    bool sparse() const { return settings_.sparse; }
+    const SolverOptions& options() const { return solver_->options(); }
+    // The pigment the smoke pass draws.
+    PigmentVolume pigmentVolume() const { return solver_->pigmentVolume(); }
     // The fields (a sparse grid's whole virtual domain, 0 where nothing is stored), read back
     // (waits for the GPU).
-    FieldState state();
+    FieldState state() { return solver_->state(); }
     // One flag per cell: 1 where the grid stores values (every cell of a dense grid).
-    std::vector<uint8_t> storedCells() const;
+    std::vector<uint8_t> storedCells() const { return solver_->storedCells(); }
     // The passes of the last recordStep with their dispatches (a sparse grid's rebuild first).
-    std::vector<std::pair<std::string, uint32_t>> lastStepDispatches() const;
+    StageDispatches lastStepDispatches() const { return solver_->lastScenePasses(); }
     glm::vec3 origin() const { return origin_; }             // the world position of its low corner
     glm::vec3 placedOrigin() const { return placedOrigin_; } // where place() put it
     bool awake() const { return awake_; }
@@ -112,9 +108,10 @@ public:
 
 private:
     SmokeGridSettings settings_;
-    std::unique_ptr<SmokeSolver> solver_;
-    std::unique_ptr<SparseSmokeSolver> sparse_;
-    bool rebuilt_ = false; // a sparse rebuild was recorded this frame
+    SettleRules rules() const;
+
+    std::unique_ptr<GridSolver> solver_;
+    bool stepped_ = false; // a step was recorded this frame
     bool budgetReported_ = false;
     gpu::Buffer emitters_;
     gpu::Buffer activity_; // two floats as uint bits: largest pigment alpha, largest speed

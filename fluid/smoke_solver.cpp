@@ -56,7 +56,9 @@ Result<std::unique_ptr<SmokeSolver>> SmokeSolver::create(const gpu::Context& ctx
 }
 
 SmokeSolver::SmokeSolver(const gpu::Context& ctx, const SolverOptions& options)
-    : ctx_(ctx), options_(options), fields_(ctx, options), programs_(ctx, options) {
+    : ctx_(ctx), options_(options), fields_(ctx, options), programs_(ctx, options),
+      direct_(options.storePath == StorePath::Direct ||
+              (options.storePath == StorePath::Auto && !ctx.info().isCpu())) {
     parameters_ =
         gpu::createBuffer(ctx, sizeof(shared::FluidParameters), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                           gpu::MemoryUsage::Upload, "fluid parameters");
@@ -114,8 +116,13 @@ void SmokeSolver::dispatch(VkCommandBuffer cmd, gpu::Program& program,
                   gpu::groupCount(extent.z, group[2]));
 }
 
-void SmokeSolver::copyToImages(
-    VkCommandBuffer cmd, std::initializer_list<std::pair<const gpu::Buffer*, gpu::Image*>> fields) {
+void SmokeSolver::storeFields(
+    VkCommandBuffer cmd, bool direct,
+    std::initializer_list<std::pair<const gpu::Buffer*, gpu::Image*>> fields) {
+    if (direct) { // the dispatches stored into the images themselves
+        fieldBarrier(cmd);
+        return;
+    }
     // A copy cannot convert: binary16 images are stored into by store_half instead.
     std::vector<std::pair<const gpu::Buffer*, gpu::Image*>> copies, converted;
     for (const auto& pair : fields)
@@ -218,16 +225,21 @@ void SmokeSolver::advectVelocity(VkCommandBuffer cmd) {
     SmokeFields& f = fields_;
     const int from = f.currentVelocity, to = 1 - f.currentVelocity;
     auto& out = f.velocity[size_t(to)];
-    for (uint32_t pass : advectionPasses()) {
+    // A pass after the first reads the previous pass's result where it writes: those go through
+    // the buffers.
+    const std::vector<uint32_t> passes = advectionPasses();
+    const bool direct = direct_ && passes.size() == 1;
+    for (uint32_t pass : passes) {
         for (uint32_t c = 0; c < 3; ++c) {
             Writes w = withVelocity(from);
             w.push_back(gpu::bindBuffer(4, f.scratch[c]));
             w.push_back(storage(5, out[c]));
-            dispatch(cmd, programs_.get("advect_velocity", c, pass), w,
+            w.push_back(storage(6, out[c]));
+            dispatch(cmd, programs_.get("advect_velocity", c, pass, direct), w,
                      faceExtent(options_.grid, int(c)));
         }
-        copyToImages(
-            cmd, {{&f.scratch[0], &out[0]}, {&f.scratch[1], &out[1]}, {&f.scratch[2], &out[2]}});
+        storeFields(cmd, direct,
+                    {{&f.scratch[0], &out[0]}, {&f.scratch[1], &out[1]}, {&f.scratch[2], &out[2]}});
     }
     f.currentVelocity = to;
 }
@@ -235,13 +247,17 @@ void SmokeSolver::advectVelocity(VkCommandBuffer cmd) {
 void SmokeSolver::advectPigment(VkCommandBuffer cmd) {
     SmokeFields& f = fields_;
     const int from = f.currentPigment, to = 1 - f.currentPigment;
-    for (uint32_t pass : advectionPasses()) {
+    const std::vector<uint32_t> passes = advectionPasses();
+    const bool direct = direct_ && passes.size() == 1; // as advectVelocity
+    for (uint32_t pass : passes) {
         Writes w = withVelocity(f.currentVelocity);
         w.push_back(storage(4, f.pigment[size_t(from)]));
         w.push_back(gpu::bindBuffer(5, f.scratch[0]));
         w.push_back(storage(6, f.pigment[size_t(to)]));
-        dispatch(cmd, programs_.get("advect_pigment", MFX_TARGET_PIGMENT, pass), w, f.cells);
-        copyToImages(cmd, {{&f.scratch[0], &f.pigment[size_t(to)]}});
+        w.push_back(storage(7, f.pigment[size_t(to)]));
+        dispatch(cmd, programs_.get("advect_pigment", MFX_TARGET_PIGMENT, pass, direct), w,
+                 f.cells);
+        storeFields(cmd, direct, {{&f.scratch[0], &f.pigment[size_t(to)]}});
     }
     f.currentPigment = to;
 }
@@ -252,10 +268,11 @@ void SmokeSolver::applyBuoyancy(VkCommandBuffer cmd) {
     gpu::Image& velocityY = f.velocity[size_t(f.currentVelocity)][1];
     const gpu::DescriptorWrite writes[] = {gpu::bindBuffer(0, parameters_), storage(1, velocityY),
                                            storage(2, f.pigment[size_t(f.currentPigment)]),
-                                           gpu::bindBuffer(3, f.scratch[1])};
-    dispatch(cmd, programs_.get("apply_buoyancy", MFX_TARGET_VELOCITY_Y), writes,
+                                           gpu::bindBuffer(3, f.scratch[1]),
+                                           storage(4, velocityY)};
+    dispatch(cmd, programs_.get("apply_buoyancy", MFX_TARGET_VELOCITY_Y, 0, direct_), writes,
              faceExtent(options_.grid, 1));
-    copyToImages(cmd, {{&f.scratch[1], &velocityY}});
+    storeFields(cmd, direct_, {{&f.scratch[1], &velocityY}});
 }
 
 void SmokeSolver::vorticityConfinement(VkCommandBuffer cmd) {
@@ -264,21 +281,26 @@ void SmokeSolver::vorticityConfinement(VkCommandBuffer cmd) {
     SmokeFields& f = fields_;
     Writes vorticity = withVelocity(f.currentVelocity);
     vorticity.push_back(gpu::bindBuffer(4, f.scratch[0]));
-    dispatch(cmd, programs_.get("compute_vorticity"), vorticity, f.cells);
-    copyToImages(cmd, {{&f.scratch[0], &f.vorticity}});
+    vorticity.push_back(storage(5, f.vorticity));
+    dispatch(cmd, programs_.get("compute_vorticity", 0, 0, direct_), vorticity, f.cells);
+    storeFields(cmd, direct_, {{&f.scratch[0], &f.vorticity}});
 
     const gpu::DescriptorWrite force[] = {gpu::bindBuffer(0, parameters_), storage(1, f.vorticity),
-                                          gpu::bindBuffer(2, f.scratch[0])};
-    dispatch(cmd, programs_.get("confinement_force"), force, f.cells);
-    copyToImages(cmd, {{&f.scratch[0], &f.force}});
+                                          gpu::bindBuffer(2, f.scratch[0]), storage(3, f.force)};
+    dispatch(cmd, programs_.get("confinement_force", 0, 0, direct_), force, f.cells);
+    storeFields(cmd, direct_, {{&f.scratch[0], &f.force}});
 
+    auto& v = f.velocity[size_t(f.currentVelocity)];
     Writes apply = withVelocity(f.currentVelocity);
     apply.push_back(storage(4, f.force));
     for (uint32_t c = 0; c < 3; ++c)
         apply.push_back(gpu::bindBuffer(5 + c, f.scratch[c]));
-    dispatch(cmd, programs_.get("apply_vorticity_force"), apply, f.cells + glm::uvec3(1));
-    auto& v = f.velocity[size_t(f.currentVelocity)];
-    copyToImages(cmd, {{&f.scratch[0], &v[0]}, {&f.scratch[1], &v[1]}, {&f.scratch[2], &v[2]}});
+    for (uint32_t c = 0; c < 3; ++c)
+        apply.push_back(storage(8 + c, v[c]));
+    dispatch(cmd, programs_.get("apply_vorticity_force", 0, 0, direct_), apply,
+             f.cells + glm::uvec3(1));
+    storeFields(cmd, direct_,
+                {{&f.scratch[0], &v[0]}, {&f.scratch[1], &v[1]}, {&f.scratch[2], &v[2]}});
 }
 
 void SmokeSolver::diffuseViscosity(VkCommandBuffer cmd) {
@@ -319,8 +341,9 @@ void SmokeSolver::computeDivergence(VkCommandBuffer cmd) {
     SmokeFields& f = fields_;
     Writes w = withVelocity(f.currentVelocity);
     w.push_back(gpu::bindBuffer(4, f.scratch[0]));
-    dispatch(cmd, programs_.get("compute_divergence"), w, f.cells);
-    copyToImages(cmd, {{&f.scratch[0], &f.divergence}});
+    w.push_back(storage(5, f.divergence));
+    dispatch(cmd, programs_.get("compute_divergence", 0, 0, direct_), w, f.cells);
+    storeFields(cmd, direct_, {{&f.scratch[0], &f.divergence}});
 }
 
 void SmokeSolver::solvePressure(VkCommandBuffer cmd) {
@@ -329,7 +352,7 @@ void SmokeSolver::solvePressure(VkCommandBuffer cmd) {
         // The other solvers write the solution x-fastest into a buffer, copied over the live image.
         gpu::Image& pressure = f.pressure[size_t(f.currentPressure)];
         dispatches_ += multigrid_->record(cmd, f.divergence, pressure, f.scratch[0]);
-        copyToImages(cmd, {{&f.scratch[0], &pressure}});
+        storeFields(cmd, false, {{&f.scratch[0], &pressure}});
         return;
     }
     if (!options_.warmStart) {
@@ -374,12 +397,15 @@ void SmokeSolver::project(VkCommandBuffer cmd) {
     SmokeFields& f = fields_;
     auto& v = f.velocity[size_t(f.currentVelocity)];
     for (uint32_t c = 0; c < 3; ++c) {
-        Writes w = withVelocity(f.currentVelocity);
-        w.push_back(storage(4, f.pressure[size_t(f.currentPressure)]));
-        w.push_back(gpu::bindBuffer(5, f.scratch[c]));
-        dispatch(cmd, programs_.get("project", c), w, faceExtent(options_.grid, int(c)));
+        const gpu::DescriptorWrite w[] = {
+            gpu::bindBuffer(0, parameters_), storage(1, v[c]),
+            storage(4, f.pressure[size_t(f.currentPressure)]), gpu::bindBuffer(5, f.scratch[c]),
+            storage(6, v[c])};
+        dispatch(cmd, programs_.get("project", c, 0, direct_), w,
+                 faceExtent(options_.grid, int(c)));
     }
-    copyToImages(cmd, {{&f.scratch[0], &v[0]}, {&f.scratch[1], &v[1]}, {&f.scratch[2], &v[2]}});
+    storeFields(cmd, direct_,
+                {{&f.scratch[0], &v[0]}, {&f.scratch[1], &v[1]}, {&f.scratch[2], &v[2]}});
 }
 
 // --- Recording
@@ -392,38 +418,7 @@ void SmokeSolver::recordStage(VkCommandBuffer cmd, Stage stage, gpu::GpuTimer* t
 
 void SmokeSolver::recordStageOnly(VkCommandBuffer cmd, Stage stage, gpu::GpuTimer* timer) {
     if (timer) timer->begin(cmd, stageName(stage));
-    switch (stage) {
-    case Stage::SplatImpulses:
-        splatImpulses(cmd);
-        break;
-    case Stage::AdvectVelocity:
-        advectVelocity(cmd);
-        break;
-    case Stage::AdvectPigment:
-        advectPigment(cmd);
-        break;
-    case Stage::ApplyBuoyancy:
-        applyBuoyancy(cmd);
-        break;
-    case Stage::VorticityConfinement:
-        vorticityConfinement(cmd);
-        break;
-    case Stage::DiffuseViscosity:
-        diffuseViscosity(cmd);
-        break;
-    case Stage::ApplyBoundaries:
-        applyBoundaries(cmd);
-        break;
-    case Stage::ComputeDivergence:
-        computeDivergence(cmd);
-        break;
-    case Stage::SolvePressure:
-        solvePressure(cmd);
-        break;
-    case Stage::Project:
-        project(cmd);
-        break;
-    }
+    (this->*stageEntry(stage).dense)(cmd);
     if (timer) timer->end(cmd);
 }
 
@@ -431,7 +426,7 @@ void SmokeSolver::recordStep(VkCommandBuffer cmd, gpu::GpuTimer* timer) {
     writeParameters(); // once: every sub-step and stage reads the same uniform
     lastStepDispatches_.clear();
     for (uint32_t substep = 0; substep < options_.substeps; ++substep)
-        for (Stage stage : kStepOrder) {
+        for (Stage stage : stepOrder()) {
             const uint32_t before = dispatches_;
             recordStageOnly(cmd, stage, timer);
             countStageDispatches(lastStepDispatches_, stage, dispatches_ - before);
@@ -444,7 +439,9 @@ uint64_t SmokeSolver::memoryBytes() const {
     return bytes;
 }
 
-void SmokeSolver::recordMeasureActivity(VkCommandBuffer cmd, const gpu::Buffer& out) {
+uint32_t SmokeSolver::recordMeasureActivity(VkCommandBuffer cmd, const gpu::Buffer& out,
+                                           gpu::GpuTimer* timer) {
+    if (timer) timer->begin(cmd, "measure_activity");
     vkCmdFillBuffer(cmd, out.get(), 0, 2 * sizeof(uint32_t), 0);
     gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
@@ -456,6 +453,33 @@ void SmokeSolver::recordMeasureActivity(VkCommandBuffer cmd, const gpu::Buffer& 
     gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
                        VK_ACCESS_2_HOST_READ_BIT);
+    if (timer) timer->end(cmd);
+    return 1;
+}
+
+SolverActivity SmokeSolver::finishFrame(const gpu::Buffer& activity, bool measured, bool,
+                                        const SettleRules& rules) {
+    SolverActivity a;
+    if (!measured) return a;
+    a.measured = true;
+    uint32_t bits[2];
+    std::memcpy(bits, activity.mapped, sizeof bits);
+    std::memcpy(&a.largestAlpha, &bits[0], 4);
+    std::memcpy(&a.largestSpeed, &bits[1], 4);
+    a.settled = a.largestAlpha < rules.alphaThreshold && a.largestSpeed < rules.settleSpeed;
+    return a;
+}
+
+PigmentVolume SmokeSolver::pigmentVolume() const {
+    PigmentVolume v;
+    v.layout = PigmentLayout::Image;
+    v.image = &fields_.pigment[size_t(fields_.currentPigment)];
+    v.bytes = options_.grid.cellCount() * 4 * (options_.storage == Storage::Float16 ? 2 : 4);
+    return v;
+}
+
+std::vector<uint8_t> SmokeSolver::storedCells() const {
+    return std::vector<uint8_t>(options_.grid.cellCount(), 1);
 }
 
 uint32_t SmokeSolver::lastPressureIterations() const {

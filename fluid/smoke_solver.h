@@ -10,17 +10,20 @@
 // Gauss-Seidel, multigrid or MGPCG (fluid/gpu_multigrid.h), as SolverOptions::pressureSolver asks.
 //
 // The fields are a SmokeFields (fluid/smoke_fields.h): r32f / rgba32f 3D storage images in GENERAL
-// layout. A stage that rewrites a whole field writes it into a storage buffer, which is then
-// copied into the image (a CPU driver's image stores are costly; docs/fluid.md, "Grid"). Velocity
-// and pigment are ping-ponged between image sets, and every dispatch or copy is separated by a
-// memory barrier. The stages' programs come from one table (fluid/stage_programs.h); each stage
-// below binds its resources as it records (core/gpu/program.h).
+// layout. A stage that rewrites a whole field stores it by the store path
+// (SolverOptions::storePath): on a CPU driver into a storage buffer, then copied into the image
+// (its image stores are costly), on a GPU straight into the image; docs/fluid.md, "Grid". Velocity
+// and pigment are ping-ponged between image sets, and the stages are separated by memory barriers.
+// The stages themselves are the stage table's (fluid/stage_table.h), their programs the kernel
+// table's (fluid/stage_programs.h); each stage below binds its resources as it records
+// (core/gpu/program.h).
 #pragma once
 
 #include "core/gpu/program.h"
 #include "core/gpu/resources.h"
 #include "core/gpu/timer.h"
 #include "fluid/gpu_multigrid.h"
+#include "fluid/grid_solver.h"
 #include "fluid/smoke_fields.h"
 #include "fluid/solver_options.h"
 #include "fluid/stage_programs.h"
@@ -38,7 +41,7 @@ class Context;
 
 namespace mfx::fluid {
 
-class SmokeSolver {
+class SmokeSolver final : public GridSolver {
 public:
     // Fails when the options are invalid or the grid exceeds the device's 3D image size.
     static Result<std::unique_ptr<SmokeSolver>> create(const gpu::Context& ctx,
@@ -46,22 +49,24 @@ public:
     SmokeSolver(const SmokeSolver&) = delete;
     SmokeSolver& operator=(const SmokeSolver&) = delete;
 
-    const SolverOptions& options() const { return options_; }
-    // The current pigment field (rgba32f, GENERAL layout, sampled usage): what a renderer draws.
-    const gpu::Image& pigmentImage() const {
-        return fields_.pigment[size_t(fields_.currentPigment)];
-    }
+    const SolverOptions& options() const override { return options_; }
+    // Whether stages store whole fields straight into their images (SolverOptions::storePath).
+    bool storesDirect() const { return direct_; }
+    // The current pigment field (rgba32f or rgba16f, GENERAL layout, sampled usage): what a
+    // renderer draws.
+    PigmentVolume pigmentVolume() const override;
 
     // Uploads / reads back every field (waits for the GPU).
     void setState(const FieldState& state);
-    FieldState state();
+    FieldState state() override;
+    std::vector<uint8_t> storedCells() const override; // every cell
 
     // Emitters for the following steps, copied into the solver's own buffer after validation.
     Status setEmitters(std::span<const shared::FluidEmitter> emitters);
     // Emitters read from a GPU buffer filled by other GPU work (e.g. trajectory segments):
     // `count` records of shared::FluidEmitter. Not checked on the CPU; the splat shader ignores
     // records with a non-finite position, radius or strength.
-    void setEmitterBuffer(const gpu::Buffer& buffer, uint32_t count);
+    void setEmitterBuffer(const gpu::Buffer& buffer, uint32_t count) override;
 
     // Records one whole step (all sub-steps) into `cmd`. With a timer, each stage is a pass
     // named after it (stageName()), once per sub-step. The parameters uniform is written now,
@@ -79,34 +84,50 @@ public:
     const std::vector<std::pair<std::string, uint32_t>>& lastStepDispatches() const {
         return lastStepDispatches_;
     }
-    uint64_t memoryBytes() const;
+    uint64_t memoryBytes() const override;
     // Sweeps, V-cycles or CG iterations of the last pressure solve (MGPCG stops early on its
     // tolerance: read back from the GPU, so the step must have finished).
     uint32_t lastPressureIterations() const;
 
     // Records measure_activity: the largest pigment alpha and the largest cell-centre speed of
     // the current fields into `out` (two floats as uint bits, cleared first), for deciding whether
-    // the smoke has settled. `out` needs STORAGE_BUFFER and TRANSFER_DST usage.
-    void recordMeasureActivity(VkCommandBuffer cmd, const gpu::Buffer& out);
+    // the smoke has settled. `out` needs STORAGE_BUFFER and TRANSFER_DST usage. One dispatch.
+    uint32_t recordMeasureActivity(VkCommandBuffer cmd, const gpu::Buffer& out,
+                                   gpu::GpuTimer* timer = nullptr) override;
+    // Settled when the measured alpha and speed are below the rules' thresholds.
+    SolverActivity finishFrame(const gpu::Buffer& activity, bool measured, bool stepped,
+                               const SettleRules& rules) override;
+    // The scene's step is the step: the dense grid has no bricks to rebuild.
+    void recordSceneStep(VkCommandBuffer cmd, const SettleRules&, gpu::GpuTimer* timer) override {
+        recordStep(cmd, timer);
+    }
+    StageDispatches lastScenePasses() const override { return lastStepDispatches_; }
 
     // Records a move of the grid by whole cells: afterwards field(q) holds what field(q + cells)
     // held (velocity, pigment and pressure), and what comes in from outside is 0. For a grid that
     // follows a character: the smoke stays where it was in the world.
-    void recordShift(VkCommandBuffer cmd, glm::ivec3 cells) { fields_.recordShift(cmd, cells); }
+    bool recordShift(VkCommandBuffer cmd, glm::ivec3 cells) override {
+        fields_.recordShift(cmd, cells);
+        return true;
+    }
 
     // Upper bound of timer passes one recordStep() makes.
-    uint32_t passesPerStep() const { return uint32_t(kStepOrder.size()) * options_.substeps; }
+    uint32_t passesPerStep() const { return uint32_t(stepOrder().size()) * options_.substeps; }
 
 private:
+    // The stage table (fluid/stage_table.h) names the stage functions below.
+    friend std::span<const StageEntry> stageTable();
+
     using Writes = std::vector<gpu::DescriptorWrite>;
 
     SmokeSolver(const gpu::Context& ctx, const SolverOptions& options);
     void writeParameters();
     void recordStageOnly(VkCommandBuffer cmd, Stage stage, gpu::GpuTimer* timer);
-    // Records, after the dispatches that wrote them, copies of whole fields written x-fastest
-    // into buffers into their images, and the barrier that makes them visible to what follows.
-    void copyToImages(VkCommandBuffer cmd,
-                      std::initializer_list<std::pair<const gpu::Buffer*, gpu::Image*>> fields);
+    // Records, after the dispatches that wrote whole fields, what makes them visible to what
+    // follows: with `direct` (they stored into the images) a barrier; else the copies of the
+    // fields they wrote x-fastest into buffers into their images, between barriers.
+    void storeFields(VkCommandBuffer cmd, bool direct,
+                     std::initializer_list<std::pair<const gpu::Buffer*, gpu::Image*>> fields);
     // Binds `program` with `writes` and dispatches it over `extent` items.
     void dispatch(VkCommandBuffer cmd, gpu::Program& program,
                   std::span<const gpu::DescriptorWrite> writes, glm::uvec3 extent) const;
@@ -131,6 +152,7 @@ private:
     SmokeFields fields_;
     StagePrograms programs_;
     std::unique_ptr<GpuMultigrid> multigrid_; // every pressure solver but Jacobi
+    bool direct_ = false; // options.storePath resolved for the device
 
     gpu::Buffer parameters_;
     gpu::Buffer ownEmitters_;

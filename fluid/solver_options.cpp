@@ -77,18 +77,8 @@ constexpr NamedValue<AdvectionScheme> kAdvectionNames[] = {
     {AdvectionScheme::Bfecc, "bfecc"}};
 constexpr NamedValue<Storage> kStorageNames[] = {{Storage::Float32, "fp32"},
                                                  {Storage::Float16, "fp16"}};
-// Each stage's name is its shader's file name without the extension.
-constexpr NamedValue<Stage> kStageNames[] = {{Stage::SplatImpulses, "splat_impulses"},
-                                             {Stage::AdvectVelocity, "advect_velocity"},
-                                             {Stage::AdvectPigment, "advect_pigment"},
-                                             {Stage::ApplyBuoyancy, "apply_buoyancy"},
-                                             {Stage::VorticityConfinement, "vorticity_confinement"},
-                                             {Stage::DiffuseViscosity, "diffuse_viscosity"},
-                                             {Stage::ApplyBoundaries, "apply_boundaries"},
-                                             {Stage::ComputeDivergence, "compute_divergence"},
-                                             {Stage::SolvePressure, "solve_pressure"},
-                                             {Stage::Project, "project"}};
-
+constexpr NamedValue<StorePath> kStorePathNames[] = {
+    {StorePath::Auto, "auto"}, {StorePath::Buffer, "buffer"}, {StorePath::Direct, "direct"}};
 } // namespace
 
 const char* pressureSolverName(PressureSolver solver) {
@@ -113,6 +103,14 @@ const char* storageName(Storage storage) {
 
 std::optional<Storage> storageFromName(std::string_view name) {
     return valueOf(name, kStorageNames);
+}
+
+const char* storePathName(StorePath path) {
+    return nameOf(path, kStorePathNames, "auto");
+}
+
+std::optional<StorePath> storePathFromName(std::string_view name) {
+    return valueOf(name, kStorePathNames);
 }
 
 Status validateSparseOptions(const SolverOptions& o, uint32_t maxDimension,
@@ -171,14 +169,6 @@ shared::FluidParameters makeParameters(const SolverOptions& o, uint32_t emitterC
     for (int face = 0; face < 6; ++face)
         p.wallVelocity[face] = glm::vec4(o.boundaries[face].wallVelocity, 0.0f);
     return p;
-}
-
-const char* stageName(Stage stage) {
-    return nameOf(stage, kStageNames, "unknown");
-}
-
-std::optional<Stage> stageFromName(std::string_view name) {
-    return valueOf(name, kStageNames);
 }
 
 glm::uvec3 faceExtent(const GridShape& grid, int component) {

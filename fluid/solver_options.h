@@ -1,10 +1,11 @@
-// What a smoke simulation is asked to do: grid, time step, stage parameters and boundaries, plus
-// the stage names shared by the GPU solver and the CPU reference. The discretisation behind each
+// What a smoke simulation is asked to do: grid, time step, stage parameters and boundaries (the
+// stages themselves: fluid/stage_table.h). The discretisation behind each
 // option is written down in docs/fluid.md.
 #pragma once
 
 #include "core/result.h"
 #include "fluid/grid.h"
+#include "fluid/stage_table.h"
 #include "shaders/shared/fluid.h"
 
 #include <array>
@@ -44,6 +45,13 @@ enum class AdvectionScheme {
 // How the fields are stored between stages: 32-bit floats, or 16-bit (arithmetic in 32 bits).
 enum class Storage { Float32, Float16 };
 
+// How a stage that rewrites a whole field stores it (a performance setting only: the results are
+// the same bit for bit; docs/fluid.md, "Grid"). Buffer: into a storage buffer, then copied into
+// the field's image (a CPU driver's image stores are slow, its copies cheap). Direct: straight into
+// the image (a GPU, where the copy would move every byte twice more). Auto: Buffer on a CPU
+// device, Direct on any other.
+enum class StorePath { Auto, Buffer, Direct };
+
 struct MultigridOptions {
     uint32_t levels = 0;     // grids in the hierarchy, the finest included (0: as many as halve
                              // every axis down to at least 2 cells)
@@ -60,6 +68,8 @@ const char* advectionName(AdvectionScheme scheme);
 std::optional<AdvectionScheme> advectionFromName(std::string_view name);
 const char* storageName(Storage storage);
 std::optional<Storage> storageFromName(std::string_view name);
+const char* storePathName(StorePath path); // "auto", "buffer", "direct"
+std::optional<StorePath> storePathFromName(std::string_view name);
 
 // Domain faces in the order -x, +x, -y, +y, -z, +z.
 enum Face { FaceLowX = 0, FaceHighX, FaceLowY, FaceHighY, FaceLowZ, FaceHighZ };
@@ -94,6 +104,7 @@ struct SolverOptions {
     // Workgroup shape of every compute dispatch (a performance setting only: results do not
     // depend on it). At most the device's maxComputeWorkGroupInvocations in all.
     std::array<uint32_t, 3> workgroup{MFX_FLUID_GROUP_X, MFX_FLUID_GROUP_Y, MFX_FLUID_GROUP_Z};
+    StorePath storePath = StorePath::Auto; // a performance setting only, as the workgroup
 
     float substepDt() const { return dt / float(substeps); }
     bool periodic(int axis) const { return boundaries[2 * axis].kind == Boundary::Periodic; }
@@ -116,38 +127,6 @@ Status validateEmitters(std::span<const shared::FluidEmitter> emitters);
 
 // The uniform block of one sub-step.
 shared::FluidParameters makeParameters(const SolverOptions& options, uint32_t emitterCount);
-
-// The stages of one sub-step, in order. ApplyBoundaries runs twice: before the divergence (so
-// periodic duplicate faces agree) and last.
-enum class Stage {
-    SplatImpulses,
-    AdvectVelocity,
-    AdvectPigment,
-    ApplyBuoyancy,
-    VorticityConfinement,
-    DiffuseViscosity,
-    ApplyBoundaries,
-    ComputeDivergence,
-    SolvePressure,
-    Project,
-};
-
-inline constexpr std::array<Stage, 10> kAllStages = {
-    Stage::SplatImpulses,   Stage::AdvectVelocity,       Stage::AdvectPigment,
-    Stage::ApplyBuoyancy,   Stage::VorticityConfinement, Stage::DiffuseViscosity,
-    Stage::ApplyBoundaries, Stage::ComputeDivergence,    Stage::SolvePressure,
-    Stage::Project};
-
-// The order one sub-step runs its stages in.
-inline constexpr std::array<Stage, 11> kStepOrder = {
-    Stage::SplatImpulses,   Stage::AdvectVelocity,       Stage::AdvectPigment,
-    Stage::ApplyBuoyancy,   Stage::VorticityConfinement, Stage::DiffuseViscosity,
-    Stage::ApplyBoundaries, Stage::ComputeDivergence,    Stage::SolvePressure,
-    Stage::Project,         Stage::ApplyBoundaries};
-
-// "splat_impulses", "advect_velocity", ... (the shader file names without extension).
-const char* stageName(Stage stage);
-std::optional<Stage> stageFromName(std::string_view name);
 
 // Every field of a simulation, as plain floats (x fastest): the exchange format between the GPU
 // solver, the CPU reference and the tests.

@@ -19,6 +19,7 @@
 #include "core/gpu/program.h"
 #include "core/gpu/resources.h"
 #include "core/gpu/timer.h"
+#include "fluid/grid_solver.h"
 #include "fluid/solver_options.h"
 #include "fluid/sparse_bricks.h"
 
@@ -36,7 +37,7 @@ class Context;
 
 namespace mfx::fluid {
 
-class SparseSmokeSolver {
+class SparseSmokeSolver final : public GridSolver {
 public:
     // options.grid is the virtual domain; the options must pass validateSparseOptions. At most
     // `maxBricks` bricks are stored at once; the atlas starts with `initialSlots`.
@@ -47,7 +48,7 @@ public:
     SparseSmokeSolver(const SparseSmokeSolver&) = delete;
     SparseSmokeSolver& operator=(const SparseSmokeSolver&) = delete;
 
-    const SolverOptions& options() const { return options_; }
+    const SolverOptions& options() const override { return options_; }
 
     // The layout: want bricks on it (clearWanted, wantSphere, wantCell, dilate), then commit.
     SparseBricks& layout() { return layout_; }
@@ -87,7 +88,7 @@ public:
     // The virtual domain's fields, dense (waits for the GPU). setState stores the values of the
     // active bricks and ignores the rest; state() has 0 wherever nothing is stored.
     void setState(const FieldState& state);
-    FieldState state();
+    FieldState state() override;
     // Faces stored twice (by two active bricks) whose copies differed in the last state(): 0
     // unless a stage broke the rule that both copies are computed alike.
     uint64_t lastSharedFaceMismatches() const { return sharedFaceMismatches_; }
@@ -96,7 +97,7 @@ public:
     // As SmokeSolver::setEmitterBuffer: the first `count` records of `buffer` (written on the GPU,
     // e.g. by SegmentEmitters) are the next rebuild's and step's emitters. The buffer must outlive
     // their recording.
-    void setEmitterBuffer(const gpu::Buffer& buffer, uint32_t count);
+    void setEmitterBuffer(const gpu::Buffer& buffer, uint32_t count) override;
     // The stages of the last recordStep with their dispatch counts, in order (as SmokeSolver's).
     const std::vector<std::pair<std::string, uint32_t>>& lastStepDispatches() const {
         return lastStepDispatches_;
@@ -118,10 +119,32 @@ public:
     void runStage(Stage stage);
 
     // Bytes of GPU memory of the atlas, the brick table, the lists and the rebuild's buffers.
-    uint64_t memoryBytes() const;
-    uint32_t passesPerStep() const { return uint32_t(kStepOrder.size()) * options_.substeps; }
+    uint64_t memoryBytes() const override;
+    // As a scene runs it: recordRebuild by the rules (the bricks with a live cell, those the
+    // emitters reach, and one brick of reach around them: the most a step's advection carries
+    // smoke), timed as "rebuild_bricks", then the step.
+    void recordSceneStep(VkCommandBuffer cmd, const SettleRules& rules,
+                         gpu::GpuTimer* timer) override;
+    StageDispatches lastScenePasses() const override;
+    // The rebuild measures: nothing to record.
+    uint32_t recordMeasureActivity(VkCommandBuffer, const gpu::Buffer&, gpu::GpuTimer*) override {
+        return 0;
+    }
+    // The last rebuild's counts (finishRebuild); settled when no effect was live (`measured`)
+    // and no brick is active or refused.
+    SolverActivity finishFrame(const gpu::Buffer& activity, bool measured, bool stepped,
+                               const SettleRules& rules) override;
+    // The sparse domain stands still over the stage.
+    bool recordShift(VkCommandBuffer, glm::ivec3) override { return false; }
+    PigmentVolume pigmentVolume() const override;
+    std::vector<uint8_t> storedCells() const override { return activeCells(); }
+
+    uint32_t passesPerStep() const { return uint32_t(stepOrder().size()) * options_.substeps; }
 
 private:
+    // The stage table (fluid/stage_table.h) names the stage functions below.
+    friend std::span<const StageEntry> stageTable();
+
     using Writes = std::vector<gpu::DescriptorWrite>;
 
     SparseSmokeSolver(const gpu::Context& ctx, const SolverOptions& options, uint32_t maxBricks,
@@ -185,6 +208,7 @@ private:
     std::vector<std::pair<std::string, uint32_t>> lastStepDispatches_;
     uint32_t lastRebuildDispatches_ = 0;
     uint64_t sharedFaceMismatches_ = 0;
+    uint32_t activeCount_ = 0; // active bricks as last counted (commit or rebuild)
 };
 
 } // namespace mfx::fluid

@@ -60,12 +60,13 @@ const Kernel* findKernel(std::string_view name) {
 StagePrograms::StagePrograms(const gpu::Context& ctx, const SolverOptions& options)
     : ctx_(ctx), options_(options) {}
 
-gpu::Program& StagePrograms::get(std::string_view name, uint32_t target, uint32_t variant) {
+gpu::Program& StagePrograms::get(std::string_view name, uint32_t target, uint32_t variant,
+                                 bool direct) {
     const Kernel* kernel = findKernel(name);
     if (kernel == nullptr)
         throw std::logic_error("the smoke solver has no kernel " + std::string(name));
     if (kernel->extra == Extra::None) variant = 0;
-    gpu::Program& slot = programs_[{kernel->name, target, variant}];
+    gpu::Program& slot = programs_[{kernel->name, target, variant, direct}];
     if (slot.pipeline() != VK_NULL_HANDLE) return slot;
 
     gpu::ComputeProgramDesc desc;
@@ -85,6 +86,8 @@ gpu::Program& StagePrograms::get(std::string_view name, uint32_t target, uint32_
     if (kernel->extra == Extra::PressureBrick)
         desc.specialization.insert(desc.specialization.end(),
                                    {variant, kPressureLayers, kPressureRows});
+    desc.specialization.resize(14, 0u); // ids 11-13 a kernel does not take are ignored
+    desc.specialization.push_back(direct ? 1u : 0u);
     slot = gpu::createComputeProgram(ctx_, desc);
     return slot;
 }

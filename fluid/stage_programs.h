@@ -26,14 +26,16 @@ public:
 
     // The program of kernel `name` for target field `target` (MFX_TARGET_*, constant id 0) and
     // `variant` (the advection pass, MFX_ADVECT_*, or the Jacobi sweep's packing; constant id 11
-    // for the kernels that take one, ignored by the others). An unknown name throws
-    // std::logic_error.
-    gpu::Program& get(std::string_view name, uint32_t target = 0, uint32_t variant = 0);
+    // for the kernels that take one, ignored by the others), storing its whole-field output
+    // straight into the image with `direct` (constant id 14, kDirectStore). An unknown name
+    // throws std::logic_error.
+    gpu::Program& get(std::string_view name, uint32_t target = 0, uint32_t variant = 0,
+                      bool direct = false);
 
 private:
     const gpu::Context& ctx_;
     SolverOptions options_;
-    std::map<std::tuple<std::string_view, uint32_t, uint32_t>, gpu::Program> programs_;
+    std::map<std::tuple<std::string_view, uint32_t, uint32_t, bool>, gpu::Program> programs_;
 };
 
 } // namespace mfx::fluid

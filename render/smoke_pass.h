@@ -19,8 +19,10 @@
 #include "core/gpu/program.h"
 #include "core/gpu/resources.h"
 #include "core/scene/kinds/smoke_effect.h"
+#include "fluid/grid_solver.h"
 #include "render/render_target.h"
 #include "render/scene_camera.h"
+#include "shaders/shared/smoke_draw.h"
 #include "sim/scene_simulation.h"
 
 #include <array>
@@ -66,16 +68,15 @@ public:
                   const SceneCamera& camera, std::span<const uint8_t> shown = {},
                   const SmokeLook& look = {});
 
-    // One pigment volume (rgba32f, GENERAL layout) of `shape` whose low corner is at `origin`,
-    // shaded as `shading` says (its grid's first smoke effect's). Or, with `sparse`, a sparse
-    // grid's pigment atlas over its virtual domain `shape` (pigment unused): the bounds search
-    // runs over its active bricks and the march skips its empty ones (shaders/render/smoke.frag).
+    // One pigment volume (fluid/grid_solver.h: a solver's image, or the sparse domain's brick
+    // atlas over its virtual domain) of `shape` whose low corner is at `origin`, shaded as
+    // `shading` says (its grid's first smoke effect's). Over a brick atlas the bounds search runs
+    // over the active bricks and the march skips the empty ones (shaders/render/smoke.frag).
     struct Volume {
-        const gpu::Image* pigment = nullptr;
+        fluid::PigmentVolume pigment;
         fluid::GridShape shape;
         glm::vec3 origin{0.0f};
         scene::SmokeShading shading;
-        const fluid::SparseSmokeSolver* sparse = nullptr;
     };
     void draw(VkCommandBuffer cmd, RenderTarget& target, std::span<const Volume> volumes,
               const SceneCamera& camera, const scene::LightSpec& key, const SmokeLook& look = {});
@@ -97,6 +98,10 @@ private:
     void prepareFluidBuffer(const RenderTarget& target, uint32_t divisor);
     void findPigmentBounds(VkCommandBuffer cmd, std::span<const Volume> volumes,
                            const SmokeLook& look);
+    // The key light's transmittance through volume i at its grid's resolution
+    // (shaders/render/light_transmittance.comp), after its bounds, for its march to fetch.
+    void marchLight(VkCommandBuffer cmd, size_t i, const Volume& volume,
+                    const shared::SmokeDraw& draw);
 
     const gpu::Context& ctx_;
     gpu::Program& boundsFor(const gpu::Image& pigment) {
@@ -104,11 +109,15 @@ private:
     }
     std::array<gpu::Program, 2> boundsPrograms_; // for rgba32f and rgba16f pigment
     std::optional<gpu::Program> sparseBounds_;   // for a sparse atlas, made when first used
+    gpu::Program light_;                         // light_transmittance for a pigment image
+    std::optional<gpu::Program> sparseLight_;    // ... for a sparse atlas, made when first used
     std::map<uint32_t, Programs> programs_;      // by divisor, made when first used
     gpu::UniqueSampler volumeSampler_, nearestSampler_;
+    gpu::UniqueSampler edgeSampler_; // linear, clamped to the edge: the light's transmittance
     FluidBuffer fluid_;
     std::vector<gpu::Buffer> bounds_; // shared::PigmentBounds of the i-th volume of a draw
     std::vector<gpu::Buffer> styles_; // shared::SmokeStyle of the i-th volume of a draw
+    std::vector<gpu::Image> lights_;  // the light's transmittance of the i-th volume (r32f)
 };
 
 } // namespace mfx::render

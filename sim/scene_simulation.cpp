@@ -35,6 +35,47 @@ trajectory::Source strided(const trajectory::Source& source, uint32_t stride) {
     return out;
 }
 
+// The one place a scene's smoke keys become a grid's settings and its solver's options: the grid
+// of `effects` (smoke effects with equal grid keys; the sleep threshold is their smallest, the
+// emitter capacity their sum), stepping at the grid's steps_per_second rounded up to whole steps
+// a frame of a scene at `fps`.
+fluid::SmokeGridSettings gridSettings(std::span<const scene::SmokeSpec* const> effects, float fps,
+                                      std::string name) {
+    const scene::SmokeGridSpec& e = effects.front()->grid;
+    fluid::SmokeGridSettings settings;
+    settings.name = std::move(name);
+    settings.follow = e.follow;
+    settings.sparse = e.sparse();
+    settings.maxBricks = e.maxBricks;
+    settings.liveSpeed = e.liveSpeed;
+    settings.origin = e.origin;
+    settings.sleepThreshold = std::numeric_limits<float>::max();
+    settings.emitterCapacity = 0;
+    for (const scene::SmokeSpec* effect : effects) {
+        const scene::SmokeSpec& smoke = *effect;
+        settings.sleepThreshold = std::min(settings.sleepThreshold, smoke.sleepThreshold);
+        settings.emitterCapacity += smoke.maxEmitters;
+    }
+    settings.stepsPerFrame =
+        std::max(1u, uint32_t(std::ceil(e.stepsPerSecond / fps - 1e-4f)));
+    fluid::SolverOptions& options = settings.options;
+    options.grid = fluid::GridShape{e.cells[0], e.cells[1], e.cells[2], e.cellSize};
+    options.dt = 1.0f / (fps * float(settings.stepsPerFrame));
+    options.fade = e.fade;
+    options.drag = e.drag;
+    options.buoyancy = e.buoyancy;
+    options.vorticity = e.vorticity;
+    options.jacobiIterations = e.jacobi;
+    // The scene's names are the solver's (a test keeps the two lists the same).
+    options.pressureSolver = fluid::pressureSolverFromName(e.pressure).value();
+    options.advection = fluid::advectionFromName(e.advection).value();
+    options.storage = fluid::storageFromName(e.storage).value();
+    for (fluid::FaceBoundary& face : options.boundaries)
+        face.kind = fluid::Boundary::Open;
+    options.boundaries[fluid::FaceLowY].kind = fluid::Boundary::WallFreeSlip; // the stage floor
+    return settings;
+}
+
 } // namespace
 
 uint32_t SimulationFrameStats::dispatches() const {
@@ -108,38 +149,11 @@ Result<std::unique_ptr<SceneSimulation>> SceneSimulation::create(const gpu::Cont
             groups.push_back({i});
     }
     for (const std::vector<size_t>& effects : groups) {
-        const scene::SmokeGridSpec& e = sim->trajectories_[effects.front()].smoke->grid;
-        fluid::SmokeGridSettings settings;
-        settings.name = "smoke" + std::to_string(sim->grids_.size());
-        settings.follow = e.follow;
-        settings.sparse = e.sparse();
-        settings.maxBricks = e.maxBricks;
-        settings.liveSpeed = e.liveSpeed;
-        settings.origin = e.origin;
-        settings.sleepThreshold = std::numeric_limits<float>::max();
-        settings.emitterCapacity = 0;
-        for (size_t i : effects) {
-            const scene::SmokeSpec& smoke = *sim->trajectories_[i].smoke;
-            settings.sleepThreshold = std::min(settings.sleepThreshold, smoke.sleepThreshold);
-            settings.emitterCapacity += smoke.maxEmitters;
-        }
-        settings.stepsPerFrame =
-            std::max(1u, uint32_t(std::ceil(e.stepsPerSecond / sim->scene_.output.fps - 1e-4f)));
-        fluid::SolverOptions& options = settings.options;
-        options.grid = fluid::GridShape{e.cells[0], e.cells[1], e.cells[2], e.cellSize};
-        options.dt = 1.0f / (sim->scene_.output.fps * float(settings.stepsPerFrame));
-        options.fade = e.fade;
-        options.drag = e.drag;
-        options.buoyancy = e.buoyancy;
-        options.vorticity = e.vorticity;
-        options.jacobiIterations = e.jacobi;
-        // The scene's names are the solver's (a test keeps the two lists the same).
-        options.pressureSolver = fluid::pressureSolverFromName(e.pressure).value();
-        options.advection = fluid::advectionFromName(e.advection).value();
-        options.storage = fluid::storageFromName(e.storage).value();
-        for (fluid::FaceBoundary& face : options.boundaries)
-            face.kind = fluid::Boundary::Open;
-        options.boundaries[fluid::FaceLowY].kind = fluid::Boundary::WallFreeSlip; // the stage floor
+        std::vector<const scene::SmokeSpec*> specs;
+        for (size_t i : effects)
+            specs.push_back(sim->trajectories_[i].smoke);
+        fluid::SmokeGridSettings settings = gridSettings(
+            specs, sim->scene_.output.fps, "smoke" + std::to_string(sim->grids_.size()));
         const std::string name = settings.name;
         auto grid = fluid::SmokeGrid::create(ctx, std::move(settings));
         if (!grid) return Error{sim->scene_.file + ": " + name + ": " + grid.error().message};

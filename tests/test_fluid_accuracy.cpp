@@ -245,7 +245,7 @@ TEST(FluidAccuracyHalf, StoredFieldsAreHalfValues) {
     };
     EXPECT_TRUE(allHalf(cpu.state()));
     const auto emitters = twoEmitters(o.grid);
-    for (fluid::Stage stage : fluid::kStepOrder) {
+    for (fluid::Stage stage : fluid::stepOrder()) {
         cpu.runStage(stage, emitters);
         EXPECT_TRUE(allHalf(cpu.state())) << fluid::stageName(stage);
     }

@@ -77,7 +77,7 @@ TEST_P(GpuHalfStageTest, GpuMatchesReference) {
 
 std::vector<HalfCase> halfCases() {
     std::vector<HalfCase> cases;
-    for (fluid::Stage stage : fluid::kAllStages)
+    for (fluid::Stage stage : fluid::allStages())
         for (bool mixed : {false, true})
             cases.push_back({stage, mixed, fluid::AdvectionScheme::SemiLagrangian});
     for (fluid::AdvectionScheme scheme :

@@ -422,7 +422,7 @@ double taylorGreenCpu(uint32_t n) {
     fluid::ReferenceSolver cpu(options);
     cpu.setState(exact);
     for (int step = 0; step < taylorGreenSteps(n); ++step)
-        for (fluid::Stage stage : fluid::kStepOrder) {
+        for (fluid::Stage stage : fluid::stepOrder()) {
             if (stage == fluid::Stage::SolvePressure)
                 cpu.solvePressureExact();
             else

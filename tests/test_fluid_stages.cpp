@@ -45,7 +45,7 @@ TEST_P(FluidStageTest, GpuMatchesReference) {
 
 std::vector<StageCase> allStageCases() {
     std::vector<StageCase> cases;
-    for (fluid::Stage stage : fluid::kAllStages)
+    for (fluid::Stage stage : fluid::allStages())
         for (bool mixed : {false, true})
             cases.push_back({stage, mixed});
     return cases;

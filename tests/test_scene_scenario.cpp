@@ -171,7 +171,7 @@ TEST_F(SceneScenarioTest, CpuReferenceRunLeavesPigmentAndFiniteFields) {
     ref.setState(s.initial);
     for (uint32_t step = 0; step < 6; ++step) {
         const std::vector<shared::FluidEmitter> emitters = s.emitters(step);
-        for (fluid::Stage stage : fluid::kStepOrder)
+        for (fluid::Stage stage : fluid::stepOrder())
             ref.runStage(stage, emitters);
     }
     const fluid::FieldState state = ref.state();

@@ -6,6 +6,7 @@
 #include "core/gpu/commands.h"
 #include "core/scene/kinds/smoke_effect.h"
 #include "fluid/reference/reference_solver.h"
+#include "fluid/smoke_solver.h"
 #include "fluid/solver_options.h"
 #include "sim/scene_simulation.h"
 #include "tests/gpu_test.h"
@@ -133,9 +134,9 @@ TEST_F(SceneSimulationTest, OneMovingVertexPushesTheRightCellsLikeTheReference) 
     ASSERT_TRUE(sim);
     fluid::SmokeGrid& grid = sim->smokeGrids()[0].grid;
     sim->runFrame(0); // no extent yet: zero velocity, pigment only
-    const fluid::FieldState before = grid.solver().state();
+    const fluid::FieldState before = grid.state();
     sim->runFrame(1);
-    const fluid::FieldState after = grid.solver().state();
+    const fluid::FieldState after = grid.state();
 
     // The CPU reference, stepping from the same fields with the emitters the CPU twins make from
     // the CPU twin of the segment.
@@ -150,7 +151,7 @@ TEST_F(SceneSimulationTest, OneMovingVertexPushesTheRightCellsLikeTheReference) 
     coupling.samplesPerVertex = 5;
     const auto emitters = fluid::segmentEmitters(segment, coupling);
     ASSERT_EQ(emitters.size(), 5u);
-    fluid::ReferenceSolver reference(grid.solver().options());
+    fluid::ReferenceSolver reference(grid.options());
     reference.setState(before);
     reference.step(emitters);
     const fluid::FieldState expected = reference.state();
@@ -167,7 +168,7 @@ TEST_F(SceneSimulationTest, OneMovingVertexPushesTheRightCellsLikeTheReference) 
     // and the strongest push lies on the vertex's path (y = 0.6, z = 0 in the world).
     EXPECT_GT(maxValue, 0.3 * 0.8 * 1.5);
     EXPECT_LE(maxValue, 0.8 * 1.5 * 1.001);
-    const fluid::GridShape& shape = grid.solver().options().grid;
+    const fluid::GridShape& shape = grid.options().grid;
     const glm::uvec3 n(shape.cellsX, shape.cellsY, shape.cellsZ);
     size_t strongest = 0;
     for (size_t i = 0; i < after.velocityX.size(); ++i)
@@ -213,7 +214,7 @@ TEST_F(SceneSimulationTest, SurfaceEmissionFeedsTheGrid) {
     for (uint32_t f = 0; f < 4; ++f)
         emitters += sim->runFrame(f).grids[0].emitters;
     EXPECT_GT(emitters, 0u);
-    const fluid::FieldState state = sim->smokeGrids()[0].grid.solver().state();
+    const fluid::FieldState state = sim->smokeGrids()[0].grid.state();
     double pigment = 0.0;
     for (size_t c = 0; c < state.pigment.size() / 4; ++c)
         pigment += double(state.pigment[c * 4 + 3]);
@@ -316,7 +317,7 @@ Totals runAt(const gpu::Context& ctx, float fps, float stepsPerSecond) {
     if (!sim) return totals;
     for (uint32_t f = 0; f < frames; ++f)
         sim->runFrame(f);
-    const fluid::FieldState state = sim->smokeGrids()[0].grid.solver().state();
+    const fluid::FieldState state = sim->smokeGrids()[0].grid.state();
     for (size_t c = 0; c < state.pigment.size() / 4; ++c)
         totals.pigment += double(state.pigment[c * 4 + 3]);
     for (float v : state.velocityX)

@@ -66,7 +66,7 @@ Shot shoot(gpu::Context& ctx, const fluid::SmokeSolver* smoke, glm::vec3 centre,
         scenePass.draw(cmd, camera);
         render::endRendering(cmd);
         if (smoke) {
-            const render::SmokePass::Volume volume{&smoke->pigmentImage(), smoke->options().grid,
+            const render::SmokePass::Volume volume{smoke->pigmentVolume(), smoke->options().grid,
                                                    centre - glm::vec3(0.4f), shading};
             smokePass.draw(cmd, target, std::span(&volume, 1), camera, s.lights[0], look);
         }
@@ -252,7 +252,7 @@ std::vector<float> blockColumn(gpu::Context& ctx, const scene::SmokeShading& sha
     gpu::submitOneShot(ctx, [&](VkCommandBuffer cmd) {
         render::beginRendering(cmd, target, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
         render::endRendering(cmd);
-        const render::SmokePass::Volume volume{&block->pigmentImage(), options.grid,
+        const render::SmokePass::Volume volume{block->pigmentVolume(), options.grid,
                                                centre - glm::vec3(0.4f), shading};
         smokePass.draw(cmd, target, std::span(&volume, 1), camera, s.lights[0], look);
     });

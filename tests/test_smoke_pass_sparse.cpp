@@ -124,9 +124,9 @@ TEST_F(SparseSmokePassTest, TheSparseMarchDrawsWhatTheDenseMarchDrawsOfTheSamePi
     EXPECT_LT(some->activeBricks().size(), 27u);
     EXPECT_EQ(every->activeBricks().size(), 54u);
     const glm::vec3 origin(0.0f);
-    const Picture d = shoot(ctx(), {&dense->pigmentImage(), kDomain, origin, {}}, "dense.png");
-    const Picture s = shoot(ctx(), {nullptr, kDomain, origin, {}, some.get()}, "sparse.png");
-    const Picture e = shoot(ctx(), {nullptr, kDomain, origin, {}, every.get()}, "every.png");
+    const Picture d = shoot(ctx(), {dense->pigmentVolume(), kDomain, origin, {}}, "dense.png");
+    const Picture s = shoot(ctx(), {some->pigmentVolume(), kDomain, origin, {}}, "sparse.png");
+    const Picture e = shoot(ctx(), {every->pigmentVolume(), kDomain, origin, {}}, "every.png");
     EXPECT_GT(smokyPixels(d), 500u);
     const auto [someOver, someLargest] = compare(s, d, kTolerance);
     EXPECT_EQ(someOver, 0u) << "largest difference " << someLargest;
@@ -142,7 +142,7 @@ TEST_F(SparseSmokePassTest, ASparseGridWithNoActiveBrickDrawsNothing) {
     options.grid = kDomain;
     auto sparse = fluid::SparseSmokeSolver::create(ctx(), options, 64, 8).value();
     const Picture empty =
-        shoot(ctx(), {nullptr, kDomain, glm::vec3(0.0f), {}, sparse.get()}, "empty.png");
+        shoot(ctx(), {sparse->pigmentVolume(), kDomain, glm::vec3(0.0f), {}}, "empty.png");
     EXPECT_EQ(smokyPixels(empty), 0u);
 }
 

@@ -53,45 +53,14 @@ FieldState ReferenceSolver::state() const {
 }
 
 void ReferenceSolver::runStage(Stage stage, std::span<const shared::FluidEmitter> emitters) {
-    switch (stage) {
-    case Stage::SplatImpulses:
-        splatImpulses(emitters);
-        break;
-    case Stage::AdvectVelocity:
-        advectVelocity();
-        break;
-    case Stage::AdvectPigment:
-        advectPigment();
-        break;
-    case Stage::ApplyBuoyancy:
-        applyBuoyancy();
-        break;
-    case Stage::VorticityConfinement:
-        vorticityConfinement();
-        break;
-    case Stage::DiffuseViscosity:
-        diffuseViscosity();
-        break;
-    case Stage::ApplyBoundaries:
-        applyBoundaries();
-        break;
-    case Stage::ComputeDivergence:
-        computeDivergence();
-        break;
-    case Stage::SolvePressure:
-        solvePressure();
-        break;
-    case Stage::Project:
-        project();
-        break;
-    }
+    stageEntry(stage).reference(*this, emitters);
     if (options_.storage == Storage::Float16) roundStoredFields();
     clearInactive();
 }
 
 void ReferenceSolver::step(std::span<const shared::FluidEmitter> emitters) {
     for (uint32_t substep = 0; substep < options_.substeps; ++substep)
-        for (Stage stage : kStepOrder)
+        for (Stage stage : stepOrder())
             runStage(stage, emitters);
 }
 

@@ -48,7 +48,7 @@ public:
     FieldState state() const;
     const SolverOptions& options() const { return options_; }
 
-    // One whole step: every stage of kStepOrder, `substeps` times. Emitters must have passed
+    // One whole step: every stage of stepOrder(), `substeps` times. Emitters must have passed
     // validateEmitters().
     void step(std::span<const shared::FluidEmitter> emitters);
     // One stage alone, with the sub-step dt; with Storage::Float16, velocity, pressure and pigment

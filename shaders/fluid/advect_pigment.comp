@@ -16,6 +16,7 @@ layout(std430, binding = 5) writeonly buffer PigmentOut {
 };
 // The pass's intermediate pigment (unused by the semi-Lagrangian and predict passes).
 layout(binding = 6, MFX_PIGMENT_FORMAT) uniform readonly image3D work;
+layout(binding = 7, MFX_PIGMENT_FORMAT) uniform writeonly image3D pigmentOutImage; // kDirectStore
 
 layout(constant_id = 11) const uint kPass = MFX_ADVECT_SEMI_LAGRANGIAN;
 
@@ -87,5 +88,8 @@ void main() {
         }
         if (kPass != MFX_ADVECT_PREDICT) value = flushTiny(value * exp(-params.rates.x * timeStep()));
     }
-    pigmentOut[cellElement(q)] = value;
+    if (kDirectStore)
+        imageStore(pigmentOutImage, q, MFX_STORED4(value));
+    else
+        pigmentOut[cellElement(q)] = value;
 }

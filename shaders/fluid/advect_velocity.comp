@@ -17,6 +17,7 @@ layout(std430, binding = 4) writeonly buffer Out {
 };
 // The component kTarget's intermediate field (unused by the semi-Lagrangian and predict passes).
 layout(binding = 5, MFX_VELOCITY_FORMAT) uniform readonly image3D work;
+layout(binding = 6, MFX_VELOCITY_FORMAT) uniform writeonly image3D outField; // kDirectStore
 
 layout(constant_id = 11) const uint kPass = MFX_ADVECT_SEMI_LAGRANGIAN;
 
@@ -58,8 +59,10 @@ void main() {
         }
         if (kPass != MFX_ADVECT_PREDICT) value *= exp(-params.cell.w * timeStep());
     }
-    outValues[faceElement(c, q)] = kPass == MFX_ADVECT_PREDICT ||
-                                           kPass == MFX_ADVECT_BFECC_COMPENSATE
-                                       ? value
-                                       : flushTiny(value);
+    value = kPass == MFX_ADVECT_PREDICT || kPass == MFX_ADVECT_BFECC_COMPENSATE ? value
+                                                                               : flushTiny(value);
+    if (kDirectStore)
+        imageStore(outField, q, vec4(MFX_STORED(value)));
+    else
+        outValues[faceElement(c, q)] = value;
 }

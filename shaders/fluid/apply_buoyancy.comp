@@ -10,6 +10,7 @@ layout(binding = 2, MFX_PIGMENT_FORMAT) uniform readonly image3D pigment;
 layout(std430, binding = 3) writeonly buffer Out {
     float outValues[];
 };
+layout(binding = 4, MFX_VELOCITY_FORMAT) uniform writeonly image3D outField; // kDirectStore
 
 void main() {
     ivec3 q = ivec3(gl_GlobalInvocationID);
@@ -20,5 +21,8 @@ void main() {
                                imageLoad(pigment, resolveCell(q)).a);
         v += timeStep() * params.rates.y * density;
     }
-    outValues[faceElement(1, q)] = v;
+    if (kDirectStore)
+        imageStore(outField, q, vec4(MFX_STORED(v)));
+    else
+        outValues[faceElement(1, q)] = v;
 }

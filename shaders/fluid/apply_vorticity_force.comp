@@ -22,6 +22,11 @@ layout(std430, binding = 6) writeonly buffer OutY {
 layout(std430, binding = 7) writeonly buffer OutZ {
     float outZ[];
 };
+// kDirectStore: the faces straight into the live velocity images (each invocation reads only the
+// faces it writes).
+layout(binding = 8, MFX_VELOCITY_FORMAT) uniform writeonly image3D outImageX;
+layout(binding = 9, MFX_VELOCITY_FORMAT) uniform writeonly image3D outImageY;
+layout(binding = 10, MFX_VELOCITY_FORMAT) uniform writeonly image3D outImageZ;
 
 float velocity(int c, ivec3 q) {
     return c == 0 ? imageLoad(velocityX, q).r
@@ -40,13 +45,25 @@ void main() {
     ivec3 q = ivec3(gl_GlobalInvocationID);
     if (any(greaterThan(q, cellCount()))) return;
     vec4 here = imageLoad(force, resolveCell(q));
-    if (all(lessThan(q, faceCount(0))))
-        outX[faceElement(0, q)] =
-            forcedFace(0, q, here, imageLoad(force, resolveCell(q - ivec3(1, 0, 0))));
-    if (all(lessThan(q, faceCount(1))))
-        outY[faceElement(1, q)] =
-            forcedFace(1, q, here, imageLoad(force, resolveCell(q - ivec3(0, 1, 0))));
-    if (all(lessThan(q, faceCount(2))))
-        outZ[faceElement(2, q)] =
-            forcedFace(2, q, here, imageLoad(force, resolveCell(q - ivec3(0, 0, 1))));
+    if (all(lessThan(q, faceCount(0)))) {
+        float v = forcedFace(0, q, here, imageLoad(force, resolveCell(q - ivec3(1, 0, 0))));
+        if (kDirectStore)
+            imageStore(outImageX, q, vec4(MFX_STORED(v)));
+        else
+            outX[faceElement(0, q)] = v;
+    }
+    if (all(lessThan(q, faceCount(1)))) {
+        float v = forcedFace(1, q, here, imageLoad(force, resolveCell(q - ivec3(0, 1, 0))));
+        if (kDirectStore)
+            imageStore(outImageY, q, vec4(MFX_STORED(v)));
+        else
+            outY[faceElement(1, q)] = v;
+    }
+    if (all(lessThan(q, faceCount(2)))) {
+        float v = forcedFace(2, q, here, imageLoad(force, resolveCell(q - ivec3(0, 0, 1))));
+        if (kDirectStore)
+            imageStore(outImageZ, q, vec4(MFX_STORED(v)));
+        else
+            outZ[faceElement(2, q)] = v;
+    }
 }

@@ -11,6 +11,7 @@ layout(binding = 3, MFX_VELOCITY_FORMAT) uniform readonly image3D velocityZ;
 layout(std430, binding = 4) writeonly buffer Divergence {
     float divergence[];
 };
+layout(binding = 5, r32f) uniform writeonly image3D divergenceImage; // kDirectStore
 
 void main() {
     ivec3 q = ivec3(gl_GlobalInvocationID);
@@ -18,5 +19,8 @@ void main() {
     float sum = (imageLoad(velocityX, q + ivec3(1, 0, 0)).r - imageLoad(velocityX, q).r) +
                 (imageLoad(velocityY, q + ivec3(0, 1, 0)).r - imageLoad(velocityY, q).r) +
                 (imageLoad(velocityZ, q + ivec3(0, 0, 1)).r - imageLoad(velocityZ, q).r);
-    divergence[cellElement(q)] = sum / cellSize();
+    if (kDirectStore)
+        imageStore(divergenceImage, q, vec4(sum / cellSize()));
+    else
+        divergence[cellElement(q)] = sum / cellSize();
 }

@@ -12,6 +12,7 @@ layout(binding = 3, MFX_VELOCITY_FORMAT) uniform readonly image3D velocityZ;
 layout(std430, binding = 4) writeonly buffer Vorticity {
     vec4 vorticity[];
 };
+layout(binding = 5, rgba32f) uniform writeonly image3D vorticityImage; // kDirectStore
 
 float fetchVelocity(int c, ivec3 index) {
     FaceRef r = resolveFace(c, index);
@@ -38,5 +39,8 @@ void main() {
         (centred(0, q + ez) - centred(0, q - ez) - centred(2, q + ex) + centred(2, q - ex)) * inv2h,
         (centred(1, q + ex) - centred(1, q - ex) - centred(0, q + ey) + centred(0, q - ey)) *
             inv2h);
-    vorticity[cellElement(q)] = vec4(w, length(w));
+    if (kDirectStore)
+        imageStore(vorticityImage, q, vec4(w, length(w)));
+    else
+        vorticity[cellElement(q)] = vec4(w, length(w));
 }

@@ -11,6 +11,7 @@ layout(binding = 1, rgba32f) uniform readonly image3D vorticity;
 layout(std430, binding = 2) writeonly buffer Force {
     vec4 force[];
 };
+layout(binding = 3, rgba32f) uniform writeonly image3D forceImage; // kDirectStore
 
 vec4 fetchVorticity(ivec3 q) {
     return imageLoad(vorticity, resolveCell(q));
@@ -27,5 +28,9 @@ void main() {
                     (fetchVorticity(q + ez).w - fetchVorticity(q - ez).w) * inv2h);
     // Regularised normalisation: where |omega| barely varies there is nothing to confine.
     vec3 n = eta / (length(eta) + 1e-3 * w.w * inverseCellSize() + 1e-20);
-    force[cellElement(q)] = vec4(params.rates.z * cellSize() * cross(n, w.xyz), 0.0);
+    vec4 f = vec4(params.rates.z * cellSize() * cross(n, w.xyz), 0.0);
+    if (kDirectStore)
+        imageStore(forceImage, q, f);
+    else
+        force[cellElement(q)] = f;
 }

@@ -153,11 +153,16 @@ bool wallNormalFace(int c, ivec3 index) {
            (index[c] == cellCount()[c] && isWall(boundaryKind(c, true)));
 }
 
-// Element of an in-range cell or face in a storage buffer holding one value per cell or per face
-// of component c, x-fastest (the layout of a FieldState, and of a buffer-to-image copy). Stages
-// that write a whole field write it to such a buffer, which the solver then copies into the
-// field's image: on a CPU driver (lavapipe) an image store runs a costly per-lane loop, a buffer
-// store a cheap one, and the copy is a plain memory copy; the field is still read from its image.
+// The store path of the stages that write a whole field (SolverOptions::storePath; docs/fluid.md,
+// "Grid"). false: into a storage buffer holding one value per cell or per face of component c,
+// x-fastest (the layout of a FieldState, and of a buffer-to-image copy), which the solver then
+// copies into the field's image: on a CPU driver (lavapipe) an image store runs a costly per-lane
+// loop, a buffer store a cheap one, and the copy is a plain memory copy. true: straight into the
+// field's image (a GPU, where the copy would move every byte twice more). Either way the field is
+// read from its image, and each such stage binds both its buffer and its image.
+layout(constant_id = 14) const bool kDirectStore = false;
+
+// Element of an in-range cell or face in such a buffer.
 int cellElement(ivec3 q) {
     ivec3 n = cellCount();
     return q.x + n.x * (q.y + n.y * q.z);

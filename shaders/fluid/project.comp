@@ -1,18 +1,20 @@
 // project: u -= (p_high - p_low) / h on every face not on a wall; p = 0 across open faces, wrapped
 // across periodic ones (docs/fluid.md). Twin: fluid/reference/project.cpp. One dispatch per
 // component, writing every face of it (unchanged on walls) to a buffer that the solver copies
-// into the component's image.
+// into the component's image, or straight into the image (kDirectStore).
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "fluid_common.glsl"
 
-layout(binding = 1, MFX_VELOCITY_FORMAT) uniform readonly image3D velocityX;
-layout(binding = 2, MFX_VELOCITY_FORMAT) uniform readonly image3D velocityY;
-layout(binding = 3, MFX_VELOCITY_FORMAT) uniform readonly image3D velocityZ;
+// The component kTarget alone: the three dispatches then touch disjoint images, so they need no
+// barrier between them on either store path.
+layout(binding = 1, MFX_VELOCITY_FORMAT) uniform readonly image3D velocity;
 layout(binding = 4, MFX_PRESSURE_FORMAT) uniform readonly image3D pressure;
 layout(std430, binding = 5) writeonly buffer Out {
     float outValues[];
 };
+// kDirectStore: straight into the live component (each invocation reads only the face it writes).
+layout(binding = 6, MFX_VELOCITY_FORMAT) uniform writeonly image3D outField;
 
 float pressureAt(ivec3 q, int axis) {
     int n = cellCount()[axis];
@@ -28,13 +30,15 @@ void main() {
     int c = int(kTarget);
     ivec3 q = ivec3(gl_GlobalInvocationID);
     if (any(greaterThanEqual(q, faceCount(c)))) return;
-    float value = c == 0 ? imageLoad(velocityX, q).r
-                         : (c == 1 ? imageLoad(velocityY, q).r : imageLoad(velocityZ, q).r);
+    float value = imageLoad(velocity, q).r;
     if (!wallNormalFace(c, q)) {
         ivec3 below = q;
         below[c] -= 1;
         float gradient = (pressureAt(q, c) - pressureAt(below, c)) * inverseCellSize();
         value -= gradient;
     }
-    outValues[faceElement(c, q)] = value;
+    if (kDirectStore)
+        imageStore(outField, q, vec4(MFX_STORED(value)));
+    else
+        outValues[faceElement(c, q)] = value;
 }

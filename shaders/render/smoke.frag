@@ -17,8 +17,9 @@
 // scatters the key light (its colour and intensity L) towards the eye:
 //   colour += T_v a (albedo L (kAmbient + (1 - kAmbient) T_l p(cos theta)) + emitted),
 // where T_l = exp(-integral of density towards the light) is the light's transmittance to the
-// sample (self-shadowing), integrated by the midpoint rule over kShadowSamples from the sample to
-// where its ray towards the light leaves the pigment's box, so the whole depth of smoke shadows;
+// sample (self-shadowing): one trilinear fetch from the transmittance volume that
+// light_transmittance.comp marched for this frame (the grid's resolution, each cell marched
+// to where its ray towards the light leaves the pigment's box, so the whole depth of smoke shadows);
 // p is the Henyey-Greenstein phase function normalised to 1 for even scattering,
 //   p = (1 - g^2) / (1 + g^2 - 2 g cos theta)^(3/2),  cos theta = dot(towards the light, ray),
 // with the style's anisotropy g (forwards scattering makes smoke between the eye and the light
@@ -54,6 +55,7 @@ layout(std430, binding = 4) readonly buffer BrickTable {
 layout(binding = 0) uniform sampler3D pigment;
 #endif
 layout(binding = 1) uniform sampler2D sceneDepth;
+layout(binding = 5) uniform sampler3D lightVolume; // T_l over the grid (light_transmittance.comp)
 
 #include "smoke_common.glsl"
 
@@ -64,44 +66,9 @@ layout(std140, binding = 3) uniform Style {
 layout(location = 0) out vec4 outColor;     // premultiplied
 layout(location = 1) out float outDistance; // marchedDistance() of the scene distance used
 
+#include "smoke_sampling.glsl"
+
 #ifdef MFX_SPARSE_PIGMENT
-// The slot of brick b, or MFX_NO_SLOT (not stored, or outside the domain).
-uint slotOf(ivec3 b) {
-    ivec3 n = ivec3(draw.gridSize.xyz) / int(MFX_BRICK_SIZE);
-    if (any(lessThan(b, ivec3(0))) || any(greaterThanEqual(b, n))) return MFX_NO_SLOT;
-    return brickSlot[b.x + n.x * (b.y + n.y * b.z)];
-}
-
-vec4 cellPigment(ivec3 q) {
-    uint slot = slotOf(q >> 3);
-    if (slot == MFX_NO_SLOT) return vec4(0.0);
-    ivec3 l = q & 7;
-    return atlas[slot * MFX_BRICK_CELLS + uint(l.x + 8 * (l.y + 8 * l.z))];
-}
-
-// Trilinear between cell centres, as the dense image's sampler. When the eight cells lie in one
-// brick (about two samples in three), its slot is looked up once.
-vec4 sampleGrid(vec3 world) {
-    vec3 g = (world - draw.gridOrigin.xyz) / draw.gridOrigin.w - 0.5;
-    ivec3 q = ivec3(floor(g));
-    vec3 f = g - vec3(q);
-    vec4 c[8];
-    ivec3 l = q & 7;
-    if (all(lessThan(l, ivec3(7))) && all(greaterThanEqual(q, ivec3(0)))) {
-        uint slot = slotOf(q >> 3);
-        if (slot == MFX_NO_SLOT) return vec4(0.0);
-        uint base = slot * MFX_BRICK_CELLS + uint(l.x + 8 * (l.y + 8 * l.z));
-        for (int k = 0; k < 8; ++k)
-            c[k] = atlas[base + uint((k & 1) + 8 * ((k >> 1) & 1) + 64 * (k >> 2))];
-    } else {
-        for (int k = 0; k < 8; ++k)
-            c[k] = cellPigment(q + ivec3(k & 1, (k >> 1) & 1, k >> 2));
-    }
-    vec4 x00 = mix(c[0], c[1], f.x), x10 = mix(c[2], c[3], f.x);
-    vec4 x01 = mix(c[4], c[5], f.x), x11 = mix(c[6], c[7], f.x);
-    return mix(mix(x00, x10, f.y), mix(x01, x11, f.y), f.z);
-}
-
 // The last sample index whose point is still inside the inner box of the unstored brick holding
 // p (the brick shrunk by half a cell: its samples read that brick's cells alone), or `i` where p
 // is not in such a box. Sample k lies at t = gridEnter + (k + 0.5) step.
@@ -116,11 +83,6 @@ int lastEmptySample(int i, vec3 p, vec3 inv, float gridEnter, float step) {
     vec3 world1 = draw.gridOrigin.xyz + draw.gridOrigin.w * high;
     float leave = crossBox(inv, world0, world1).y;
     return max(i, int(floor((leave - gridEnter) / step - 0.5)));
-}
-#else
-vec4 sampleGrid(vec3 world) {
-    vec3 uvw = (world - draw.gridOrigin.xyz) / (draw.gridOrigin.w * draw.gridSize.xyz);
-    return texture(pigment, uvw);
 }
 #endif
 
@@ -137,26 +99,16 @@ vec3 rampAt(float x) {
 }
 
 const float kAmbient = 0.35;
-// Six: on lavapipe the march (docs/scenes/all.json, 960x540) costs 57 ms with four, 70 with six
-// and 114 with eight; four fit the shadow's decay down a uniform block 6% off, six 4.5%.
-const int kShadowSamples = 6;
 
 // Henyey-Greenstein, 1 for g = 0.
 float phase(float g, float cosTheta) {
     return (1.0 - g * g) / pow(max(1.0 + g * g - 2.0 * g * cosTheta, 1e-4), 1.5);
 }
 
-// The light's transmittance to p: the pigment's density integrated towards the light (unit
-// vector `light`, inverse `lightInv`) up to where that ray leaves the pigment's box.
-float lightTransmittance(vec3 p, vec3 light, vec3 lightInv, float scale) {
-    vec3 t0 = (boxLow - p) * lightInv, t1 = (boxHigh - p) * lightInv;
-    vec3 far = max(t0, t1);
-    float reach = max(min(min(far.x, far.y), far.z), 0.0);
-    float ds = reach / float(kShadowSamples);
-    float optical = 0.0;
-    for (int k = 0; k < kShadowSamples; ++k)
-        optical += max(sampleGrid(p + light * ((float(k) + 0.5) * ds)).a, 0.0);
-    return exp(-optical * scale * ds);
+// The light's transmittance to p, from the volume marched for this frame.
+float lightTransmittance(vec3 p) {
+    vec3 uvw = (p - draw.gridOrigin.xyz) / (draw.gridOrigin.w * draw.gridSize.xyz);
+    return texture(lightVolume, uvw).r;
 }
 
 void main() {
@@ -193,8 +145,6 @@ void main() {
     int first = max(int((box.x - gridEnter) / step), 0);
     int end = min(int((tExit - gridEnter) / step) + 1, first + 512);
     vec3 light = normalize(draw.light.xyz);
-    // An axis the light runs across has no exit along it (a large t, not 0 * inf).
-    vec3 lightInv = 1.0 / mix(light, vec3(1e-6), lessThan(abs(light), vec3(1e-6)));
     float scale = draw.light.w;
     float scatter = phase(style.light.w, dot(light, dir));
     vec3 colour = vec3(0.0);
@@ -215,7 +165,7 @@ void main() {
         // Behind the scene surface by d: faded linearly to nothing at d = b.
         float visible = clamp(1.0 - (t - sceneDistance) / fade, 0.0, 1.0);
         float a = (1.0 - exp(-density * step)) * visible;
-        float lit = lightTransmittance(p, light, lightInv, scale);
+        float lit = lightTransmittance(p);
         float bands = max(style.params.y, 1.0);
         lit = mix(lit, floor(lit * bands + 0.5) / bands, float(style.params.y > 0.5));
         float density01 = clamp(s.a, 0.0, 1.0);

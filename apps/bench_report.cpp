@@ -1,0 +1,88 @@
+#include "apps/bench_report.h"
+
+#include "core/gpu/context.h"
+
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+#include <sstream>
+
+namespace mfx::app {
+
+std::string MarkdownTable::text() const {
+    auto line = [](const std::vector<std::string>& cells) {
+        std::string out = "|";
+        for (const std::string& cell : cells)
+            out += " " + cell + " |";
+        return out + "\n";
+    };
+    std::string out = line(header) + "|";
+    for (size_t i = 0; i < header.size(); ++i)
+        out += i == 0 ? "---|" : "---:|";
+    out += "\n";
+    for (const auto& row : rows)
+        out += line(row);
+    return out;
+}
+
+std::string reproduceCommand(const std::string& command, const cli::ParsedArgs& parsed) {
+    std::string out = "motionfx " + command;
+    for (const std::string& word : parsed.positional)
+        out += " " + word;
+    for (const auto& [name, value] : parsed.values)
+        if (name != "json" && name != "markdown" && name != "plot")
+            out += " --" + name + " " + value;
+    for (const std::string& flag : parsed.flags)
+        out += " --" + flag;
+    return out;
+}
+
+std::string todayUtc() {
+    const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+    std::tm utc{};
+    gmtime_r(&now, &utc);
+    char text[16];
+    std::strftime(text, sizeof text, "%Y-%m-%d", &utc);
+    return text;
+}
+
+Status writeMarkdownSection(const std::string& path, const std::string& title,
+                            const gpu::Context& ctx, const std::string& command,
+                            const std::string& body) {
+    const std::string key = title + " | " + ctx.info().name + " | " + command;
+    const std::string begin = "<!-- begin: " + key + " -->\n";
+    const std::string end = "<!-- end: " + key + " -->\n";
+    std::string text;
+    if (std::ifstream in(path); in) {
+        std::stringstream all;
+        all << in.rdbuf();
+        text = all.str();
+    }
+    const std::string section = begin + "### " + title + " — " + ctx.info().name + "\n\n" +
+                                "Measured " + todayUtc() + " on " + ctx.info().name + " (" +
+                                ctx.info().driverInfo + ") by `" + command + "`.\n\n" + body +
+                                (body.empty() || body.back() == '\n' ? "" : "\n") + end;
+    const size_t first = text.find(begin);
+    const size_t last = first == std::string::npos ? first : text.find(end, first);
+    if (first != std::string::npos && last != std::string::npos) {
+        text.replace(first, last + end.size() - first, section);
+    } else {
+        if (!text.empty() && text.back() != '\n') text += "\n";
+        if (!text.empty()) text += "\n";
+        text += section;
+    }
+    std::ofstream out(path, std::ios::trunc);
+    if (!out) return Error{path + ": cannot write the Markdown tables"};
+    out << text;
+    if (!out) return Error{path + ": writing the Markdown tables failed"};
+    return Ok{};
+}
+
+std::string fixed(double value, int decimals) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.*f", decimals, value);
+    return text;
+}
+
+} // namespace mfx::app

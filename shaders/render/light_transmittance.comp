@@ -1,0 +1,76 @@
+// The key light's transmittance through the smoke, once per frame and volume, for the march to
+// fetch once per view sample (smoke.frag) instead of marching towards the light from each. At the
+// centre p of each cell of a volume at the grid's resolution (at most 128 cells a side, so a large
+// sparse domain's cells share one), T_l = exp(-integral of density towards the light), integrated
+// by the midpoint rule in steps of at most one grid cell from p to where its ray towards the light
+// leaves the pigment's box (the box smoke.vert draws: the cells holding pigment, grown by one), so
+// the whole depth of smoke shadows. A cell outside the box (with a margin of one of its own cells,
+// so trilinear fetches near the box's sides read marched values) holds 1: no pigment lies between
+// it and the light within the box. Single scattering with self-shadowing as in Fedkiw, Stam and
+// Jensen, "Visual Simulation of Smoke" (SIGGRAPH 2001), section 4, which also first stores the
+// light reaching each voxel and then marches the view rays.
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "shared/smoke_draw.h"
+
+layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+
+layout(push_constant) uniform Draw {
+    SmokeDraw draw; // gridOrigin, gridSize (xyz) and light (towards it; w: density scale)
+};
+
+#ifdef MFX_SPARSE_PIGMENT
+#include "shared/sparse_fluid.h"
+layout(std430, binding = 0) readonly buffer PigmentAtlas {
+    vec4 atlas[];
+};
+layout(std430, binding = 4) readonly buffer BrickTable {
+    uint brickSlot[];
+};
+#else
+layout(binding = 0) uniform sampler3D pigment;
+#endif
+layout(std430, binding = 2) readonly buffer Bounds {
+    PigmentBounds bounds;
+};
+layout(binding = 5, r32f) uniform writeonly image3D transmittance;
+
+#include "smoke_sampling.glsl"
+
+// Steps of one light march: enough for one a grid cell across the largest grid the march allows.
+const int kMaxSteps = 1024;
+
+void main() {
+    ivec3 t = ivec3(gl_GlobalInvocationID);
+    ivec3 size = imageSize(transmittance);
+    if (any(greaterThanEqual(t, size))) return;
+    vec3 cells = draw.gridSize.xyz;
+    float h = draw.gridOrigin.w;
+    // The pigment's box in cells, as smoke.vert grows it; an empty box shadows nothing.
+    if (bounds.low.x > bounds.high.x) {
+        imageStore(transmittance, t, vec4(1.0));
+        return;
+    }
+    vec3 low = max(vec3(bounds.low.xyz) - 1.0, vec3(0.0));
+    vec3 high = min(vec3(bounds.high.xyz) + 2.0, cells);
+    vec3 span = cells / vec3(size); // grid cells a transmittance cell spans
+    vec3 g = (vec3(t) + 0.5) * span; // its centre, in grid cells
+    if (any(lessThan(g, low - span)) || any(greaterThan(g, high + span))) {
+        imageStore(transmittance, t, vec4(1.0));
+        return;
+    }
+    vec3 boxLow = draw.gridOrigin.xyz + h * low, boxHigh = draw.gridOrigin.xyz + h * high;
+    vec3 p = draw.gridOrigin.xyz + h * g;
+    vec3 light = normalize(draw.light.xyz);
+    // An axis the light runs across has no exit along it (a large t, not 0 * inf).
+    vec3 lightInv = 1.0 / mix(light, vec3(1e-6), lessThan(abs(light), vec3(1e-6)));
+    vec3 t0 = (boxLow - p) * lightInv, t1 = (boxHigh - p) * lightInv;
+    vec3 far = max(t0, t1);
+    float reach = max(min(min(far.x, far.y), far.z), 0.0);
+    int steps = clamp(int(ceil(reach / h)), 1, kMaxSteps);
+    float ds = reach / float(steps);
+    float optical = 0.0;
+    for (int k = 0; k < steps; ++k)
+        optical += max(sampleGrid(p + light * ((float(k) + 0.5) * ds)).a, 0.0);
+    imageStore(transmittance, t, vec4(exp(-optical * draw.light.w * ds)));
+}
