@@ -32,7 +32,8 @@ std::string reproduceCommand(const std::string& command, const cli::ParsedArgs& 
         out += " " + word;
     for (const auto& [name, value] : parsed.values)
         if (name != "json" && name != "markdown" && name != "plot")
-            out += " --" + name + " " + value;
+            out += " --" + name + " " +
+                   (value.find_first_of(" \t'\"") == std::string::npos ? value : "'" + value + "'");
     for (const std::string& flag : parsed.flags)
         out += " --" + flag;
     return out;

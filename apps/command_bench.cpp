@@ -42,17 +42,16 @@ struct GridResult {
 // splat reads and writes.
 uint64_t splatCells(const fluid::SolverOptions& o, std::span<const shared::FluidEmitter> emitters) {
     if (emitters.empty()) return 0;
-    const glm::ivec3 n(o.grid.cellsX, o.grid.cellsY, o.grid.cellsZ);
-    glm::ivec3 low = n, high(-1);
+    const glm::vec3 n(float(o.grid.cellsX), float(o.grid.cellsY), float(o.grid.cellsZ));
+    glm::vec3 low(1e30f), high(-1e30f);
     for (const shared::FluidEmitter& e : emitters) {
         const glm::vec3 p = glm::vec3(e.positionRadius) / o.grid.cellSize;
         const float r = e.positionRadius.w / o.grid.cellSize;
-        low = glm::min(low, glm::ivec3(glm::floor(p - r)));
-        high = glm::max(high, glm::ivec3(glm::ceil(p + r)));
+        low = glm::min(low, glm::floor(p - r));
+        high = glm::max(high, glm::ceil(p + r));
     }
-    low = glm::clamp(low, glm::ivec3(0), n - 1);
-    high = glm::clamp(high, glm::ivec3(0), n - 1);
-    const glm::ivec3 size = glm::max(high - low + 1, glm::ivec3(0));
+    // The box's cells inside the grid (none when it lies outside).
+    const glm::vec3 size = glm::max(glm::min(high, n) - glm::max(low, glm::vec3(0.0f)), 0.0f);
     return uint64_t(size.x) * uint64_t(size.y) * uint64_t(size.z);
 }
 
@@ -137,7 +136,8 @@ Result<GridResult> benchGrid(const gpu::Context& ctx, const std::string& scenari
     GridResult r{cells, workgroup, median(stepTimes), median(wallTimes), {}, {}, {}};
     for (const auto& [name, times] : stageTimes)
         r.stageMs[name] = median(times);
-    const fluid::StageWork work{splatCells(scenario.options, scenario.emitters(0))};
+    const fluid::StageWork work{splatCells(scenario.options, scenario.emitters(0)),
+                                solver.lastPressureIterations()};
     for (fluid::Stage stage : fluid::stepOrder()) {
         const fluid::StageBytes b = fluid::stageEntry(stage).bytes(scenario.options, work);
         fluid::StageBytes& sum = r.stageBytes[fluid::stageName(stage)];
@@ -154,7 +154,14 @@ Result<GridResult> benchGrid(const gpu::Context& ctx, const std::string& scenari
 
 int runBenchSolver(const cli::ParsedArgs& parsed) {
     const std::string domain = parsed.value("domain", "dense");
-    if (domain == "sparse") return runBenchSparse(parsed);
+    if (domain == "sparse") {
+        for (const char* denseOnly : {"store", "copy-mib", "markdown", "workgroups"})
+            if (parsed.has(denseOnly)) {
+                printError(std::string("--") + denseOnly + " is an option of the dense domain");
+                return kExitUsage;
+            }
+        return runBenchSparse(parsed);
+    }
     if (domain != "dense") {
         printError("--domain must be dense or sparse, not \"" + domain + "\"");
         return kExitUsage;
@@ -196,8 +203,7 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
     const std::unique_ptr<gpu::Context> context = createTimingContext(parsed, "the solver");
     if (!context) return kExitFailure;
     const gpu::Context& ctx = *context;
-    const bool direct = *store == fluid::StorePath::Direct ||
-                        (*store == fluid::StorePath::Auto && !ctx.info().isCpu());
+    const bool direct = fluid::storesDirect(*store, ctx);
     std::printf("smoke solver benchmark on %s (%s)\nscenario %s, pressure solver %s, %u Jacobi "
                 "sweeps, whole fields stored %s, median of %u steps after 3 warm-up steps; GPU "
                 "milliseconds from timestamp queries\n\n",
@@ -220,8 +226,8 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
 
     // The yardstick, after the grids (a GPU has left its idle clock by then): a copy as large as
     // asked, within one storage buffer binding.
-    const uint64_t copyBytes = std::min<uint64_t>(uint64_t(copyMib.value()) << 20,
-                                                  ctx.limits().maxStorageBufferRange);
+    const uint64_t copyBytes =
+        std::min<uint64_t>(uint64_t(copyMib.value()) << 20, ctx.limits().maxStorageBufferRange);
     std::fprintf(stderr, "  copy bandwidth, %.0f MiB ", double(copyBytes) / (1 << 20));
     const gpu::CopyBandwidth copy = gpu::measureCopyBandwidth(ctx, copyBytes);
     std::fprintf(stderr, "\n");
@@ -297,8 +303,8 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
                            "(fluid/stage_table.cpp) must move over its median time:\n\n" +
                            rates.text();
         const std::string title = std::string("Solver stages, ") +
-                                  fluid::pressureSolverName(*pressure) + " pressure (" +
-                                  scenarioName + ")";
+                                  fluid::pressureSolverName(*pressure) + " pressure, " +
+                                  (direct ? "direct" : "buffer") + " store (" + scenarioName + ")";
         if (Status written = writeMarkdownSection(parsed.value("markdown"), title, ctx,
                                                   reproduceCommand("bench solver", parsed), body);
             !written) {
@@ -307,8 +313,8 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
         }
     }
     if (plotFile.is_open()) {
-        PlotPanel panel{"rate each stage reaches against the grid", "cells", "GB/s", true, true,
-                        {}};
+        PlotPanel panel{
+            "rate each stage reaches against the grid", "cells", "GB/s", true, true, {}};
         static const char* colours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
                                         "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
         size_t colour = 0;
@@ -362,6 +368,7 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
                                    {"driver", ctx.info().driverInfo},
                                    {"date", todayUtc()},
                                    {"scenario", scenarioName},
+                                   {"store", direct ? "direct" : "buffer"},
                                    {"steps", steps.value()},
                                    {"copy",
                                     {{"bytes", copy.bytes},

@@ -98,13 +98,14 @@ CommandLine compareCommandLine() {
 }
 
 CommandLine benchSolverCommandLine() {
-    CommandLine command("usage: motionfx bench solver [options]\n\nTimes the GPU smoke solver "
-                        "with timestamp queries: the median milliseconds of each stage and of a "
-                        "whole step, per grid size, and against the device's copy bandwidth measured "
-                        "in the same run: the bytes each stage must move, the GB/s it reaches "
-                        "and their share of the copy's. Pipelines are compiled and warmed up "
-                        "before timing.",
-                        0, CommandLine::kDevice);
+    CommandLine command(
+        "usage: motionfx bench solver [options]\n\nTimes the GPU smoke solver "
+        "with timestamp queries: the median milliseconds of each stage and of a "
+        "whole step, per grid size, and against the device's copy bandwidth measured "
+        "in the same run: the bytes each stage must move, the GB/s it reaches "
+        "and their share of the copy's. Pipelines are compiled and warmed up "
+        "before timing.",
+        0, CommandLine::kDevice);
     command.option("grids", "LIST", "comma-separated grids, N or NXxNYxNZ (default 32,64,96,128)")
         .option("jacobi", "N", "Jacobi (or red-black) sweeps per step (default 20)")
         .option("pressure", "NAME",

@@ -46,7 +46,7 @@ struct SettleRules {
 
 // What the last frame of a grid measured (finishFrame).
 struct SolverActivity {
-    bool measured = false;     // the largest alpha and speed below were read
+    bool measured = false; // the largest alpha and speed below were read
     float largestAlpha = 0.0f;
     float largestSpeed = 0.0f; // world units per second
     bool settled = false;      // by the rules: the grid may sleep
@@ -93,8 +93,7 @@ struct DomainChoice {
     bool sparse = false;
     uint32_t maxBricks = 4096;
 };
-Result<std::unique_ptr<GridSolver>> createGridSolver(const gpu::Context& ctx,
-                                                     const SolverOptions& options,
-                                                     const DomainChoice& domain);
+Result<std::unique_ptr<GridSolver>>
+createGridSolver(const gpu::Context& ctx, const SolverOptions& options, const DomainChoice& domain);
 
 } // namespace mfx::fluid

@@ -18,6 +18,10 @@ gpu::DescriptorWrite storage(uint32_t binding, const gpu::Image& image) {
 
 } // namespace
 
+bool storesDirect(StorePath path, const gpu::Context& ctx) {
+    return path == StorePath::Direct || (path == StorePath::Auto && !ctx.info().isCpu());
+}
+
 Result<std::unique_ptr<SmokeSolver>> SmokeSolver::create(const gpu::Context& ctx,
                                                          const SolverOptions& options) {
     // Faces need one more texel than cells along their axis.
@@ -57,8 +61,11 @@ Result<std::unique_ptr<SmokeSolver>> SmokeSolver::create(const gpu::Context& ctx
 
 SmokeSolver::SmokeSolver(const gpu::Context& ctx, const SolverOptions& options)
     : ctx_(ctx), options_(options), fields_(ctx, options), programs_(ctx, options),
-      direct_(options.storePath == StorePath::Direct ||
-              (options.storePath == StorePath::Auto && !ctx.info().isCpu())) {
+      direct_(fluid::storesDirect(options.storePath, ctx)) {
+    // The fused vorticity pass keeps a vec4 per cell of its workgroup's block and ring.
+    const std::array<uint32_t, 3>& g = options.workgroup;
+    const uint64_t tileBytes = uint64_t(g[0] + 2) * (g[1] + 2) * (g[2] + 2) * 4 * sizeof(float);
+    fusedVorticity_ = direct_ && tileBytes <= ctx.limits().maxComputeSharedMemorySize;
     parameters_ =
         gpu::createBuffer(ctx, sizeof(shared::FluidParameters), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                           gpu::MemoryUsage::Upload, "fluid parameters");
@@ -268,8 +275,7 @@ void SmokeSolver::applyBuoyancy(VkCommandBuffer cmd) {
     gpu::Image& velocityY = f.velocity[size_t(f.currentVelocity)][1];
     const gpu::DescriptorWrite writes[] = {gpu::bindBuffer(0, parameters_), storage(1, velocityY),
                                            storage(2, f.pigment[size_t(f.currentPigment)]),
-                                           gpu::bindBuffer(3, f.scratch[1]),
-                                           storage(4, velocityY)};
+                                           gpu::bindBuffer(3, f.scratch[1]), storage(4, velocityY)};
     dispatch(cmd, programs_.get("apply_buoyancy", MFX_TARGET_VELOCITY_Y, 0, direct_), writes,
              faceExtent(options_.grid, 1));
     storeFields(cmd, direct_, {{&f.scratch[1], &velocityY}});
@@ -277,8 +283,18 @@ void SmokeSolver::applyBuoyancy(VkCommandBuffer cmd) {
 
 void SmokeSolver::vorticityConfinement(VkCommandBuffer cmd) {
     if (options_.vorticity == 0.0f) return;
-    // Vorticity per cell, then the confinement force per cell, then the faces.
+    // Vorticity per cell, then the confinement force per cell, then the faces. On the direct
+    // path the first two are one dispatch (vorticity_force.comp: the vorticity of a block and its
+    // ring in shared memory), where the workgroup's tile fits the device's shared memory.
     SmokeFields& f = fields_;
+    if (fusedVorticity_) {
+        Writes fused = withVelocity(f.currentVelocity);
+        fused.push_back(storage(4, f.force));
+        dispatch(cmd, programs_.get("vorticity_force", 0, 0, true), fused, f.cells);
+        fieldBarrier(cmd);
+        applyVorticityForce(cmd);
+        return;
+    }
     Writes vorticity = withVelocity(f.currentVelocity);
     vorticity.push_back(gpu::bindBuffer(4, f.scratch[0]));
     vorticity.push_back(storage(5, f.vorticity));
@@ -289,7 +305,11 @@ void SmokeSolver::vorticityConfinement(VkCommandBuffer cmd) {
                                           gpu::bindBuffer(2, f.scratch[0]), storage(3, f.force)};
     dispatch(cmd, programs_.get("confinement_force", 0, 0, direct_), force, f.cells);
     storeFields(cmd, direct_, {{&f.scratch[0], &f.force}});
+    applyVorticityForce(cmd);
+}
 
+void SmokeSolver::applyVorticityForce(VkCommandBuffer cmd) {
+    SmokeFields& f = fields_;
     auto& v = f.velocity[size_t(f.currentVelocity)];
     Writes apply = withVelocity(f.currentVelocity);
     apply.push_back(storage(4, f.force));
@@ -397,10 +417,9 @@ void SmokeSolver::project(VkCommandBuffer cmd) {
     SmokeFields& f = fields_;
     auto& v = f.velocity[size_t(f.currentVelocity)];
     for (uint32_t c = 0; c < 3; ++c) {
-        const gpu::DescriptorWrite w[] = {
-            gpu::bindBuffer(0, parameters_), storage(1, v[c]),
-            storage(4, f.pressure[size_t(f.currentPressure)]), gpu::bindBuffer(5, f.scratch[c]),
-            storage(6, v[c])};
+        const gpu::DescriptorWrite w[] = {gpu::bindBuffer(0, parameters_), storage(1, v[c]),
+                                          storage(4, f.pressure[size_t(f.currentPressure)]),
+                                          gpu::bindBuffer(5, f.scratch[c]), storage(6, v[c])};
         dispatch(cmd, programs_.get("project", c, 0, direct_), w,
                  faceExtent(options_.grid, int(c)));
     }
@@ -440,7 +459,7 @@ uint64_t SmokeSolver::memoryBytes() const {
 }
 
 uint32_t SmokeSolver::recordMeasureActivity(VkCommandBuffer cmd, const gpu::Buffer& out,
-                                           gpu::GpuTimer* timer) {
+                                            gpu::GpuTimer* timer) {
     if (timer) timer->begin(cmd, "measure_activity");
     vkCmdFillBuffer(cmd, out.get(), 0, 2 * sizeof(uint32_t), 0);
     gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,

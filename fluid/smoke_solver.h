@@ -3,8 +3,7 @@
 // (fluid/reference/), written down in docs/fluid.md. One sub-step:
 //
 //   splatImpulses → advectVelocity → advectPigment → applyBuoyancy → vorticityConfinement →
-//   diffuseViscosity → applyBoundaries → computeDivergence → solvePressure → project →
-//   applyBoundaries
+//   diffuseViscosity → applyBoundaries → computeDivergence → solvePressure → project
 //
 // solvePressure runs Jacobi sweeps here (shaders/fluid/solve_pressure.comp), or red-black
 // Gauss-Seidel, multigrid or MGPCG (fluid/gpu_multigrid.h), as SolverOptions::pressureSolver asks.
@@ -40,6 +39,10 @@ class Context;
 }
 
 namespace mfx::fluid {
+
+// Whether stages store whole fields straight into their images on `ctx`'s device: `path`, with
+// Auto resolved by the device (Buffer on a CPU device, Direct on any other).
+bool storesDirect(StorePath path, const gpu::Context& ctx);
 
 class SmokeSolver final : public GridSolver {
 public:
@@ -79,11 +82,9 @@ public:
     void step();
     void runStage(Stage stage);
 
-    // The compute dispatches of each stage in the last recordStep(), in step order (a stage that
-    // runs twice, apply_boundaries, is summed), and GPU memory of the fields and buffers.
-    const std::vector<std::pair<std::string, uint32_t>>& lastStepDispatches() const {
-        return lastStepDispatches_;
-    }
+    // The compute dispatches of each stage in the last recordStep(), in step order, and GPU
+    // memory of the fields and buffers.
+    const StageDispatches& lastStepDispatches() const { return lastStepDispatches_; }
     uint64_t memoryBytes() const override;
     // Sweeps, V-cycles or CG iterations of the last pressure solve (MGPCG stops early on its
     // tolerance: read back from the GPU, so the step must have finished).
@@ -141,6 +142,7 @@ private:
     void advectPigment(VkCommandBuffer cmd);
     void applyBuoyancy(VkCommandBuffer cmd);
     void vorticityConfinement(VkCommandBuffer cmd);
+    void applyVorticityForce(VkCommandBuffer cmd); // its last pass
     void diffuseViscosity(VkCommandBuffer cmd);
     void applyBoundaries(VkCommandBuffer cmd);
     void computeDivergence(VkCommandBuffer cmd);
@@ -152,7 +154,8 @@ private:
     SmokeFields fields_;
     StagePrograms programs_;
     std::unique_ptr<GpuMultigrid> multigrid_; // every pressure solver but Jacobi
-    bool direct_ = false; // options.storePath resolved for the device
+    bool direct_ = false;                     // options.storePath resolved for the device
+    bool fusedVorticity_ = false;             // the direct path's one-dispatch curl and force
 
     gpu::Buffer parameters_;
     gpu::Buffer ownEmitters_;
@@ -162,7 +165,7 @@ private:
     gpu::Buffer splatRegions_; // SplatRegion per target, written by emitter_bounds
 
     mutable uint32_t dispatches_ = 0; // vkCmdDispatch calls recorded so far
-    std::vector<std::pair<std::string, uint32_t>> lastStepDispatches_;
+    StageDispatches lastStepDispatches_;
 };
 
 } // namespace mfx::fluid

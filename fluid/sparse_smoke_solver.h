@@ -99,10 +99,7 @@ public:
     // their recording.
     void setEmitterBuffer(const gpu::Buffer& buffer, uint32_t count) override;
     // The stages of the last recordStep with their dispatch counts, in order (as SmokeSolver's).
-    const std::vector<std::pair<std::string, uint32_t>>& lastStepDispatches() const {
-        return lastStepDispatches_;
-    }
-    uint32_t lastRebuildDispatches() const { return lastRebuildDispatches_; }
+    const StageDispatches& lastStepDispatches() const { return lastStepDispatches_; }
     // For drawing the smoke (render/smoke_pass.h): the live pigment atlas (vec4 per cell, slot s
     // at elements s * MFX_BRICK_CELLS + brickCellIndex), the brick table (slot per virtual brick,
     // x fastest, MFX_NO_SLOT where none) and the active list (BrickListHeader, two workgroups of
@@ -205,7 +202,7 @@ private:
     VkDeviceSize emitterBufferSize_ = 0;
     uint32_t emitterCount_ = 0;
     uint32_t dispatches_ = 0; // recorded so far (lastStepDispatches)
-    std::vector<std::pair<std::string, uint32_t>> lastStepDispatches_;
+    StageDispatches lastStepDispatches_;
     uint32_t lastRebuildDispatches_ = 0;
     uint64_t sharedFaceMismatches_ = 0;
     uint32_t activeCount_ = 0; // active bricks as last counted (commit or rebuild)

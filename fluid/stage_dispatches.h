@@ -2,7 +2,7 @@
 // (lastStepDispatches): an entry per stage in recording order.
 #pragma once
 
-#include "fluid/solver_options.h"
+#include "fluid/stage_table.h"
 
 #include <algorithm>
 #include <string>

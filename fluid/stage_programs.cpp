@@ -41,6 +41,7 @@ const Kernel* findKernel(std::string_view name) {
         {"compute_vorticity", compute_vorticity_comp, compute_vorticity_comp_half},
         {"confinement_force", confinement_force_comp, {}},
         {"apply_vorticity_force", apply_vorticity_force_comp, apply_vorticity_force_comp_half},
+        {"vorticity_force", vorticity_force_comp, vorticity_force_comp_half},
         {"diffuse_viscosity", diffuse_viscosity_comp, diffuse_viscosity_comp_half},
         {"apply_boundaries", apply_boundaries_comp, apply_boundaries_comp_half},
         {"compute_divergence", compute_divergence_comp, compute_divergence_comp_half},

@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <array>
+#include <stdexcept>
+#include <string>
 
 namespace mfx::fluid {
 
@@ -17,8 +19,8 @@ namespace {
 // components, N = the cells. Pigment is four values a cell.
 
 struct Counts {
-    double value;          // bytes of one stored value
-    double cells;          // N
+    double value;                // bytes of one stored value
+    double cells;                // N
     std::array<double, 3> faces; // faces of each component
     double faces3() const { return faces[0] + faces[1] + faces[2]; }
 };
@@ -128,7 +130,7 @@ double vCycleValues(const SolverOptions& o) {
     return total;
 }
 
-StageBytes pressureBytes(const SolverOptions& o, const StageWork&) {
+StageBytes pressureBytes(const SolverOptions& o, const StageWork& w) {
     const Counts c = countsOf(o);
     const double n = c.cells;
     switch (o.pressureSolver) {
@@ -142,10 +144,13 @@ StageBytes pressureBytes(const SolverOptions& o, const StageWork&) {
         return values(c, 0.6 * vCycleValues(o) * double(o.multigrid.cycles) + n,
                       0.4 * vCycleValues(o) * double(o.multigrid.cycles) + n);
     case PressureSolver::MultigridPcg: {
-        // At most cgMaxIterations iterations: one V-cycle each, the operator (2N), the two dot
-        // products (4N) and the three vector updates (9N).
+        // The iterations it ran (at most cgMaxIterations): one V-cycle each, the operator (2N),
+        // the two dot products (4N) and the three vector updates (9N).
         const double iteration = vCycleValues(o) + 15.0 * n;
-        const double all = iteration * double(o.cgMaxIterations) + 2.0 * n;
+        const uint32_t iterations = w.pressureIterations > 0
+                                        ? std::min(w.pressureIterations, o.cgMaxIterations)
+                                        : o.cgMaxIterations;
+        const double all = iteration * double(iterations) + 2.0 * n;
         return values(c, 0.6 * all, 0.4 * all);
     }
     }
@@ -176,46 +181,43 @@ std::span<const StageEntry> stageTable() {
         {Stage::SplatImpulses, "splat_impulses", "emitter_bounds splat_impulses",
          "sparse_splat_impulses", &SmokeSolver::splatImpulses, &SparseSmokeSolver::splatImpulses,
          referenceSplat, splatBytes,
-         "velocity (3 faces a cell) and pigment (4) of the emitters' boxes, read and written",
-         false},
+         "velocity (3 faces a cell) and pigment (4) of the emitters' boxes, read and written"},
         {Stage::AdvectVelocity, "advect_velocity", "advect_velocity", "sparse_advect_velocity",
          &SmokeSolver::advectVelocity, &SparseSmokeSolver::advectVelocity,
          referenceStage<&ReferenceSolver::advectVelocity>, advectVelocityBytes,
-         "velocity read (2P-1) times and written P times, P the scheme's passes", false},
+         "velocity read (2P-1) times and written P times, P the scheme's passes"},
         {Stage::AdvectPigment, "advect_pigment", "advect_pigment", "sparse_advect_pigment",
          &SmokeSolver::advectPigment, &SparseSmokeSolver::advectPigment,
          referenceStage<&ReferenceSolver::advectPigment>, advectPigmentBytes,
-         "per pass velocity read; pigment (4) read (2P-1) times, written P times", false},
+         "per pass velocity read; pigment (4) read (2P-1) times, written P times"},
         {Stage::ApplyBuoyancy, "apply_buoyancy", "apply_buoyancy", "sparse_apply_buoyancy",
          &SmokeSolver::applyBuoyancy, &SparseSmokeSolver::applyBuoyancy,
          referenceStage<&ReferenceSolver::applyBuoyancy>, buoyancyBytes,
-         "y faces and pigment (4) read, y faces written", false},
+         "y faces and pigment (4) read, y faces written"},
         {Stage::VorticityConfinement, "vorticity_confinement",
-         "compute_vorticity confinement_force apply_vorticity_force", "",
+         "compute_vorticity confinement_force apply_vorticity_force vorticity_force", "",
          &SmokeSolver::vorticityConfinement, nullptr,
          referenceStage<&ReferenceSolver::vorticityConfinement>, vorticityBytes,
-         "velocity read and written once (curl and force need nothing else)", false},
+         "velocity read and written once (curl and force need nothing else)"},
         {Stage::DiffuseViscosity, "diffuse_viscosity", "diffuse_viscosity", "",
          &SmokeSolver::diffuseViscosity, nullptr,
          referenceStage<&ReferenceSolver::diffuseViscosity>, viscosityBytes,
-         "per sweep: velocity and the starting velocity read, velocity written", false},
+         "per sweep: velocity and the starting velocity read, velocity written"},
         {Stage::ApplyBoundaries, "apply_boundaries", "apply_boundaries", "sparse_apply_boundaries",
          &SmokeSolver::applyBoundaries, &SparseSmokeSolver::applyBoundaries,
          referenceStage<&ReferenceSolver::applyBoundaries>, boundariesBytes,
-         "the two boundary layers of faces of each axis, read and written", true},
+         "the two boundary layers of faces of each axis, read and written"},
         {Stage::ComputeDivergence, "compute_divergence", "compute_divergence",
          "sparse_compute_divergence", &SmokeSolver::computeDivergence,
-         &SparseSmokeSolver::computeDivergence,
-         referenceStage<&ReferenceSolver::computeDivergence>, divergenceBytes,
-         "velocity read, divergence written", false},
+         &SparseSmokeSolver::computeDivergence, referenceStage<&ReferenceSolver::computeDivergence>,
+         divergenceBytes, "velocity read, divergence written"},
         {Stage::SolvePressure, "solve_pressure", "solve_pressure", "sparse_solve_pressure",
          &SmokeSolver::solvePressure, &SparseSmokeSolver::solvePressure,
          referenceStage<&ReferenceSolver::solvePressure>, pressureBytes,
-         "per sweep: pressure and divergence read, pressure written (multigrid: per level)",
-         false},
+         "per sweep: pressure and divergence read, pressure written (multigrid: per level)"},
         {Stage::Project, "project", "project", "sparse_project", &SmokeSolver::project,
          &SparseSmokeSolver::project, referenceStage<&ReferenceSolver::project>, projectBytes,
-         "velocity and pressure read, velocity written", false},
+         "velocity and pressure read, velocity written"},
     };
     static_assert(std::size(table) == kStageCount, "one entry per stage");
     return table;
@@ -223,7 +225,9 @@ std::span<const StageEntry> stageTable() {
 
 // The table lists the stages in the enum's order (tests/test_stage_table.cpp checks it).
 const StageEntry& stageEntry(Stage stage) {
-    return stageTable()[size_t(stage)];
+    const size_t index = size_t(stage);
+    if (index >= kStageCount) throw std::logic_error("no stage " + std::to_string(index));
+    return stageTable()[index];
 }
 
 const std::vector<Stage>& allStages() {
@@ -237,16 +241,7 @@ const std::vector<Stage>& allStages() {
 }
 
 const std::vector<Stage>& stepOrder() {
-    static const std::vector<Stage> order = [] {
-        std::vector<Stage> list, closing;
-        for (const StageEntry& entry : stageTable()) {
-            list.push_back(entry.stage);
-            if (entry.closesStep) closing.push_back(entry.stage);
-        }
-        list.insert(list.end(), closing.begin(), closing.end());
-        return list;
-    }();
-    return order;
+    return allStages();
 }
 
 const char* stageName(Stage stage) {

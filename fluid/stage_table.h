@@ -9,6 +9,11 @@
 // recording functions on SmokeSolver (and SparseSmokeSolver, or null where the sparse domain
 // refuses the option that turns it on), its enum value below, and one entry in the table, placed
 // where it runs in the sub-step (docs/architecture.md, "Adding a solver stage").
+//
+// applyBoundaries runs once, before the divergence. It once also ran after the projection, where
+// it changed nothing: project leaves wall-normal faces as they are (0) and computes a periodic
+// axis's last face from the same values as its first, so the faces already obey the boundaries
+// (tests/test_fluid_stages.cpp, ProjectLeavesTheFacesAsTheBoundariesWantThem).
 #pragma once
 
 #include "shaders/shared/fluid.h"
@@ -27,8 +32,8 @@ class SparseSmokeSolver;
 class ReferenceSolver;
 struct SolverOptions;
 
-// The table's keys, in the order the table lists them (a static_assert in stage_table.cpp keeps
-// the two in step).
+// The table's keys, in the order the table lists them (stage_table.cpp asserts one entry per
+// value; tests/test_stage_table.cpp checks the order).
 enum class Stage {
     SplatImpulses,
     AdvectVelocity,
@@ -56,6 +61,8 @@ struct StageBytes {
 // (the splat touches only those; the benchmark computes them from its emitters).
 struct StageWork {
     uint64_t splatCells = 0;
+    // The iterations the pressure solve ran (MGPCG stops on its tolerance); 0: the options' most.
+    uint32_t pressureIterations = 0;
 };
 
 using Emitters = std::span<const shared::FluidEmitter>;
@@ -70,15 +77,13 @@ struct StageEntry {
     void (*reference)(ReferenceSolver&, Emitters);
     StageBytes (*bytes)(const SolverOptions&, const StageWork&);
     const char* bytesModel; // the model in words, per cell or face
-    bool closesStep;        // runs once more after the sub-step's last stage
 };
 
-// Every stage, in the order a sub-step runs them.
+// Every stage, in the order a sub-step runs them, each once.
 std::span<const StageEntry> stageTable();
 const StageEntry& stageEntry(Stage stage);
 
-// The stages of the table in order, and the order one sub-step runs them in (a stage that closes
-// the step appears twice).
+// The stages of the table in order: the order one sub-step runs them in.
 const std::vector<Stage>& allStages();
 const std::vector<Stage>& stepOrder();
 

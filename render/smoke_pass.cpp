@@ -11,7 +11,7 @@ namespace mfx::render {
 
 namespace {
 
-// The light's transmittance volume: at most this many cells a side.
+// The light's transmittance volume (over the pigment's box): at most this many cells a side.
 constexpr uint32_t kMaxLightCells = 128;
 
 constexpr uint32_t kBoxVertices = 36; // six faces, two triangles each (shaders/render/smoke.vert)
@@ -151,10 +151,10 @@ void SmokePass::findPigmentBounds(VkCommandBuffer cmd, std::span<const Volume> v
                 desc.pushConstantSize = sizeof(shared::PigmentBoundsDispatch);
                 sparseBounds_ = gpu::createComputeProgram(ctx_, desc);
             }
-            sparseBounds_->bind(cmd, {gpu::bindBuffer(0, *pigment.atlas),
-                                      gpu::bindBuffer(1, bounds_[i]),
-                                      gpu::bindBuffer(2, *pigment.brickTable),
-                                      gpu::bindBuffer(3, *pigment.activeList)});
+            sparseBounds_->bind(cmd,
+                                {gpu::bindBuffer(0, *pigment.atlas), gpu::bindBuffer(1, bounds_[i]),
+                                 gpu::bindBuffer(2, *pigment.brickTable),
+                                 gpu::bindBuffer(3, *pigment.activeList)});
             sparseBounds_->push(cmd, d);
             vkCmdDispatchIndirect(cmd, pigment.activeList->get(), 0);
             continue;
@@ -168,17 +168,19 @@ void SmokePass::findPigmentBounds(VkCommandBuffer cmd, std::span<const Volume> v
                       gpu::groupCount(shape.cellsZ, MFX_PIGMENT_BOUNDS_GROUP_Z));
     }
     // The boxes → the light's march and the proxy's vertices.
-    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                       VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT,
-                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    gpu::memoryBarrier(
+        cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT,
+        VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
 }
 
 void SmokePass::marchLight(VkCommandBuffer cmd, size_t i, const Volume& volume,
                            const shared::SmokeDraw& draw) {
     const fluid::GridShape& shape = volume.shape;
-    // The grid's resolution, at most kMaxLightCells a side (a large sparse domain): at half of
-    // it a dense block's lit faces took their light from cells 5 cm inside, visibly darker.
+    // Room for the pigment's box (found on the GPU) at a texel a cell, at most kMaxLightCells a
+    // side (a box wider than that shares a texel between cells); the march covers the box's cells
+    // only. At half the resolution a dense block's lit faces took their light from 5 cm inside,
+    // visibly darker.
     const VkExtent3D extent{std::min(shape.cellsX, kMaxLightCells),
                             std::min(shape.cellsY, kMaxLightCells),
                             std::min(shape.cellsZ, kMaxLightCells)};
@@ -214,8 +216,8 @@ void SmokePass::marchLight(VkCommandBuffer cmd, size_t i, const Volume& volume,
         writes.push_back(gpu::bindBuffer(0, *pigment.atlas));
         writes.push_back(gpu::bindBuffer(4, *pigment.brickTable));
     } else {
-        writes.push_back(gpu::bindImage(0, *pigment.image, VK_IMAGE_LAYOUT_GENERAL,
-                                        volumeSampler_.get()));
+        writes.push_back(
+            gpu::bindImage(0, *pigment.image, VK_IMAGE_LAYOUT_GENERAL, volumeSampler_.get()));
     }
     program->bind(cmd, writes);
     program->push(cmd, draw);
@@ -239,8 +241,8 @@ uint32_t SmokePass::draw(VkCommandBuffer cmd, RenderTarget& target,
         if (!visible) continue;
         const scene::SmokeSpec* smoke =
             grid.effects.empty() ? nullptr : simulation.trajectories()[grid.effects[0]].smoke;
-        volumes.push_back({grid.grid.pigmentVolume(), grid.grid.options().grid,
-                           grid.grid.origin(), smoke ? smoke->shading : scene::SmokeShading{}});
+        volumes.push_back({grid.grid.pigmentVolume(), grid.grid.options().grid, grid.grid.origin(),
+                           smoke ? smoke->shading : scene::SmokeShading{}});
     }
     if (volumes.empty()) return 0;
     const scene::LightSpec key =
@@ -329,21 +331,20 @@ void SmokePass::draw(VkCommandBuffer cmd, RenderTarget& target, std::span<const 
                 desc.fragment = shaders::smoke_frag_sparse;
                 programs.sparseMarch = gpu::createGraphicsProgram(ctx_, desc);
             }
-            programs.sparseMarch->bind(cmd, {gpu::bindBuffer(0, *v.pigment.atlas),
-                                             gpu::bindImage(1, target.depth, read, nearest),
-                                             gpu::bindBuffer(2, bounds_[i]),
-                                             gpu::bindBuffer(3, styles_[i]),
-                                             gpu::bindBuffer(4, *v.pigment.brickTable),
-                                             gpu::bindImage(5, lights_[i], VK_IMAGE_LAYOUT_GENERAL,
-                                                            edgeSampler_.get())});
+            programs.sparseMarch->bind(
+                cmd,
+                {gpu::bindBuffer(0, *v.pigment.atlas),
+                 gpu::bindImage(1, target.depth, read, nearest), gpu::bindBuffer(2, bounds_[i]),
+                 gpu::bindBuffer(3, styles_[i]), gpu::bindBuffer(4, *v.pigment.brickTable),
+                 gpu::bindImage(5, lights_[i], VK_IMAGE_LAYOUT_GENERAL, edgeSampler_.get())});
             programs.sparseMarch->push(cmd, d);
         } else {
             programs.march.bind(
-                cmd, {gpu::bindImage(0, *v.pigment.image, VK_IMAGE_LAYOUT_GENERAL,
-                                     volumeSampler_.get()),
-                      gpu::bindImage(1, target.depth, read, nearest),
-                      gpu::bindBuffer(2, bounds_[i]), gpu::bindBuffer(3, styles_[i]),
-                      gpu::bindImage(5, lights_[i], VK_IMAGE_LAYOUT_GENERAL, edgeSampler_.get())});
+                cmd,
+                {gpu::bindImage(0, *v.pigment.image, VK_IMAGE_LAYOUT_GENERAL, volumeSampler_.get()),
+                 gpu::bindImage(1, target.depth, read, nearest), gpu::bindBuffer(2, bounds_[i]),
+                 gpu::bindBuffer(3, styles_[i]),
+                 gpu::bindImage(5, lights_[i], VK_IMAGE_LAYOUT_GENERAL, edgeSampler_.get())});
             programs.march.push(cmd, d);
         }
         vkCmdDraw(cmd, kBoxVertices, 1, 0, 0);

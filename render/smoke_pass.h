@@ -98,8 +98,8 @@ private:
     void prepareFluidBuffer(const RenderTarget& target, uint32_t divisor);
     void findPigmentBounds(VkCommandBuffer cmd, std::span<const Volume> volumes,
                            const SmokeLook& look);
-    // The key light's transmittance through volume i at its grid's resolution
-    // (shaders/render/light_transmittance.comp), after its bounds, for its march to fetch.
+    // The key light's transmittance through volume i over its pigment's box, at its grid's
+    // resolution (shaders/render/light_transmittance.comp), after its bounds, for its march.
     void marchLight(VkCommandBuffer cmd, size_t i, const Volume& volume,
                     const shared::SmokeDraw& draw);
 

@@ -56,8 +56,7 @@ fluid::SmokeGridSettings gridSettings(std::span<const scene::SmokeSpec* const> e
         settings.sleepThreshold = std::min(settings.sleepThreshold, smoke.sleepThreshold);
         settings.emitterCapacity += smoke.maxEmitters;
     }
-    settings.stepsPerFrame =
-        std::max(1u, uint32_t(std::ceil(e.stepsPerSecond / fps - 1e-4f)));
+    settings.stepsPerFrame = std::max(1u, uint32_t(std::ceil(e.stepsPerSecond / fps - 1e-4f)));
     fluid::SolverOptions& options = settings.options;
     options.grid = fluid::GridShape{e.cells[0], e.cells[1], e.cells[2], e.cellSize};
     options.dt = 1.0f / (fps * float(settings.stepsPerFrame));

@@ -89,9 +89,13 @@ auto scattered(uint32_t seed) {
     };
 }
 
-constexpr Stage kSparseStages[] = {
-    Stage::SplatImpulses,   Stage::AdvectVelocity,    Stage::AdvectPigment, Stage::ApplyBuoyancy,
-    Stage::ApplyBoundaries, Stage::ComputeDivergence, Stage::SolvePressure, Stage::Project};
+// The stages the sparse domain runs: those with a sparse function in the stage table.
+std::vector<Stage> sparseStages() {
+    std::vector<Stage> stages;
+    for (const fluid::StageEntry& entry : fluid::stageTable())
+        if (entry.sparse) stages.push_back(entry.stage);
+    return stages;
+}
 
 struct StageCase {
     Stage stage;
@@ -105,7 +109,7 @@ std::string caseName(const ::testing::TestParamInfo<StageCase>& info) {
 
 std::vector<StageCase> stageCases() {
     std::vector<StageCase> cases;
-    for (Stage stage : kSparseStages)
+    for (Stage stage : sparseStages())
         for (bool walls : {false, true})
             cases.push_back({stage, walls});
     return cases;

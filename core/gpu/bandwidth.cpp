@@ -28,9 +28,9 @@ CopyBandwidth measureCopyBandwidth(const Context& ctx, uint64_t bytes, uint32_t 
     const uint64_t vec4s = bytes / 16;
     if (vec4s == 0 || repeats == 0) return result;
     result.bytes = vec4s * 16;
-    const Buffer source = createBuffer(ctx, result.bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
-                                                              VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                       MemoryUsage::DeviceLocal, "bandwidth source");
+    const Buffer source = createBuffer(
+        ctx, result.bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+        MemoryUsage::DeviceLocal, "bandwidth source");
     const Buffer destination = createBuffer(ctx, result.bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                             MemoryUsage::DeviceLocal, "bandwidth destination");
     ComputeProgramDesc desc;

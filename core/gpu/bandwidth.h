@@ -11,8 +11,8 @@ namespace mfx::gpu {
 class Context;
 
 struct CopyBandwidth {
-    uint64_t bytes = 0;         // copied each time (read once and written once)
-    double medianMs = 0.0;      // median GPU time of one copy
+    uint64_t bytes = 0;              // copied each time (read once and written once)
+    double medianMs = 0.0;           // median GPU time of one copy
     double gigabytesPerSecond = 0.0; // 2 * bytes / medianMs: bytes read plus written
 };
 

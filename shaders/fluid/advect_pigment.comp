@@ -1,8 +1,9 @@
 // advectPigment: advection of the RGBA pigment through the velocity (semi-Lagrangian; MacCormack
 // or BFECC, both limited, in passes as advect_velocity.comp), then the per-second fade
 // (docs/fluid.md). Twins: fluid/reference/advect_pigment.cpp, semi_lagrangian.cpp, maccormack.cpp,
-// bfecc.cpp. Writes a buffer that the solver copies into an image: the work image for the next
-// pass, or the new pigment after the last one.
+// bfecc.cpp. Writes a buffer that the solver copies into an image (the work image for the next
+// pass, or the new pigment after the last one), or with kDirectStore (semi-Lagrangian only) the
+// new pigment image itself.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "fluid_common.glsl"

@@ -3,8 +3,9 @@
 // 2008 and BFECC after Kim et al. 2005, both limited), then the per-second drag,
 // u *= exp(-drag * dt). Twins: fluid/reference/advect_velocity.cpp, semi_lagrangian.cpp,
 // maccormack.cpp, bfecc.cpp. One dispatch per component and pass (kPass, MFX_ADVECT_*), writing a
-// buffer that the solver copies into an image: the component's work image for the next pass, or
-// its new velocity after the last one.
+// buffer that the solver copies into an image (the component's work image for the next pass, or
+// its new velocity after the last one), or with kDirectStore (semi-Lagrangian only) the new
+// velocity image itself.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "fluid_common.glsl"

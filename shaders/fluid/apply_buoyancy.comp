@@ -1,6 +1,7 @@
 // applyBuoyancy: v += dt * buoyancy * mean pigment alpha of the two cells beside the face
 // (docs/fluid.md). Twin: fluid/reference/apply_buoyancy.cpp. Writes every y face (unchanged on
-// walls) to a buffer that the solver copies into the image.
+// walls) to a buffer that the solver copies into the image, or with kDirectStore into the image
+// itself (each invocation reads only the face it writes).
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "fluid_common.glsl"

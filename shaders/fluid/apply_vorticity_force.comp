@@ -3,8 +3,8 @@
 // Jensen 2001, eq. 11). Twin: fluid/reference/vorticity_confinement.cpp. One dispatch over the
 // largest face extent (cells + 1 along each axis): invocation q writes face q of each component
 // that has one (unchanged on walls) to that component's buffer, which the solver copies into the
-// component's image. The force of cell q serves all three faces, so each invocation loads four
-// force texels instead of six.
+// component's image, or with kDirectStore into the image itself. The force of cell q serves all
+// three faces, so each invocation loads four force texels instead of six.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "fluid_common.glsl"

@@ -1,6 +1,6 @@
 // computeDivergence: div = (u[i+1]-u[i] + v[j+1]-v[j] + w[k+1]-w[k]) / h (docs/fluid.md).
 // Twin: fluid/reference/compute_divergence.cpp. Writes a buffer that the solver copies into the
-// divergence image.
+// divergence image, or with kDirectStore the image itself.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "fluid_common.glsl"

@@ -1,7 +1,7 @@
 // vorticityConfinement, first pass: omega = curl u at cell centres, stored with |omega|
 // (docs/fluid.md; Fedkiw, Stam, Jensen 2001, eq. 9). Twin:
 // fluid/reference/vorticity_confinement.cpp. Writes a buffer that the solver copies into the
-// vorticity image.
+// vorticity image, or with kDirectStore the image itself.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "fluid_common.glsl"

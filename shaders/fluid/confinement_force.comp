@@ -2,7 +2,7 @@
 // N = grad|omega| / |grad|omega|| at every cell centre, stored once per cell for the faces on
 // either side (docs/fluid.md; Fedkiw, Stam, Jensen 2001, eqs. 10-11). Twin:
 // fluid/reference/vorticity_confinement.cpp. Writes a buffer that the solver copies into the force
-// image.
+// image, or with kDirectStore the image itself.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "fluid_common.glsl"

@@ -1,14 +1,14 @@
 // The key light's transmittance through the smoke, once per frame and volume, for the march to
-// fetch once per view sample (smoke.frag) instead of marching towards the light from each. At the
-// centre p of each cell of a volume at the grid's resolution (at most 128 cells a side, so a large
-// sparse domain's cells share one), T_l = exp(-integral of density towards the light), integrated
-// by the midpoint rule in steps of at most one grid cell from p to where its ray towards the light
-// leaves the pigment's box (the box smoke.vert draws: the cells holding pigment, grown by one), so
-// the whole depth of smoke shadows. A cell outside the box (with a margin of one of its own cells,
-// so trilinear fetches near the box's sides read marched values) holds 1: no pigment lies between
-// it and the light within the box. Single scattering with self-shadowing as in Fedkiw, Stam and
-// Jensen, "Visual Simulation of Smoke" (SIGGRAPH 2001), section 4, which also first stores the
-// light reaching each voxel and then marches the view rays.
+// fetch once per view sample (smoke.frag) instead of marching towards the light from each. The
+// volume spans the pigment's box (the box smoke.vert draws: the cells holding pigment, grown by
+// one), one texel a cell of it (lightTexels(): a box wider than the image shares a texel between
+// cells), from the image's low corner; texels beyond the box do nothing, so the work follows the
+// box, not the grid (the image has room for the grid's cells, at most 128 a side). At the centre p of each of its cells, T_l = exp(-integral of density
+// towards the light), integrated by the midpoint rule in steps of at most one grid cell from p to
+// where its ray towards the light leaves the box, so the whole depth of smoke shadows (no pigment
+// lies outside the box). Single scattering with self-shadowing as in Fedkiw, Stam and Jensen,
+// "Visual Simulation of Smoke" (SIGGRAPH 2001), section 4, which also first stores the light
+// reaching each voxel and then marches the view rays.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "shared/smoke_draw.h"
@@ -37,30 +37,32 @@ layout(binding = 5, r32f) uniform writeonly image3D transmittance;
 
 #include "smoke_sampling.glsl"
 
-// Steps of one light march: enough for one a grid cell across the largest grid the march allows.
-const int kMaxSteps = 1024;
+#include "smoke_light.glsl"
+
+// Steps of one light march: one a grid cell across the largest box the domain allows (2048 cells
+// a side: a diagonal of 3548 cells).
+const int kMaxSteps = 3584;
 
 void main() {
     ivec3 t = ivec3(gl_GlobalInvocationID);
     ivec3 size = imageSize(transmittance);
     if (any(greaterThanEqual(t, size))) return;
-    vec3 cells = draw.gridSize.xyz;
-    float h = draw.gridOrigin.w;
-    // The pigment's box in cells, as smoke.vert grows it; an empty box shadows nothing.
+    // An empty box shadows nothing (and the march draws nothing).
     if (bounds.low.x > bounds.high.x) {
         imageStore(transmittance, t, vec4(1.0));
         return;
     }
+    vec3 cells = draw.gridSize.xyz;
+    float h = draw.gridOrigin.w;
     vec3 low = max(vec3(bounds.low.xyz) - 1.0, vec3(0.0));
     vec3 high = min(vec3(bounds.high.xyz) + 2.0, cells);
-    vec3 span = cells / vec3(size); // grid cells a transmittance cell spans
-    vec3 g = (vec3(t) + 0.5) * span; // its centre, in grid cells
-    if (any(lessThan(g, low - span)) || any(greaterThan(g, high + span))) {
-        imageStore(transmittance, t, vec4(1.0));
-        return;
-    }
+    vec3 used = lightTexels(high - low, vec3(size));
+    // The texels of the box, and the layer beyond its high sides, which repeats the box's last
+    // texels: a fetch at the box's high face filters halfway into it, as the image's own edge
+    // clamps. Texels further out are never fetched.
+    if (any(greaterThan(vec3(t), used))) return;
     vec3 boxLow = draw.gridOrigin.xyz + h * low, boxHigh = draw.gridOrigin.xyz + h * high;
-    vec3 p = draw.gridOrigin.xyz + h * g;
+    vec3 p = mix(boxLow, boxHigh, (min(vec3(t), used - 1.0) + 0.5) / used);
     vec3 light = normalize(draw.light.xyz);
     // An axis the light runs across has no exit along it (a large t, not 0 * inf).
     vec3 lightInv = 1.0 / mix(light, vec3(1e-6), lessThan(abs(light), vec3(1e-6)));

@@ -18,8 +18,9 @@
 //   colour += T_v a (albedo L (kAmbient + (1 - kAmbient) T_l p(cos theta)) + emitted),
 // where T_l = exp(-integral of density towards the light) is the light's transmittance to the
 // sample (self-shadowing): one trilinear fetch from the transmittance volume that
-// light_transmittance.comp marched for this frame (the grid's resolution, each cell marched
-// to where its ray towards the light leaves the pigment's box, so the whole depth of smoke shadows);
+// light_transmittance.comp marched for this frame over the pigment's box (at the grid's
+// resolution, each cell marched to where its ray towards the light leaves the box, so the whole
+// depth of smoke shadows);
 // p is the Henyey-Greenstein phase function normalised to 1 for even scattering,
 //   p = (1 - g^2) / (1 + g^2 - 2 g cos theta)^(3/2),  cos theta = dot(towards the light, ray),
 // with the style's anisotropy g (forwards scattering makes smoke between the eye and the light
@@ -55,7 +56,7 @@ layout(std430, binding = 4) readonly buffer BrickTable {
 layout(binding = 0) uniform sampler3D pigment;
 #endif
 layout(binding = 1) uniform sampler2D sceneDepth;
-layout(binding = 5) uniform sampler3D lightVolume; // T_l over the grid (light_transmittance.comp)
+layout(binding = 5) uniform sampler3D lightVolume; // T_l over the box (light_transmittance.comp)
 
 #include "smoke_common.glsl"
 
@@ -105,10 +106,13 @@ float phase(float g, float cosTheta) {
     return (1.0 - g * g) / pow(max(1.0 + g * g - 2.0 * g * cosTheta, 1e-4), 1.5);
 }
 
-// The light's transmittance to p, from the volume marched for this frame.
+#include "smoke_light.glsl"
+
+// The light's transmittance to p, from the volume marched for this frame over the pigment's box.
 float lightTransmittance(vec3 p) {
-    vec3 uvw = (p - draw.gridOrigin.xyz) / (draw.gridOrigin.w * draw.gridSize.xyz);
-    return texture(lightVolume, uvw).r;
+    vec3 size = vec3(textureSize(lightVolume, 0));
+    vec3 used = lightTexels(round((boxHigh - boxLow) / draw.gridOrigin.w), size);
+    return texture(lightVolume, (p - boxLow) / (boxHigh - boxLow) * (used / size)).r;
 }
 
 void main() {
