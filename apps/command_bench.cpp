@@ -289,9 +289,10 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
     };
     printTable(times);
     std::printf("\nroofline: copy bandwidth %.1f GB/s (%.0f MiB read and written, median %.3f ms "
-                "of 10); each stage's rate is the bytes its model must move over its median "
+                "of 10%s); each stage's rate is the bytes its model must move over its median "
                 "time\n\n",
-                copy.gigabytesPerSecond, double(copy.bytes) / (1 << 20), copy.medianMs);
+                copy.gigabytesPerSecond, double(copy.bytes) / (1 << 20), copy.medianMs,
+                copy.fromWallClock ? ", wall clock: the timestamps did not bracket it" : "");
     printTable(rates);
     std::printf("\nthe bytes models (fluid/stage_table.cpp):\n");
     for (const fluid::StageEntry& entry : fluid::stageTable())
@@ -373,6 +374,7 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
                                    {"copy",
                                     {{"bytes", copy.bytes},
                                      {"ms", copy.medianMs},
+                                     {"wall_clock", copy.fromWallClock},
                                      {"gb_per_s", copy.gigabytesPerSecond}}},
                                    {"results", list}}
                         .dump(2)

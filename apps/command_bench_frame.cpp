@@ -257,6 +257,7 @@ int runBenchFrame(const cli::ParsedArgs& parsed) {
     json["frames"] = timed.value();
     json["date"] = todayUtc();
     json["copy_gb_per_s"] = copy.gigabytesPerSecond;
+    json["copy_wall_clock"] = copy.fromWallClock;
     if (sparse) {
         const FrameRun sparseRun = runFrames(ctx, *sparse, warmup.value(), samples.value(),
                                              "benchmarking the sparse domain");

@@ -5,17 +5,25 @@
 #   docs/performance.sh [gpu|lavapipe] [path/to/motionfx]   (default: lavapipe build/apps/motionfx)
 set -euo pipefail
 cd "$(dirname "$0")/.."
+mkdir -p out
 profile=${1:-lavapipe}
 MOTIONFX=${2:-build/apps/motionfx}
 out=docs/performance.md
 plots=docs/images
 case "$profile" in
 gpu)
+    # The solver: the largest grid first; the store paths side by side; multigrid's pressure.
     "$MOTIONFX" bench solver --grids 256,192,128,96,64,32 --steps 20 --markdown "$out" \
-        --plot "$plots/bench_solver_roofline_gpu.svg"
+        --plot "$plots/bench_solver_roofline_gpu.svg" --json out/bench_solver_gpu.json
+    "$MOTIONFX" bench solver --grids 256,128,64 --steps 20 --store buffer --markdown "$out"
     "$MOTIONFX" bench solver --grids 256,128,64 --steps 10 --pressure multigrid --markdown "$out"
+    # Time to a divergence 1e-3 of the start at 128^3 (printed; not a Markdown section yet).
+    "$MOTIONFX" bench accuracy --grid 16 --steps 4 --scenarios puff --target-grid 128 \
+        --csv out/bench_accuracy_gpu.csv --plot out/bench_accuracy_gpu.svg
+    # Frames: the hero frame at 1920x1080 and 960x540; the sparse kick against the dense grid.
     "$MOTIONFX" bench frame --size 1920x1080 --frames 60 --markdown "$out"
     "$MOTIONFX" bench frame --frames 60 --markdown "$out"
+    "$MOTIONFX" bench frame docs/scenes/smoke.json --sparse 256 --frames 60 --markdown "$out"
     ;;
 lavapipe)
     "$MOTIONFX" bench solver --grids 32,64,96,128 --markdown "$out" \

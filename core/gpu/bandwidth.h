@@ -14,6 +14,7 @@ struct CopyBandwidth {
     uint64_t bytes = 0;              // copied each time (read once and written once)
     double medianMs = 0.0;           // median GPU time of one copy
     double gigabytesPerSecond = 0.0; // 2 * bytes / medianMs: bytes read plus written
+    bool fromWallClock = false; // the timestamps did not bracket the copy: the wall time stood in
 };
 
 // Copies `bytes` (rounded down to 16) `repeats` times after two warm-up copies. Without timestamp
