@@ -36,6 +36,7 @@ struct GridResult {
     std::map<std::string, double> stageMs; // median per stage
     std::map<std::string, fluid::StageBytes> stageBytes; // the model, per stage (summed over runs)
     fluid::StageBytes stepBytes;
+    uint32_t dispatches = 0; // compute dispatches a step (each followed, mostly, by a barrier)
 };
 
 // Cells of the box the emitters cover (their spheres' bounds, clipped to the grid): what the
@@ -133,7 +134,7 @@ Result<GridResult> benchGrid(const gpu::Context& ctx, const std::string& scenari
         wallTimes.push_back(wall);
     }
     std::fputc('\n', stderr);
-    GridResult r{cells, workgroup, median(stepTimes), median(wallTimes), {}, {}, {}};
+    GridResult r{cells, workgroup, median(stepTimes), median(wallTimes), {}, {}, {}, 0};
     for (const auto& [name, times] : stageTimes)
         r.stageMs[name] = median(times);
     const fluid::StageWork work{splatCells(scenario.options, scenario.emitters(0)),
@@ -145,6 +146,8 @@ Result<GridResult> benchGrid(const gpu::Context& ctx, const std::string& scenari
         sum.written += b.written * scenario.options.substeps;
     }
     r.stepBytes = fluid::stepBytes(scenario.options, work);
+    for (const auto& [stage, count] : solver.lastStepDispatches())
+        r.dispatches += count;
     r.stepBytes.read *= scenario.options.substeps;
     r.stepBytes.written *= scenario.options.substeps;
     return r;
@@ -267,14 +270,16 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
         rates.rows.push_back(g);
     }
     std::vector<std::string> stepRow{"whole step (GPU)"}, wallRow{"whole step (wall)"},
-        stepRate{"whole step"};
+        stepRate{"whole step"}, dispatchRow{"dispatches a step"};
     for (const GridResult& r : results) {
         stepRow.push_back(fixed(r.stepMs, 3));
         wallRow.push_back(fixed(r.wallMs, 3));
         stepRate.push_back(rateCell(r.stepBytes.total(), r.stepMs));
+        dispatchRow.push_back(std::to_string(r.dispatches));
     }
     times.rows.push_back(stepRow);
     times.rows.push_back(wallRow);
+    times.rows.push_back(dispatchRow);
     rates.rows.push_back(stepRate);
 
     auto printTable = [](const MarkdownTable& table) {
@@ -362,6 +367,7 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
                             {"step_ms", r.stepMs},
                             {"wall_ms", r.wallMs},
                             {"step_bytes", r.stepBytes.total()},
+                            {"dispatches", r.dispatches},
                             {"step_gb_per_s", rate(r.stepBytes.total(), r.stepMs)},
                             {"stages", stages}});
         }
