@@ -11,8 +11,6 @@ namespace mfx::render {
 
 namespace {
 
-// The light's transmittance volume (over the pigment's box): at most this many cells a side.
-constexpr uint32_t kMaxLightCells = 128;
 
 constexpr uint32_t kBoxVertices = 36; // six faces, two triangles each (shaders/render/smoke.vert)
 constexpr VkFormat kFluidColorFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
@@ -175,15 +173,14 @@ void SmokePass::findPigmentBounds(VkCommandBuffer cmd, std::span<const Volume> v
 }
 
 void SmokePass::marchLight(VkCommandBuffer cmd, size_t i, const Volume& volume,
-                           const shared::SmokeDraw& draw) {
+                           const shared::SmokeDraw& draw, uint32_t maxCells) {
     const fluid::GridShape& shape = volume.shape;
-    // Room for the pigment's box (found on the GPU) at a texel a cell, at most kMaxLightCells a
-    // side (a box wider than that shares a texel between cells); the march covers the box's cells
-    // only. At half the resolution a dense block's lit faces took their light from 5 cm inside,
+    // Room for the pigment's box (found on the GPU) at a texel a cell, at most maxCells a side (a
+    // box wider than that shares a texel between cells); the march covers the box's cells only. At half the resolution a dense block's lit faces took their light from 5 cm inside,
     // visibly darker.
-    const VkExtent3D extent{std::min(shape.cellsX, kMaxLightCells),
-                            std::min(shape.cellsY, kMaxLightCells),
-                            std::min(shape.cellsZ, kMaxLightCells)};
+    maxCells = std::max(maxCells, 1u);
+    const VkExtent3D extent{std::min(shape.cellsX, maxCells), std::min(shape.cellsY, maxCells),
+                            std::min(shape.cellsZ, maxCells)};
     if (lights_.size() <= i) lights_.resize(i + 1);
     gpu::Image& image = lights_[i];
     if (!image.image || image.extent.width != extent.width ||
@@ -293,7 +290,7 @@ void SmokePass::draw(VkCommandBuffer cmd, RenderTarget& target, std::span<const 
                                look.stepsPerCell);
         d.eye = glm::vec4(camera.eye, look.fadeDistance);
         d.light = glm::vec4(-glm::normalize(key.direction), look.densityScale);
-        marchLight(cmd, i, v, d);
+        marchLight(cmd, i, v, d, look.maxLightCells);
 
         // The march into the cleared fluid buffer (after the previous composite's reads).
         for (gpu::Image* image : {&fluid_.color, &fluid_.distance})

@@ -50,6 +50,9 @@ struct SmokeLook {
     // 8-bit level of opacity (0.2 %) on a ray 2.5 world units long.
     float pigmentThreshold = 1e-4f;
     SmokeResolution resolution = SmokeResolution::Half;
+    // The key light's transmittance volume: a texel a cell of the pigment's box, at most this many
+    // a side (a wider box shares texels between cells).
+    uint32_t maxLightCells = 128;
 };
 
 class SmokePass {
@@ -101,7 +104,7 @@ private:
     // The key light's transmittance through volume i over its pigment's box, at its grid's
     // resolution (shaders/render/light_transmittance.comp), after its bounds, for its march.
     void marchLight(VkCommandBuffer cmd, size_t i, const Volume& volume,
-                    const shared::SmokeDraw& draw);
+                    const shared::SmokeDraw& draw, uint32_t maxCells);
 
     const gpu::Context& ctx_;
     gpu::Program& boundsFor(const gpu::Image& pigment) {

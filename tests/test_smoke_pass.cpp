@@ -228,14 +228,21 @@ TEST_F(SmokePassTest, HalfResolutionLooksLikeFull) {
 // 0.8 degrees of level): per pixel row through the block's middle, from 0.05 m to 0.75 m below its
 // top, the red of the full-resolution march and (in `depths`) how far below the top the row's ray
 // passes the block's middle plane.
+// With `pad`, the block stands in a grid `pad` cells larger on every side, empty there (the same
+// smoke in the same place, a pigment box smaller than the grid).
 std::vector<float> blockColumn(gpu::Context& ctx, const scene::SmokeShading& shading,
-                               std::vector<float>* depths = nullptr) {
+                               std::vector<float>* depths = nullptr, uint32_t maxLightCells = 128,
+                               uint32_t pad = 0) {
     fluid::SolverOptions options;
-    options.grid = {16, 16, 16, 0.05f};
+    const uint32_t n = 16 + 2 * pad;
+    options.grid = {n, n, n, 0.05f};
     auto block = fluid::SmokeSolver::create(ctx, options).value();
     fluid::FieldState state = fluid::FieldState::zero(options.grid);
-    for (size_t c = 0; c < state.pigment.size(); ++c)
-        state.pigment[c] = 0.25f; // white (colour x alpha), alpha 0.25
+    for (uint32_t z = pad; z < pad + 16; ++z)
+        for (uint32_t y = pad; y < pad + 16; ++y)
+            for (uint32_t x = pad; x < pad + 16; ++x)
+                for (uint32_t c = 0; c < 4; ++c)
+                    state.pigment[4 * (x + n * (y + n * z)) + c] = 0.25f; // white, alpha 0.25
     block->setState(state);
     const glm::vec3 centre(0.0f, 1.0f, 0.0f);
     scene::Scene s = scene::kickScene();
@@ -249,11 +256,13 @@ std::vector<float> blockColumn(gpu::Context& ctx, const scene::SmokeShading& sha
     render::SmokePass smokePass(ctx);
     render::SmokeLook look;
     look.resolution = render::SmokeResolution::Full;
+    look.maxLightCells = maxLightCells;
     gpu::submitOneShot(ctx, [&](VkCommandBuffer cmd) {
         render::beginRendering(cmd, target, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
         render::endRendering(cmd);
         const render::SmokePass::Volume volume{block->pigmentVolume(), options.grid,
-                                               centre - glm::vec3(0.4f), shading};
+                                               centre - glm::vec3(0.4f + 0.05f * float(pad)),
+                                               shading};
         smokePass.draw(cmd, target, std::span(&volume, 1), camera, s.lights[0], look);
     });
     const std::vector<float> rgba = render::readLinearColor(ctx, target);
@@ -279,12 +288,14 @@ std::vector<float> blockColumn(gpu::Context& ctx, const scene::SmokeShading& sha
 // sigma that explains them best is the block's own, 2 per metre. A shadow march that stops short
 // of the top (the four samples 0.1 m apart this pass once took) leaves the rows below 0.4 m alike,
 // and the fit far from it.
-TEST_F(SmokePassTest, SelfShadowingReachesThroughTheWholeDepth) {
-    std::vector<float> depths;
-    const std::vector<float> column = blockColumn(ctx(), {}, &depths);
-    ASSERT_GT(column.size(), 40u) << "rows through the block";
-    // Least squares of P + Q e^(-sigma d) over sigma in steps of 0.01 (P and Q in closed form).
-    double bestSigma = 0.0, bestError = 1e30;
+struct DecayFit {
+    double sigma = 0.0;
+    double rms = 0.0;
+};
+
+// Least squares of P + Q e^(-sigma d) over sigma in steps of 0.01 (P and Q in closed form).
+DecayFit fitDecay(const std::vector<float>& column, const std::vector<float>& depths) {
+    DecayFit best{0.0, 1e30};
     for (int step = 50; step <= 800; ++step) {
         const double sigma = 0.01 * step;
         std::vector<double> e(column.size()), v(column.begin(), column.end());
@@ -306,18 +317,62 @@ TEST_F(SmokePassTest, SelfShadowingReachesThroughTheWholeDepth) {
         double error = 0.0;
         for (size_t i = 0; i < column.size(); ++i)
             error += (p + q * e[i] - v[i]) * (p + q * e[i] - v[i]);
-        if (error < bestError) {
-            bestError = error;
-            bestSigma = sigma;
-        }
+        const double rms = std::sqrt(error / double(column.size()));
+        if (rms < best.rms) best = {sigma, rms};
     }
+    return best;
+}
+
+TEST_F(SmokePassTest, SelfShadowingReachesThroughTheWholeDepth) {
+    std::vector<float> depths;
+    const std::vector<float> column = blockColumn(ctx(), {}, &depths);
+    ASSERT_GT(column.size(), 40u) << "rows through the block";
+    const DecayFit fit = fitDecay(column, depths);
     std::printf("%zu rows, red %.4f at 0.05 m below the top to %.4f at 0.75 m; fitted sigma %.2f "
                 "(the block's: 2), rms %.5f\n",
-                column.size(), double(column.front()), double(column.back()), double(bestSigma),
-                std::sqrt(double(bestError) / double(column.size())));
+                column.size(), double(column.front()), double(column.back()), fit.sigma, fit.rms);
     for (size_t i = 1; i < column.size(); ++i)
         ASSERT_LE(column[i], column[i - 1] + 1e-3f) << "deeper is darker, at " << depths[i] << " m";
-    EXPECT_NEAR(bestSigma, 2.0, 0.1);
+    EXPECT_NEAR(fit.sigma, 2.0, 0.1);
+}
+
+// A pigment box wider than the light's transmittance volume (SmokeLook::maxLightCells; a large
+// sparse domain's smoke): the 16-cell block's light in 6 texels a side, each spanning 2.7 cells.
+// The light still reaches through the whole depth, and the decay still fits the block's sigma,
+// coarser: the texels' centres sample exp(-sigma d) 0.13 m apart and the filter joins them by
+// straight lines.
+TEST_F(SmokePassTest, ABoxWiderThanTheLightVolumeSharesItsTexels) {
+    std::vector<float> depths;
+    const std::vector<float> column = blockColumn(ctx(), {}, &depths, 6);
+    ASSERT_GT(column.size(), 40u) << "rows through the block";
+    const DecayFit fit = fitDecay(column, depths);
+    std::printf("6 light texels a side: red %.4f at 0.05 m to %.4f at 0.75 m; fitted sigma %.2f, "
+                "rms %.5f\n",
+                double(column.front()), double(column.back()), fit.sigma, fit.rms);
+    for (size_t i = 1; i < column.size(); ++i)
+        ASSERT_LE(column[i], column[i - 1] + 1e-3f) << "deeper is darker, at " << depths[i] << " m";
+    EXPECT_NEAR(fit.sigma, 2.0, 0.2);
+    // It is not the full-resolution picture: the texels are shared.
+    const std::vector<float> full = blockColumn(ctx(), {});
+    double largest = 0.0;
+    for (size_t i = 0; i < full.size() && i < column.size(); ++i)
+        largest = std::max(largest, double(std::abs(full[i] - column[i])));
+    EXPECT_GT(largest, 1e-4);
+}
+
+// The light's volume covers the pigment's box, not the grid: the same block in a grid 8 cells
+// larger on every side (its box 18 cells of 32) is lit as in its own grid, where the box is the
+// grid; a fetch that took the box for the whole image would light it from the wrong texels.
+TEST_F(SmokePassTest, TheLightVolumeFollowsThePigmentsBoxInsideALargerGrid) {
+    const std::vector<float> own = blockColumn(ctx(), {});
+    const std::vector<float> padded = blockColumn(ctx(), {}, nullptr, 128, 8);
+    ASSERT_EQ(own.size(), padded.size());
+    double largest = 0.0;
+    for (size_t i = 0; i < own.size(); ++i)
+        largest = std::max(largest, double(std::abs(own[i] - padded[i])));
+    std::printf("%zu rows: largest difference %.5f (red from %.4f to %.4f)\n", own.size(),
+                largest, double(own.back()), double(own.front()));
+    EXPECT_LT(largest, 0.01);
 }
 
 // Cel smoke: with 3 bands the light's transmittance takes the levels k / 3, so down the block the
