@@ -375,7 +375,11 @@ void SmokeSolver::solvePressure(VkCommandBuffer cmd) {
         storeFields(cmd, false, {{&f.scratch[0], &pressure}});
         return;
     }
-    if (!options_.warmStart) {
+    const uint32_t sweeps = options_.jacobiIterations;
+    // A cold start: the first sweep takes its input as 0 (mode bit 2) and reads no pressure; with
+    // no sweep at all the pressure is cleared.
+    const bool zeroFirst = !options_.warmStart && sweeps > 0;
+    if (!options_.warmStart && sweeps == 0) {
         const VkClearColorValue zero{};
         const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
         vkCmdClearColorImage(cmd, f.pressure[size_t(f.currentPressure)].get(),
@@ -385,14 +389,14 @@ void SmokeSolver::solvePressure(VkCommandBuffer cmd) {
     // Bricks of 4 x kPressureRows x kPressureLayers cells. Between the first and the last sweep
     // pressure and divergence live packed (shaders/fluid/solve_pressure.comp): the first sweep
     // reads the live r32f image, the last writes the other one.
-    const uint32_t sweeps = options_.jacobiIterations;
     const glm::uvec3 bricks((f.cells.x + kPressureBrickX - 1) / kPressureBrickX,
                             (f.cells.y + kPressureRows - 1) / kPressureRows,
                             (f.cells.z + kPressureLayers - 1) / kPressureLayers);
     size_t packedIn = 0;
     for (uint32_t sweep = 0; sweep < sweeps; ++sweep) {
         const bool first = sweep == 0, last = sweep + 1 == sweeps;
-        const uint32_t mode = f.packedSolve ? (first ? 0u : 1u) | (last ? 0u : 2u) : 0u;
+        const uint32_t mode = (f.packedSolve ? (first ? 0u : 1u) | (last ? 0u : 2u) : 0u) |
+                              (first && zeroFirst ? 4u : 0u);
         const size_t in = size_t(f.currentPressure), out = 1 - in, packedOut = 1 - packedIn;
         const gpu::DescriptorWrite writes[] = {
             gpu::bindBuffer(0, parameters_),

@@ -133,13 +133,17 @@ double vCycleValues(const SolverOptions& o) {
 StageBytes pressureBytes(const SolverOptions& o, const StageWork& w) {
     const Counts c = countsOf(o);
     const double n = c.cells;
+    const double sweeps = double(o.jacobiIterations);
     switch (o.pressureSolver) {
     case PressureSolver::Jacobi:
-    case PressureSolver::RedBlackGaussSeidel: {
+        // Each sweep reads pressure and divergence and writes pressure; a cold start's first
+        // sweep reads no pressure (it is 0), and with no sweep the pressure is cleared.
+        if (o.warmStart) return values(c, 2.0 * n * sweeps, n * sweeps);
+        if (sweeps == 0.0) return values(c, 0.0, n);
+        return values(c, 2.0 * n * sweeps - n, n * sweeps);
+    case PressureSolver::RedBlackGaussSeidel:
         // Each sweep reads pressure and divergence and writes pressure; a cold start clears it.
-        const double sweeps = double(o.jacobiIterations);
         return values(c, 2.0 * n * sweeps, n * sweeps + (o.warmStart ? 0.0 : n));
-    }
     case PressureSolver::Multigrid:
         return values(c, 0.6 * vCycleValues(o) * double(o.multigrid.cycles) + n,
                       0.4 * vCycleValues(o) * double(o.multigrid.cycles) + n);

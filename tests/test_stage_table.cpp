@@ -92,8 +92,9 @@ TEST(StageTable, BytesModelsCountFieldsReadAndWritten) {
     // Projection: velocity and pressure read, velocity written, four bytes each.
     EXPECT_DOUBLE_EQ(bytes(fluid::Stage::Project, o).read, 4.0 * (faces + cells));
     EXPECT_DOUBLE_EQ(bytes(fluid::Stage::Project, o).written, 4.0 * faces);
-    // Twenty Jacobi sweeps, cold: each reads pressure and divergence and writes pressure.
-    EXPECT_DOUBLE_EQ(bytes(fluid::Stage::SolvePressure, o).total(), 4.0 * cells * (20 * 3 + 1));
+    // Twenty Jacobi sweeps, cold: each reads pressure and divergence and writes pressure, but the
+    // first reads no pressure (it is 0).
+    EXPECT_DOUBLE_EQ(bytes(fluid::Stage::SolvePressure, o).total(), 4.0 * cells * (20 * 3 - 1));
     // Half the bytes in fp16.
     fluid::SolverOptions half = o;
     half.storage = fluid::Storage::Float16;

@@ -10,7 +10,9 @@
 // vec4 (element X + ceil(nx / 4) * (y + ny * z) holds cells 4X..4X+3 of row (y, z); past the
 // last cell it holds padding that no cell reads): on a CPU driver a buffer store costs far less
 // than an image store, and a row is one load and one store. kPressureMode says which side is
-// packed (bit 0: the input, bit 1: the output; the first sweep also packs the divergence).
+// packed (bit 0: the input, bit 1: the output; the first sweep also packs the divergence) and
+// whether the input is 0 (bit 2: a cold start's first sweep, which then reads no pressure: the
+// solver clears no image for it).
 // Every cell still sums its neighbours in the reference's order (-x, +x, -y, +y, -z, +z), so the
 // result is the same whatever the brick, the packing or the workgroup shape.
 #version 450
@@ -46,6 +48,7 @@ layout(constant_id = 12) const int kPressureLayers = 4;
 layout(constant_id = 13) const int kPressureRows = 4;
 const bool kPackedIn = (kPressureMode & 1u) != 0u;
 const bool kPackedOut = (kPressureMode & 2u) != 0u;
+const bool kZeroIn = (kPressureMode & 4u) != 0u;
 
 // A neighbour coordinate i (at most one step outside 0..n-1, or anywhere past n - 1 for a cell
 // beyond the grid's last one) along `axis`: the cell to read, whether its value counts and
@@ -84,6 +87,7 @@ vec4 loadDivergenceRow(ivec4 x, int y, int z) {
 
 // The brick's row at (y, z): packed element `texel` of the row, or r32f columns `columns`.
 vec4 row(int texel, ivec4 columns, int y, int z) {
+    if (kZeroIn) return vec4(0.0);
     return kPackedIn ? packedIn[packedIndex(texel, y, z)] : loadRow(columns, y, z);
 }
 
@@ -153,8 +157,9 @@ void main() {
                 plusX = mix(vec4(centre[r + 1].yzw, right), vec4(right), plusPast);
                 divergenceRow = packedDivergence[packedIndex(texel, rowY, z)];
             } else {
-                float left = imageLoad(pressureIn, ivec3(refLeft.index, rowY, z)).r;
-                float right = imageLoad(pressureIn, ivec3(refRight.index, rowY, z)).r;
+                float left = kZeroIn ? 0.0 : imageLoad(pressureIn, ivec3(refLeft.index, rowY, z)).r;
+                float right =
+                    kZeroIn ? 0.0 : imageLoad(pressureIn, ivec3(refRight.index, rowY, z)).r;
                 minusX = vec4(left, centre[r + 1].xyz);
                 plusX = vec4(centre[r + 1].yzw, right);
                 divergenceRow = loadDivergenceRow(columns, rowY, z);
