@@ -270,7 +270,7 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
         rates.rows.push_back(g);
     }
     std::vector<std::string> stepRow{"whole step (GPU)"}, wallRow{"whole step (wall)"},
-        stepRate{"whole step"}, dispatchRow{"dispatches a step"};
+        stepRate{"whole step"}, dispatchRow{"dispatches a step (count)"};
     for (const GridResult& r : results) {
         stepRow.push_back(fixed(r.stepMs, 3));
         wallRow.push_back(fixed(r.wallMs, 3));
@@ -305,7 +305,10 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
 
     if (parsed.has("markdown")) {
         std::string body = times.text() + "\nCopy bandwidth " + fixed(copy.gigabytesPerSecond, 1) +
-                           " GB/s; each stage's rate is the bytes its model "
+                           " GB/s" +
+                           (copy.fromWallClock ? " (wall clock: the timestamps did not bracket it)"
+                                               : "") +
+                           "; each stage's rate is the bytes its model "
                            "(fluid/stage_table.cpp) must move over its median time:\n\n" +
                            rates.text();
         const std::string title = std::string("Solver stages, ") +

@@ -143,10 +143,10 @@ void printRun(const gpu::Context& ctx, const scene::Scene& s, const FrameRun& ru
     const double march = marchRate(run);
     if (march > 0.0)
         std::printf("smoke pass: %.2f MiB of pigment volume read at %.1f GB/s (bounds, light and "
-                    "march together), %.0f%% of the copy bandwidth (%.1f GB/s)\n",
+                    "march together), %.0f%% of the copy bandwidth (%.1f GB/s%s)\n",
                     median(run.marchBytes) / (1 << 20), march,
                     copy.gigabytesPerSecond > 0 ? 100.0 * march / copy.gigabytesPerSecond : 0.0,
-                    copy.gigabytesPerSecond);
+                    copy.gigabytesPerSecond, copy.fromWallClock ? ", wall clock" : "");
     if (table) {
         table->header = {"pass", "GPU ms", "share"};
         for (const std::string& name : run.rowOrder) {
@@ -163,7 +163,7 @@ void printRun(const gpu::Context& ctx, const scene::Scene& s, const FrameRun& ru
                  fixed(march, 1) + " GB/s",
                  fixed(copy.gigabytesPerSecond > 0 ? 100.0 * march / copy.gigabytesPerSecond : 0,
                        0) +
-                     "% of copy"});
+                     "% of copy" + (copy.fromWallClock ? " (wall clock)" : "")});
     }
 }
 

@@ -193,7 +193,8 @@ void SmokePass::marchLight(VkCommandBuffer cmd, size_t i, const Volume& volume,
         desc.debugName = "smoke light transmittance";
         image = gpu::createImage(ctx_, desc);
     }
-    // The previous draw's fetches → this march's stores (the whole image is rewritten).
+    // The previous draw's fetches → this march's stores (what the draw fetches is rewritten: the
+    // box's texels and the layer past it).
     gpu::imageBarrier(cmd, image, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
                       0, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                       VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);

@@ -12,9 +12,11 @@ class Context;
 
 struct CopyBandwidth {
     uint64_t bytes = 0;              // copied each time (read once and written once)
-    double medianMs = 0.0;           // median GPU time of one copy
+    double medianMs = 0.0;           // median GPU time of one copy (or wall time, below)
     double gigabytesPerSecond = 0.0; // 2 * bytes / medianMs: bytes read plus written
-    bool fromWallClock = false; // the timestamps did not bracket the copy: the wall time stood in
+    // A CPU device whose timestamps did not bracket the copy: the wall time of a submission stood
+    // in for its GPU time.
+    bool fromWallClock = false;
 };
 
 // Copies `bytes` (rounded down to 16) `repeats` times after two warm-up copies. Without timestamp

@@ -58,7 +58,9 @@ void main() {
     uint invocations = gl_WorkGroupSize.x * gl_WorkGroupSize.y * gl_WorkGroupSize.z;
     for (uint i = gl_LocalInvocationIndex; i < count; i += invocations) {
         ivec3 l = ivec3(i % kTile.x, (i / kTile.x) % kTile.y, i / (kTile.x * kTile.y));
-        omega[i] = vorticityAt(resolveCell(corner + l));
+        // Ring cells past the grid's last one + 1 are never read; held at it, so that a short
+        // periodic axis wraps them inside the grid (wrapIndex takes less than three lengths).
+        omega[i] = vorticityAt(resolveCell(min(corner + l, cellCount())));
     }
     barrier();
     ivec3 q = ivec3(gl_GlobalInvocationID);

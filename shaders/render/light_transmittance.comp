@@ -1,14 +1,16 @@
 // The key light's transmittance through the smoke, once per frame and volume, for the march to
 // fetch once per view sample (smoke.frag) instead of marching towards the light from each. The
 // volume spans the pigment's box (the box smoke.vert draws: the cells holding pigment, grown by
-// one), one texel a cell of it (lightTexels(): a box wider than the image shares a texel between
-// cells), from the image's low corner; texels beyond the box do nothing, so the work follows the
-// box, not the grid (the image has room for the grid's cells, at most 128 a side). At the centre p of each of its cells, T_l = exp(-integral of density
-// towards the light), integrated by the midpoint rule in steps of at most one grid cell from p to
-// where its ray towards the light leaves the box, so the whole depth of smoke shadows (no pigment
-// lies outside the box). Single scattering with self-shadowing as in Fedkiw, Stam and Jensen,
-// "Visual Simulation of Smoke" (SIGGRAPH 2001), section 4, which also first stores the light
-// reaching each voxel and then marches the view rays.
+// one), one texel a cell of it from the image's low corner (lightTexels(): a box wider than the
+// image shares texels between cells; the image has room for the grid's cells, at most
+// SmokeLook::maxLightCells a side). Texels past the box and its one extra layer are not written,
+// and the march's fetches stay inside the box, so the work follows the box, not the grid. At the
+// centre p of each of its cells, T_l = exp(-integral of density towards the light), integrated by
+// the midpoint rule in steps of at most one grid cell from p to where its ray towards the light
+// leaves the box, so the whole depth of smoke shadows (no pigment lies outside the box). Single
+// scattering with self-shadowing as in Fedkiw, Stam and Jensen, "Visual Simulation of Smoke"
+// (SIGGRAPH 2001), section 4, which also first stores the light reaching each voxel and then
+// marches the view rays.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "shared/smoke_draw.h"
@@ -59,7 +61,7 @@ void main() {
     vec3 used = lightTexels(high - low, vec3(size));
     // The texels of the box, and the layer beyond its high sides, which repeats the box's last
     // texels: a fetch at the box's high face filters halfway into it, as the image's own edge
-    // clamps. Texels further out are never fetched.
+    // clamps. Texels further out are never fetched (smoke.frag clamps its fetches to the box).
     if (any(greaterThan(vec3(t), used))) return;
     vec3 boxLow = draw.gridOrigin.xyz + h * low, boxHigh = draw.gridOrigin.xyz + h * high;
     vec3 p = mix(boxLow, boxHigh, (min(vec3(t), used - 1.0) + 0.5) / used);

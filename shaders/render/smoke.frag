@@ -112,7 +112,9 @@ float phase(float g, float cosTheta) {
 float lightTransmittance(vec3 p) {
     vec3 size = vec3(textureSize(lightVolume, 0));
     vec3 used = lightTexels(round((boxHigh - boxLow) / draw.gridOrigin.w), size);
-    return texture(lightVolume, (p - boxLow) / (boxHigh - boxLow) * (used / size)).r;
+    // Clamped to the box: the march's last sample may lie past it (at most half a step).
+    vec3 inBox = clamp((p - boxLow) / (boxHigh - boxLow), 0.0, 1.0);
+    return texture(lightVolume, inBox * (used / size)).r;
 }
 
 void main() {
