@@ -256,7 +256,7 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
                     : std::string("?")) +
                ")";
     };
-    for (fluid::Stage stage : fluid::allStages()) {
+    for (fluid::Stage stage : fluid::stepOrder()) {
         const std::string name = fluid::stageName(stage);
         std::vector<std::string> t{name}, g{name};
         for (const GridResult& r : results) {
@@ -300,8 +300,8 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
                 copy.fromWallClock ? ", wall clock: the timestamps did not bracket it" : "");
     printTable(rates);
     std::printf("\nthe bytes models (fluid/stage_table.cpp):\n");
-    for (const fluid::StageEntry& entry : fluid::stageTable())
-        std::printf("  %-22s %s\n", entry.name, entry.bytesModel);
+    for (fluid::Stage stage : fluid::stepOrder())
+        std::printf("  %-22s %s\n", fluid::stageName(stage), fluid::stageEntry(stage).bytesModel);
 
     if (parsed.has("markdown")) {
         std::string body = times.text() + "\nCopy bandwidth " + fixed(copy.gigabytesPerSecond, 1) +
@@ -327,7 +327,7 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
         static const char* colours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
                                         "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
         size_t colour = 0;
-        for (fluid::Stage stage : fluid::allStages()) {
+        for (fluid::Stage stage : fluid::stepOrder()) {
             PlotSeries series{fluid::stageName(stage), colours[colour++ % 10], {}, {}};
             for (const GridResult& r : results) {
                 auto ms = r.stageMs.find(series.label);

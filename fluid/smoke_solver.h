@@ -3,7 +3,10 @@
 // (fluid/reference/), written down in docs/fluid.md. One sub-step:
 //
 //   splatImpulses → advectVelocity → advectPigment → applyBuoyancy → vorticityConfinement →
-//   diffuseViscosity → applyBoundaries → computeDivergence → solvePressure → project
+//   diffuseViscosity → computeDivergence → solvePressure → project
+//
+// (applyBoundaries runs alone only: the stages keep the faces as the boundaries want them;
+// fluid/stage_table.h.)
 //
 // solvePressure runs Jacobi sweeps here (shaders/fluid/solve_pressure.comp), or red-black
 // Gauss-Seidel, multigrid or MGPCG (fluid/gpu_multigrid.h), as SolverOptions::pressureSolver asks.

@@ -185,43 +185,43 @@ std::span<const StageEntry> stageTable() {
         {Stage::SplatImpulses, "splat_impulses", "emitter_bounds splat_impulses",
          "sparse_splat_impulses", &SmokeSolver::splatImpulses, &SparseSmokeSolver::splatImpulses,
          referenceSplat, splatBytes,
-         "velocity (3 faces a cell) and pigment (4) of the emitters' boxes, read and written"},
+         "velocity (3 faces a cell) and pigment (4) of the emitters' boxes, read and written", true},
         {Stage::AdvectVelocity, "advect_velocity", "advect_velocity", "sparse_advect_velocity",
          &SmokeSolver::advectVelocity, &SparseSmokeSolver::advectVelocity,
          referenceStage<&ReferenceSolver::advectVelocity>, advectVelocityBytes,
-         "velocity read (2P-1) times and written P times, P the scheme's passes"},
+         "velocity read (2P-1) times and written P times, P the scheme's passes", true},
         {Stage::AdvectPigment, "advect_pigment", "advect_pigment", "sparse_advect_pigment",
          &SmokeSolver::advectPigment, &SparseSmokeSolver::advectPigment,
          referenceStage<&ReferenceSolver::advectPigment>, advectPigmentBytes,
-         "per pass velocity read; pigment (4) read (2P-1) times, written P times"},
+         "per pass velocity read; pigment (4) read (2P-1) times, written P times", true},
         {Stage::ApplyBuoyancy, "apply_buoyancy", "apply_buoyancy", "sparse_apply_buoyancy",
          &SmokeSolver::applyBuoyancy, &SparseSmokeSolver::applyBuoyancy,
          referenceStage<&ReferenceSolver::applyBuoyancy>, buoyancyBytes,
-         "y faces and pigment (4) read, y faces written"},
+         "y faces and pigment (4) read, y faces written", true},
         {Stage::VorticityConfinement, "vorticity_confinement",
          "compute_vorticity confinement_force apply_vorticity_force vorticity_force", "",
          &SmokeSolver::vorticityConfinement, nullptr,
          referenceStage<&ReferenceSolver::vorticityConfinement>, vorticityBytes,
-         "velocity read and written once (curl and force need nothing else)"},
+         "velocity read and written once (curl and force need nothing else)", true},
         {Stage::DiffuseViscosity, "diffuse_viscosity", "diffuse_viscosity", "",
          &SmokeSolver::diffuseViscosity, nullptr,
          referenceStage<&ReferenceSolver::diffuseViscosity>, viscosityBytes,
-         "per sweep: velocity and the starting velocity read, velocity written"},
+         "per sweep: velocity and the starting velocity read, velocity written", true},
         {Stage::ApplyBoundaries, "apply_boundaries", "apply_boundaries", "sparse_apply_boundaries",
          &SmokeSolver::applyBoundaries, &SparseSmokeSolver::applyBoundaries,
          referenceStage<&ReferenceSolver::applyBoundaries>, boundariesBytes,
-         "the two boundary layers of faces of each axis, read and written"},
+         "the two boundary layers of faces of each axis, read and written", false},
         {Stage::ComputeDivergence, "compute_divergence", "compute_divergence",
          "sparse_compute_divergence", &SmokeSolver::computeDivergence,
          &SparseSmokeSolver::computeDivergence, referenceStage<&ReferenceSolver::computeDivergence>,
-         divergenceBytes, "velocity read, divergence written"},
+         divergenceBytes, "velocity read, divergence written", true},
         {Stage::SolvePressure, "solve_pressure", "solve_pressure", "sparse_solve_pressure",
          &SmokeSolver::solvePressure, &SparseSmokeSolver::solvePressure,
          referenceStage<&ReferenceSolver::solvePressure>, pressureBytes,
-         "per sweep: pressure and divergence read, pressure written (multigrid: per level)"},
+         "per sweep: pressure and divergence read, pressure written (multigrid: per level)", true},
         {Stage::Project, "project", "project", "sparse_project", &SmokeSolver::project,
          &SparseSmokeSolver::project, referenceStage<&ReferenceSolver::project>, projectBytes,
-         "velocity and pressure read, velocity written"},
+         "velocity and pressure read, velocity written", true},
     };
     static_assert(std::size(table) == kStageCount, "one entry per stage");
     return table;
@@ -245,7 +245,13 @@ const std::vector<Stage>& allStages() {
 }
 
 const std::vector<Stage>& stepOrder() {
-    return allStages();
+    static const std::vector<Stage> order = [] {
+        std::vector<Stage> list;
+        for (const StageEntry& entry : stageTable())
+            if (entry.inStep) list.push_back(entry.stage);
+        return list;
+    }();
+    return order;
 }
 
 const char* stageName(Stage stage) {

@@ -10,10 +10,12 @@
 // refuses the option that turns it on), its enum value below, and one entry in the table, placed
 // where it runs in the sub-step (docs/architecture.md, "Adding a solver stage").
 //
-// applyBoundaries runs once, before the divergence. It once also ran after the projection, where
-// it changed nothing: project leaves wall-normal faces as they are (0) and computes a periodic
-// axis's last face from the same values as its first, so the faces already obey the boundaries
-// (tests/test_fluid_stages.cpp, ProjectLeavesTheFacesAsTheBoundariesWantThem).
+// applyBoundaries runs alone only (runStage: a state set from outside made to obey the
+// boundaries), not in a step: the stages that write faces keep them as the boundaries want them
+// (wall-normal faces 0; advectVelocity computes a periodic axis's last face as its first, and the
+// later stages and the projection keep the two equal), so the boundary pass a step once ran before
+// the divergence and after the projection changed nothing (tests/test_fluid_stages.cpp,
+// AStepLeavesTheFacesAsTheBoundariesWantThem).
 #pragma once
 
 #include "shaders/shared/fluid.h"
@@ -77,13 +79,14 @@ struct StageEntry {
     void (*reference)(ReferenceSolver&, Emitters);
     StageBytes (*bytes)(const SolverOptions&, const StageWork&);
     const char* bytesModel; // the model in words, per cell or face
+    bool inStep;            // runs in a sub-step (else only alone: runStage)
 };
 
-// Every stage, in the order a sub-step runs them, each once.
+// Every stage, in the order a sub-step runs those it runs, each once.
 std::span<const StageEntry> stageTable();
 const StageEntry& stageEntry(Stage stage);
 
-// The stages of the table in order: the order one sub-step runs them in.
+// The stages of the table in order, and those a sub-step runs (inStep), in its order.
 const std::vector<Stage>& allStages();
 const std::vector<Stage>& stepOrder();
 

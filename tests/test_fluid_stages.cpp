@@ -53,43 +53,49 @@ std::vector<StageCase> allStageCases() {
 
 INSTANTIATE_TEST_SUITE_P(Stages, FluidStageTest, ::testing::ValuesIn(allStageCases()), caseName);
 
-// applyBoundaries runs once a sub-step, before the divergence (fluid/stage_table.h): after the
-// projection the faces already obey the boundaries, so a second run would change nothing. Checked
-// bit for bit on the reference (fp64) and on the GPU, from random fields, for every boundary set:
-// boundaries, divergence, pressure and projection, then the boundaries once more.
-class ProjectBoundariesTest : public GpuTest, public ::testing::WithParamInterface<Boundaries> {};
+// applyBoundaries runs alone only, not in a step (fluid/stage_table.h): the stages keep the faces
+// as the boundaries want them (advectVelocity zeroes wall-normal faces and computes a periodic
+// axis's last face as its first; the later stages and the projection keep the two equal). So after
+// a whole step from random fields, which break both rules, the boundaries change nothing, bit for
+// bit, on the reference (fp64) and on the GPU, for every boundary set.
+class StepBoundariesTest : public GpuTest, public ::testing::WithParamInterface<Boundaries> {};
 
-TEST_P(ProjectBoundariesTest, ProjectLeavesTheFacesAsTheBoundariesWantThem) {
-    const fluid::SolverOptions options =
+TEST_P(StepBoundariesTest, AStepLeavesTheFacesAsTheBoundariesWantThem) {
+    fluid::SolverOptions options =
         pressureOptions({10, 9, 8, 0.1f}, GetParam(), fluid::PressureSolver::Jacobi);
     const fluid::FieldState input = randomState(options.grid, 31);
-    const fluid::Stage toProjection[] = {fluid::Stage::ApplyBoundaries,
-                                         fluid::Stage::ComputeDivergence,
-                                         fluid::Stage::SolvePressure, fluid::Stage::Project};
+    const auto emitters = twoEmitters(options.grid);
     fluid::ReferenceSolver cpu(options);
     cpu.setState(input);
-    for (fluid::Stage stage : toProjection)
-        cpu.runStage(stage, {});
-    const fluid::FieldState projected = cpu.state();
+    cpu.step(emitters);
+    const fluid::FieldState stepped = cpu.state();
     cpu.runStage(fluid::Stage::ApplyBoundaries, {});
-    EXPECT_EQ(cpu.state().velocityX, projected.velocityX);
-    EXPECT_EQ(cpu.state().velocityY, projected.velocityY);
-    EXPECT_EQ(cpu.state().velocityZ, projected.velocityZ);
-    // The projection did move the faces (the comparison is not of untouched copies).
-    EXPECT_NE(projected.velocityX, input.velocityX);
+    EXPECT_EQ(cpu.state().velocityX, stepped.velocityX);
+    EXPECT_EQ(cpu.state().velocityY, stepped.velocityY);
+    EXPECT_EQ(cpu.state().velocityZ, stepped.velocityZ);
+    // Where the boundaries act (walls, periodic faces; open faces they leave alone) the random
+    // input breaks their rules: they change it, so the comparison above could fail.
+    if (GetParam() != Boundaries::Open) {
+        fluid::ReferenceSolver raw(options);
+        raw.setState(input);
+        raw.runStage(fluid::Stage::ApplyBoundaries, {});
+        const fluid::FieldState fixed = raw.state();
+        EXPECT_TRUE(fixed.velocityX != input.velocityX || fixed.velocityY != input.velocityY ||
+                    fixed.velocityZ != input.velocityZ);
+    }
 
     auto gpu = fluid::SmokeSolver::create(ctx(), options).value();
     gpu->setState(input);
-    for (fluid::Stage stage : toProjection)
-        gpu->runStage(stage);
-    const fluid::FieldState gpuProjected = gpu->state();
+    ASSERT_TRUE(gpu->setEmitters(emitters));
+    gpu->step();
+    const fluid::FieldState gpuStepped = gpu->state();
     gpu->runStage(fluid::Stage::ApplyBoundaries);
-    EXPECT_EQ(gpu->state().velocityX, gpuProjected.velocityX);
-    EXPECT_EQ(gpu->state().velocityY, gpuProjected.velocityY);
-    EXPECT_EQ(gpu->state().velocityZ, gpuProjected.velocityZ);
+    EXPECT_EQ(gpu->state().velocityX, gpuStepped.velocityX);
+    EXPECT_EQ(gpu->state().velocityY, gpuStepped.velocityY);
+    EXPECT_EQ(gpu->state().velocityZ, gpuStepped.velocityZ);
 }
 
-INSTANTIATE_TEST_SUITE_P(Fluid, ProjectBoundariesTest, ::testing::ValuesIn(kAllBoundaries),
+INSTANTIATE_TEST_SUITE_P(Fluid, StepBoundariesTest, ::testing::ValuesIn(kAllBoundaries),
                          [](const ::testing::TestParamInfo<Boundaries>& param) {
                              return std::string(boundariesName(param.param));
                          });

@@ -36,22 +36,27 @@ void main() {
     int c = int(kTarget);
     ivec3 q = ivec3(gl_GlobalInvocationID);
     if (any(greaterThanEqual(q, faceCount(c)))) return;
-    bool wallNormal = wallNormalFace(c, q);
+    // The boundaries (docs/fluid.md, "Boundaries"): wall-normal faces are 0, and a periodic axis's
+    // last face is its first, computed as face 0 so that the two agree bit for bit.
+    ivec3 at = q;
+    if (periodicAxis(c) && q[c] == cellCount()[c]) at[c] = 0;
+    bool wallNormal = wallNormalFace(c, at);
     float value = 0.0;
     if (kPass == MFX_ADVECT_BFECC_COMPENSATE) {
         // A wall-normal face samples as 0, as in every semi-Lagrangian pass.
-        float source = loadFaceField(kVelocityField, c, q);
-        float returned = wallNormal ? 0.0 : sampleFace(kWorkField, c, backTraceFromFace(c, q, -timeStep()));
+        float source = loadFaceField(kVelocityField, c, at);
+        float returned =
+            wallNormal ? 0.0 : sampleFace(kWorkField, c, backTraceFromFace(c, at, -timeStep()));
         value = source + 0.5 * (source - returned);
     } else if (!wallNormal) {
-        vec3 departure = backTraceFromFace(c, q, timeStep());
+        vec3 departure = backTraceFromFace(c, at, timeStep());
         if (kPass == MFX_ADVECT_SEMI_LAGRANGIAN || kPass == MFX_ADVECT_PREDICT) {
             value = sampleFace(kVelocityField, c, departure);
         } else {
             if (kPass == MFX_ADVECT_MACCORMACK_CORRECT) {
-                float source = loadFaceField(kVelocityField, c, q);
-                float returned = sampleFace(kWorkField, c, backTraceFromFace(c, q, -timeStep()));
-                value = imageLoad(work, q).r + 0.5 * (source - returned);
+                float source = loadFaceField(kVelocityField, c, at);
+                float returned = sampleFace(kWorkField, c, backTraceFromFace(c, at, -timeStep()));
+                value = imageLoad(work, at).r + 0.5 * (source - returned);
             } else { // MFX_ADVECT_BFECC_FINAL
                 value = sampleFace(kWorkField, c, departure);
             }
