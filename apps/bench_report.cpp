@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdio>
 #include <ctime>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -48,9 +49,28 @@ std::string todayUtc() {
     return text;
 }
 
+Status checkMarkdownFile(const std::string& path) {
+    constexpr std::uintmax_t kMaxBytes = 16u << 20;
+    std::error_code error;
+    const std::filesystem::file_status status = std::filesystem::status(path, error);
+    if (std::filesystem::exists(status)) {
+        if (!std::filesystem::is_regular_file(status))
+            return Error{path + ": not a regular file; the Markdown tables need one"};
+        const std::uintmax_t size = std::filesystem::file_size(path, error);
+        if (error || size > kMaxBytes)
+            return Error{path +
+                         ": larger than 16 MiB; the Markdown tables rewrite their file whole"};
+    }
+    // Opened to append: nothing of it changes yet.
+    std::ofstream probe(path, std::ios::app);
+    if (!probe) return Error{path + ": cannot write the Markdown tables"};
+    return Ok{};
+}
+
 Status writeMarkdownSection(const std::string& path, const std::string& title,
                             const gpu::Context& ctx, const std::string& command,
                             const std::string& body) {
+    if (Status ok = checkMarkdownFile(path); !ok) return ok;
     const std::string key = title + " | " + ctx.info().name + " | " + command;
     const std::string begin = "<!-- begin: " + key + " -->\n";
     const std::string end = "<!-- end: " + key + " -->\n";

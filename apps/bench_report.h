@@ -30,6 +30,11 @@ std::string reproduceCommand(const std::string& command, const cli::ParsedArgs& 
 // Today's date (UTC), YYYY-MM-DD.
 std::string todayUtc();
 
+// Whether `path` can take the sections: a regular file of at most 16 MiB (read whole, then
+// rewritten), or one that can be made. Checked before a benchmark runs, so a bad path is refused at
+// once, in one line naming it.
+Status checkMarkdownFile(const std::string& path);
+
 // Replaces (or appends) the section of `title` measured on ctx's device by `command` in the file
 // at `path` (created if missing) with `body` under a heading of the title, the device, the driver,
 // the date and the command. The error names the file.

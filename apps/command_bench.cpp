@@ -202,6 +202,11 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
     std::ofstream jsonFile, plotFile;
     if (!openOutputFile(jsonPath, jsonFile)) return kExitFailure;
     if (!openOutputFile(parsed.value("plot"), plotFile)) return kExitFailure;
+    if (parsed.has("markdown"))
+        if (Status ok = checkMarkdownFile(parsed.value("markdown")); !ok) {
+            printError(ok.error().message);
+            return kExitFailure;
+        }
 
     const std::unique_ptr<gpu::Context> context = createTimingContext(parsed, "the solver");
     if (!context) return kExitFailure;
@@ -304,13 +309,12 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
         std::printf("  %-22s %s\n", fluid::stageName(stage), fluid::stageEntry(stage).bytesModel);
 
     if (parsed.has("markdown")) {
-        std::string body = times.text() + "\nCopy bandwidth " + fixed(copy.gigabytesPerSecond, 1) +
-                           " GB/s" +
-                           (copy.fromWallClock ? " (wall clock: the timestamps did not bracket it)"
-                                               : "") +
-                           "; each stage's rate is the bytes its model "
-                           "(fluid/stage_table.cpp) must move over its median time:\n\n" +
-                           rates.text();
+        std::string body =
+            times.text() + "\nCopy bandwidth " + fixed(copy.gigabytesPerSecond, 1) + " GB/s" +
+            (copy.fromWallClock ? " (wall clock: the timestamps did not bracket it)" : "") +
+            "; each stage's rate is the bytes its model "
+            "(fluid/stage_table.cpp) must move over its median time:\n\n" +
+            rates.text();
         const std::string title = std::string("Solver stages, ") +
                                   fluid::pressureSolverName(*pressure) + " pressure, " +
                                   (direct ? "direct" : "buffer") + " store (" + scenarioName + ")";

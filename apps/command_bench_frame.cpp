@@ -229,6 +229,11 @@ int runBenchFrame(const cli::ParsedArgs& parsed) {
     }
     std::ofstream jsonFile;
     if (!openOutputFile(parsed.value("json"), jsonFile)) return kExitFailure;
+    if (parsed.has("markdown"))
+        if (Status ok = checkMarkdownFile(parsed.value("markdown")); !ok) {
+            printError(ok.error().message);
+            return kExitFailure;
+        }
 
     const std::unique_ptr<gpu::Context> context = createTimingContext(parsed, "the passes");
     if (!context) return kExitFailure;

@@ -82,18 +82,13 @@ uint32_t SmokeGrid::recordMeasureActivity(VkCommandBuffer cmd, gpu::GpuTimer* ti
 }
 
 SmokeGrid::Activity SmokeGrid::finishFrame() {
-    const SolverActivity s = solver_->finishFrame(activity_, measured_, stepped_, rules());
     Activity a;
-    a.measured = s.measured;
-    a.largestAlpha = s.largestAlpha;
-    a.largestSpeed = s.largestSpeed;
-    a.activeBricks = s.activeBricks;
-    a.refusedBricks = s.refusedBricks;
-    if (!s.budgetError.empty() && !budgetReported_) {
-        a.budgetLine = settings_.name + ": " + s.budgetError;
+    static_cast<SolverActivity&>(a) = solver_->finishFrame(activity_, measured_, stepped_, rules());
+    if (!a.budgetError.empty() && !budgetReported_) {
+        a.budgetLine = settings_.name + ": " + a.budgetError;
         budgetReported_ = true;
     }
-    if (s.settled) awake_ = false;
+    if (a.settled) awake_ = false;
     return a;
 }
 

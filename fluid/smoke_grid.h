@@ -75,13 +75,8 @@ public:
     // Returns the dispatches it recorded (timed as "<name>/measure_activity"; 0 where the
     // solver's step measures).
     uint32_t recordMeasureActivity(VkCommandBuffer cmd, gpu::GpuTimer* timer);
-    struct Activity {
-        bool measured = false;
-        float largestAlpha = 0.0f;
-        float largestSpeed = 0.0f; // world units per second
-        // A sparse grid that stepped: its bricks after the frame's last rebuild.
-        uint32_t activeBricks = 0;
-        uint32_t refusedBricks = 0;
+    // What the solver measured (fluid/grid_solver.h), and the budget's line.
+    struct Activity : SolverActivity {
         std::string budgetLine; // the first frame past the budget only
     };
     Activity finishFrame();

@@ -11,7 +11,6 @@ namespace mfx::render {
 
 namespace {
 
-
 constexpr uint32_t kBoxVertices = 36; // six faces, two triangles each (shaders/render/smoke.vert)
 constexpr VkFormat kFluidColorFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkFormat kFluidDistanceFormat = VK_FORMAT_R32_SFLOAT;
@@ -142,18 +141,14 @@ void SmokePass::findPigmentBounds(VkCommandBuffer cmd, std::span<const Volume> v
         d.threshold = look.pigmentThreshold;
         const fluid::PigmentVolume& pigment = volumes[i].pigment;
         if (pigment.layout == fluid::PigmentLayout::BrickAtlas) {
-            if (!sparseBounds_) {
-                gpu::ComputeProgramDesc desc;
-                desc.name = "pigment_bounds_sparse";
-                desc.spirv = shaders::pigment_bounds_comp_sparse;
-                desc.pushConstantSize = sizeof(shared::PigmentBoundsDispatch);
-                sparseBounds_ = gpu::createComputeProgram(ctx_, desc);
-            }
-            sparseBounds_->bind(cmd,
-                                {gpu::bindBuffer(0, *pigment.atlas), gpu::bindBuffer(1, bounds_[i]),
-                                 gpu::bindBuffer(2, *pigment.brickTable),
-                                 gpu::bindBuffer(3, *pigment.activeList)});
-            sparseBounds_->push(cmd, d);
+            gpu::Program& sparseBounds = madeOnce(sparseBounds_, "pigment_bounds_sparse",
+                                                  shaders::pigment_bounds_comp_sparse,
+                                                  sizeof(shared::PigmentBoundsDispatch));
+            sparseBounds.bind(cmd,
+                              {gpu::bindBuffer(0, *pigment.atlas), gpu::bindBuffer(1, bounds_[i]),
+                               gpu::bindBuffer(2, *pigment.brickTable),
+                               gpu::bindBuffer(3, *pigment.activeList)});
+            sparseBounds.push(cmd, d);
             vkCmdDispatchIndirect(cmd, pigment.activeList->get(), 0);
             continue;
         }
@@ -172,12 +167,25 @@ void SmokePass::findPigmentBounds(VkCommandBuffer cmd, std::span<const Volume> v
         VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
 }
 
+gpu::Program& SmokePass::madeOnce(std::optional<gpu::Program>& slot, const char* name,
+                                  std::span<const uint32_t> spirv, uint32_t pushConstantSize) {
+    if (!slot) {
+        gpu::ComputeProgramDesc desc;
+        desc.name = name;
+        desc.spirv = spirv;
+        desc.pushConstantSize = pushConstantSize;
+        slot = gpu::createComputeProgram(ctx_, desc);
+    }
+    return *slot;
+}
+
 void SmokePass::marchLight(VkCommandBuffer cmd, size_t i, const Volume& volume,
                            const shared::SmokeDraw& draw, uint32_t maxCells) {
     const fluid::GridShape& shape = volume.shape;
     // Room for the pigment's box (found on the GPU) at a texel a cell, at most maxCells a side (a
-    // box wider than that shares a texel between cells); the march covers the box's cells only. At half the resolution a dense block's lit faces took their light from 5 cm inside,
-    // visibly darker.
+    // box wider than that shares a texel between cells); the march covers the box's cells only. At
+    // half the resolution a dense block's lit faces took their light from 5 cm inside, visibly
+    // darker.
     maxCells = std::max(maxCells, 1u);
     const VkExtent3D extent{std::min(shape.cellsX, maxCells), std::min(shape.cellsY, maxCells),
                             std::min(shape.cellsZ, maxCells)};
@@ -203,14 +211,8 @@ void SmokePass::marchLight(VkCommandBuffer cmd, size_t i, const Volume& volume,
     std::vector<gpu::DescriptorWrite> writes = {gpu::bindBuffer(2, bounds_[i]),
                                                 gpu::bindImage(5, image, VK_IMAGE_LAYOUT_GENERAL)};
     if (pigment.layout == fluid::PigmentLayout::BrickAtlas) {
-        if (!sparseLight_) {
-            gpu::ComputeProgramDesc desc;
-            desc.name = "light_transmittance_sparse";
-            desc.spirv = shaders::light_transmittance_comp_sparse;
-            desc.pushConstantSize = sizeof(shared::SmokeDraw);
-            sparseLight_ = gpu::createComputeProgram(ctx_, desc);
-        }
-        program = &*sparseLight_;
+        program = &madeOnce(sparseLight_, "light_transmittance_sparse",
+                            shaders::light_transmittance_comp_sparse, sizeof(shared::SmokeDraw));
         writes.push_back(gpu::bindBuffer(0, *pigment.atlas));
         writes.push_back(gpu::bindBuffer(4, *pigment.brickTable));
     } else {

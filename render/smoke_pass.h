@@ -103,6 +103,9 @@ private:
                            const SmokeLook& look);
     // The key light's transmittance through volume i over its pigment's box, at its grid's
     // resolution (shaders/render/light_transmittance.comp), after its bounds, for its march.
+    // The compute program in `slot`, made on first use (the sparse atlas's variants).
+    gpu::Program& madeOnce(std::optional<gpu::Program>& slot, const char* name,
+                           std::span<const uint32_t> spirv, uint32_t pushConstantSize);
     void marchLight(VkCommandBuffer cmd, size_t i, const Volume& volume,
                     const shared::SmokeDraw& draw, uint32_t maxCells);
 

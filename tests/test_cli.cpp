@@ -245,6 +245,18 @@ TEST(Cli, BenchSolverBadValuesAreOneLine) {
     EXPECT_NE(r.err.find("workgroup"), std::string::npos) << r.err;
 }
 
+// A Markdown file the tables cannot go into is refused before anything runs, in one line naming it.
+TEST(Cli, BenchMarkdownFileThatCannotBeWrittenIsOneLine) {
+    for (const char* args : {"bench solver --grids 8 --markdown /dev/null",
+                             "bench solver --grids 8 --markdown /nonexistent/folder/perf.md",
+                             "bench frame --frames 1 --markdown /dev/null"}) {
+        const RunResult r = runMotionfx(args);
+        EXPECT_EQ(r.exitCode, 1) << args;
+        EXPECT_EQ(lineCount(r.err), 1u) << args << ": " << r.err;
+        EXPECT_NE(r.err.find("Markdown"), std::string::npos) << r.err;
+    }
+}
+
 TEST(Cli, BenchSolverSparsePrintsATableWritesJsonAndAPlot) {
     const std::string dir = std::string(MFX_TEST_OUTPUT_DIR) + "/cli";
     const std::string json = dir + "/bench_sparse.json", plot = dir + "/bench_sparse.svg";

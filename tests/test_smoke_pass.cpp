@@ -370,8 +370,8 @@ TEST_F(SmokePassTest, TheLightVolumeFollowsThePigmentsBoxInsideALargerGrid) {
     double largest = 0.0;
     for (size_t i = 0; i < own.size(); ++i)
         largest = std::max(largest, double(std::abs(own[i] - padded[i])));
-    std::printf("%zu rows: largest difference %.5f (red from %.4f to %.4f)\n", own.size(),
-                largest, double(own.back()), double(own.front()));
+    std::printf("%zu rows: largest difference %.5f (red from %.4f to %.4f)\n", own.size(), largest,
+                double(own.back()), double(own.front()));
     EXPECT_LT(largest, 0.01);
 }
 
