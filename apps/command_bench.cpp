@@ -13,6 +13,7 @@
 #include "core/gpu/commands.h"
 #include "core/gpu/context.h"
 #include "core/gpu/timer.h"
+#include "fluid/gpu_multigrid.h"
 #include "fluid/scenarios.h"
 #include "fluid/smoke_solver.h"
 
@@ -88,17 +89,25 @@ std::string shapeLabel(const std::array<uint32_t, 3>& s) {
     return std::to_string(s[0]) + "x" + std::to_string(s[1]) + "x" + std::to_string(s[2]);
 }
 
+// The solver options bench solver sets on every grid's scenario.
+struct SolverChoice {
+    uint32_t jacobi = 20;
+    fluid::PressureSolver pressure = fluid::PressureSolver::Jacobi;
+    fluid::StorePath store = fluid::StorePath::Auto;
+    uint32_t coarseGroup = 0;
+};
+
 // Times one grid with one workgroup shape: the median of `steps` steps after 3 warm-up steps.
 Result<GridResult> benchGrid(const gpu::Context& ctx, const std::string& scenarioName,
                              std::array<uint32_t, 3> cells, std::array<uint32_t, 3> workgroup,
-                             uint32_t jacobi, fluid::PressureSolver pressure, uint32_t steps,
-                             fluid::StorePath store) {
+                             const SolverChoice& choice, uint32_t steps) {
     fluid::Scenario scenario =
         fluid::makeScenario(scenarioName, glm::uvec3(cells[0], cells[1], cells[2])).value();
-    scenario.options.jacobiIterations = jacobi;
-    scenario.options.pressureSolver = pressure;
+    scenario.options.jacobiIterations = choice.jacobi;
+    scenario.options.pressureSolver = choice.pressure;
     scenario.options.workgroup = workgroup;
-    scenario.options.storePath = store;
+    scenario.options.storePath = choice.store;
+    scenario.options.multigrid.coarseGroup = choice.coarseGroup;
     auto solverResult = fluid::SmokeSolver::create(ctx, scenario.options);
     if (!solverResult) return solverResult.error();
     fluid::SmokeSolver& solver = *solverResult.value();
@@ -158,7 +167,8 @@ Result<GridResult> benchGrid(const gpu::Context& ctx, const std::string& scenari
 int runBenchSolver(const cli::ParsedArgs& parsed) {
     const std::string domain = parsed.value("domain", "dense");
     if (domain == "sparse") {
-        for (const char* denseOnly : {"store", "copy-mib", "markdown", "workgroups"})
+        for (const char* denseOnly :
+             {"store", "copy-mib", "markdown", "workgroups", "coarse-group"})
             if (parsed.has(denseOnly)) {
                 printError(std::string("--") + denseOnly + " is an option of the dense domain");
                 return kExitUsage;
@@ -180,7 +190,9 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
     auto workgroups = parseWorkgroupList(
         parsed.value("workgroups", shapeLabel(fluid::SolverOptions{}.workgroup)));
     auto copyMib = cli::parseUnsigned(parsed.value("copy-mib", "256"), 1, 4096, "--copy-mib");
-    if (reportFirstError(grids, jacobi, steps, workgroups, copyMib)) return kExitUsage;
+    auto coarseGroup =
+        cli::parseUnsigned(parsed.value("coarse-group", "0"), 0, 1024, "--coarse-group");
+    if (reportFirstError(grids, jacobi, steps, workgroups, copyMib, coarseGroup)) return kExitUsage;
     const auto pressure = fluid::pressureSolverFromName(parsed.value("pressure", "jacobi"));
     if (!pressure) {
         printError("--pressure: no pressure solver \"" + parsed.value("pressure") +
@@ -219,12 +231,20 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
                 fluid::pressureSolverName(*pressure), jacobi.value(),
                 direct ? "straight into the images" : "into buffers copied into the images",
                 steps.value());
+    const uint32_t coarse = fluid::coarseCycleGroup(coarseGroup.value(), ctx);
+    const bool hierarchy = *pressure == fluid::PressureSolver::Multigrid ||
+                           *pressure == fluid::PressureSolver::MultigridPcg;
+    if (hierarchy)
+        std::printf("the coarse levels (16³ cells and below) cycled by one workgroup of %u "
+                    "invocations\n\n",
+                    coarse);
 
     std::vector<GridResult> results;
     for (const auto& cells : grids.value())
         for (const auto& workgroup : workgroups.value()) {
-            auto r = benchGrid(ctx, scenarioName, cells, workgroup, jacobi.value(), *pressure,
-                               steps.value(), *store);
+            auto r =
+                benchGrid(ctx, scenarioName, cells, workgroup,
+                          {jacobi.value(), *pressure, *store, coarseGroup.value()}, steps.value());
             if (!r) {
                 printError(r.error().message);
                 return kExitFailure;
@@ -315,9 +335,10 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
             "; each stage's rate is the bytes its model "
             "(fluid/stage_table.cpp) must move over its median time:\n\n" +
             rates.text();
-        const std::string title = std::string("Solver stages, ") +
-                                  fluid::pressureSolverName(*pressure) + " pressure, " +
-                                  (direct ? "direct" : "buffer") + " store (" + scenarioName + ")";
+        const std::string title =
+            std::string("Solver stages, ") + fluid::pressureSolverName(*pressure) + " pressure, " +
+            (hierarchy ? "coarse group " + std::to_string(coarse) + ", " : std::string()) +
+            (direct ? "direct" : "buffer") + " store (" + scenarioName + ")";
         if (Status written = writeMarkdownSection(parsed.value("markdown"), title, ctx,
                                                   reproduceCommand("bench solver", parsed), body);
             !written) {
@@ -383,6 +404,7 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
                                    {"date", todayUtc()},
                                    {"scenario", scenarioName},
                                    {"store", direct ? "direct" : "buffer"},
+                                   {"coarse_group", hierarchy ? coarse : 0u},
                                    {"steps", steps.value()},
                                    {"copy",
                                     {{"bytes", copy.bytes},

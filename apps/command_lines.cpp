@@ -127,6 +127,9 @@ CommandLine benchSolverCommandLine() {
         .option("store", "auto|buffer|direct",
                 "how stages store a whole field: into a buffer copied into the image, straight "
                 "into the image, or by the device (default auto: buffer on a CPU device)")
+        .option("coarse-group", "N",
+                "multigrid and mgpcg: invocations of the workgroup that cycles the coarse "
+                "levels (default 0: by device, 8 on a CPU device, 64 on a GPU)")
         .option("copy-mib", "N",
                 "MiB the copy-bandwidth yardstick copies (default 256, at most one storage "
                 "buffer binding)")

@@ -31,14 +31,22 @@ constexpr uint32_t kSlotDirectionProduct = 4; // (d, A d)
 constexpr uint32_t kSlotCheck = 5;            // (r, r) after an update
 constexpr uint32_t kSlotPreconditioned = 6;   // (r, z), sum z, sum r
 
-// The coarse levels' V-cycle (cycle_coarse_levels.comp) runs in one workgroup of kFusedGroup
-// invocations (one SIMD row of a CPU driver: a barrier costs the more, the more invocations
-// wait at it) on the levels of at most 64 bricks (16^3 cells). Measured on lavapipe at
-// 64^3: levels 16^3 to 2^3 as separate dispatches cost 2.4 ms per V-cycle, in one dispatch of 256
-// invocations 2.6 ms, of 8 invocations 0.8 ms.
-constexpr uint32_t kFusedGroup = 8;
+// The coarse levels' V-cycle (cycle_coarse_levels.comp) runs in one workgroup of
+// coarseGroup() invocations on the levels of at most 64 bricks (16^3 cells). On a CPU driver 8:
+// one SIMD row, where a barrier costs the more, the more invocations wait at it; measured on
+// lavapipe at 64^3, levels 16^3 to 2^3 as separate dispatches cost 2.4 ms per V-cycle, in one
+// dispatch of 256 invocations 2.6 ms, of 8 invocations 0.8 ms. On a GPU 64, one invocation per
+// brick of the first level it takes: there a phase costs its loads' latency, which 8 invocations
+// would pay eight times in a row.
+constexpr uint32_t kCpuCoarseGroup = 8;
+constexpr uint32_t kGpuCoarseGroup = 64;
 
 } // namespace
+
+uint32_t coarseCycleGroup(uint32_t requested, const gpu::Context& ctx) {
+    if (requested != 0) return requested;
+    return ctx.info().isCpu() ? kCpuCoarseGroup : kGpuCoarseGroup;
+}
 
 // --- Programs and dispatches ---------------------------------------------------------------------
 
@@ -74,7 +82,7 @@ gpu::Program& GpuMultigrid::program(Kernel kernel) {
     // Ids 0-2: the workgroup shape; 3-4: a brick's rows and layers; 5-7: the transfers' slots;
     // 8: the V-cycle's kind (MGPCG's symmetric one, or the multigrid solver's).
     const bool fused = kernel == CycleCoarseLevels;
-    desc.specialization = {fused ? kFusedGroup : options_.workgroup[0],
+    desc.specialization = {fused ? coarseGroup() : options_.workgroup[0],
                            fused ? 1u : options_.workgroup[1],
                            fused ? 1u : options_.workgroup[2],
                            kBrickRows,
@@ -85,6 +93,10 @@ gpu::Program& GpuMultigrid::program(Kernel kernel) {
                            options_.pressureSolver == PressureSolver::MultigridPcg ? 1u : 0u};
     slot = gpu::createComputeProgram(ctx_, desc);
     return slot;
+}
+
+uint32_t GpuMultigrid::coarseGroup() const {
+    return coarseCycleGroup(options_.multigrid.coarseGroup, ctx_);
 }
 
 void GpuMultigrid::barrier(VkCommandBuffer cmd) const {

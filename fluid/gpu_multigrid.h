@@ -37,6 +37,9 @@ class Context;
 
 namespace mfx::fluid {
 
+// MultigridOptions::coarseGroup on `ctx`'s device: `requested`, or with 0 the device's choice.
+uint32_t coarseCycleGroup(uint32_t requested, const gpu::Context& ctx);
+
 class GpuMultigrid {
 public:
     // The largest coarsest level solved exactly (a dense n x n operator, applied by the eight
@@ -64,6 +67,9 @@ public:
     // solve must have finished).
     uint32_t lastIterations() const;
     size_t levelCount() const { return levels_.size(); }
+    // Invocations of the workgroup that cycles the coarse levels (MultigridOptions::coarseGroup,
+    // resolved for this device).
+    uint32_t coarseGroup() const;
     uint64_t memoryBytes() const;
 
 private:

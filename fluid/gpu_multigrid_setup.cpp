@@ -19,7 +19,7 @@ namespace {
 constexpr uint32_t kSlots = 8;
 
 // The levels of at most this many bricks (16^3 cells) are cycled in one dispatch of one
-// workgroup (cycle_coarse_levels.comp; why: gpu_multigrid.cpp, kFusedGroup).
+// workgroup (cycle_coarse_levels.comp; why: gpu_multigrid.cpp, kCpuCoarseGroup).
 constexpr uint32_t kFusedBricks = 64;
 
 int vec4Elements(glm::ivec3 cells) {

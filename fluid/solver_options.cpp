@@ -39,6 +39,10 @@ Status validateOptions(const SolverOptions& o, uint32_t maxDimension, uint32_t m
     if (o.multigrid.preSmooth > 100 || o.multigrid.postSmooth > 100)
         return bad("multigrid smoothing sweeps must be at most 100");
     if (o.multigrid.cycles > 1000) return bad("multigrid cycles must be at most 1000");
+    if (o.multigrid.coarseGroup > maxInvocations)
+        return bad("multigrid coarseGroup " + std::to_string(o.multigrid.coarseGroup) +
+                   " exceeds the device's " + std::to_string(maxInvocations) +
+                   " invocations per workgroup");
     if (!finite(o.cgTolerance) || o.cgTolerance < 0.0f)
         return bad("cgTolerance must be a finite number >= 0");
     if (o.cgMaxIterations > 10000) return bad("cgMaxIterations must be at most 10000");

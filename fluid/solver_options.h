@@ -58,6 +58,11 @@ struct MultigridOptions {
     uint32_t preSmooth = 2;  // red-black Gauss-Seidel sweeps before restriction, per level
     uint32_t postSmooth = 2; // ... after prolongation
     uint32_t cycles = 2;     // V-cycles (PressureSolver::Multigrid)
+    // Invocations of the one workgroup that cycles the coarse levels (cycle_coarse_levels.comp);
+    // 0: by device, 8 on a CPU device (a barrier costs the more there, the more invocations wait
+    // at it), 64 on a GPU (one per brick of the finest level it takes: with fewer, each phase's
+    // loads are serialised in a handful of threads). The result does not depend on it.
+    uint32_t coarseGroup = 0;
 };
 
 // Names as the command line and the benchmarks spell them ("jacobi", "rbgs", "multigrid",
