@@ -95,6 +95,7 @@ struct SolverChoice {
     fluid::PressureSolver pressure = fluid::PressureSolver::Jacobi;
     fluid::StorePath store = fluid::StorePath::Auto;
     uint32_t coarseGroup = 0;
+    fluid::ByDevice residualInRestriction = fluid::ByDevice::Auto;
 };
 
 // Times one grid with one workgroup shape: the median of `steps` steps after 3 warm-up steps.
@@ -108,6 +109,7 @@ Result<GridResult> benchGrid(const gpu::Context& ctx, const std::string& scenari
     scenario.options.workgroup = workgroup;
     scenario.options.storePath = choice.store;
     scenario.options.multigrid.coarseGroup = choice.coarseGroup;
+    scenario.options.multigrid.residualInRestriction = choice.residualInRestriction;
     auto solverResult = fluid::SmokeSolver::create(ctx, scenario.options);
     if (!solverResult) return solverResult.error();
     fluid::SmokeSolver& solver = *solverResult.value();
@@ -167,8 +169,8 @@ Result<GridResult> benchGrid(const gpu::Context& ctx, const std::string& scenari
 int runBenchSolver(const cli::ParsedArgs& parsed) {
     const std::string domain = parsed.value("domain", "dense");
     if (domain == "sparse") {
-        for (const char* denseOnly :
-             {"store", "copy-mib", "markdown", "workgroups", "coarse-group"})
+        for (const char* denseOnly : {"store", "copy-mib", "markdown", "workgroups", "coarse-group",
+                                      "residual-in-restriction"})
             if (parsed.has(denseOnly)) {
                 printError(std::string("--") + denseOnly + " is an option of the dense domain");
                 return kExitUsage;
@@ -193,6 +195,14 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
     auto coarseGroup =
         cli::parseUnsigned(parsed.value("coarse-group", "0"), 0, 1024, "--coarse-group");
     if (reportFirstError(grids, jacobi, steps, workgroups, copyMib, coarseGroup)) return kExitUsage;
+    const std::string fusedName = parsed.value("residual-in-restriction", "auto");
+    if (fusedName != "auto" && fusedName != "on" && fusedName != "off") {
+        printError("--residual-in-restriction must be auto, on or off, not \"" + fusedName + "\"");
+        return kExitUsage;
+    }
+    const fluid::ByDevice fused = fusedName == "on"    ? fluid::ByDevice::On
+                                  : fusedName == "off" ? fluid::ByDevice::Off
+                                                       : fluid::ByDevice::Auto;
     const auto pressure = fluid::pressureSolverFromName(parsed.value("pressure", "jacobi"));
     if (!pressure) {
         printError("--pressure: no pressure solver \"" + parsed.value("pressure") +
@@ -234,17 +244,23 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
     const uint32_t coarse = fluid::coarseCycleGroup(coarseGroup.value(), ctx);
     const bool hierarchy = *pressure == fluid::PressureSolver::Multigrid ||
                            *pressure == fluid::PressureSolver::MultigridPcg;
+    fluid::SolverOptions resolved;
+    resolved.pressureSolver = *pressure;
+    resolved.multigrid.residualInRestriction = fused;
+    const bool residualFused = fluid::residualInRestriction(resolved, ctx);
     if (hierarchy)
         std::printf("the coarse levels (16³ cells and below) cycled by one workgroup of %u "
-                    "invocations\n\n",
-                    coarse);
+                    "invocations; the residual %s\n\n",
+                    coarse,
+                    residualFused ? "computed by the restriction"
+                                  : "written by a pass before the restriction");
 
     std::vector<GridResult> results;
     for (const auto& cells : grids.value())
         for (const auto& workgroup : workgroups.value()) {
-            auto r =
-                benchGrid(ctx, scenarioName, cells, workgroup,
-                          {jacobi.value(), *pressure, *store, coarseGroup.value()}, steps.value());
+            auto r = benchGrid(ctx, scenarioName, cells, workgroup,
+                               {jacobi.value(), *pressure, *store, coarseGroup.value(), fused},
+                               steps.value());
             if (!r) {
                 printError(r.error().message);
                 return kExitFailure;
@@ -405,6 +421,7 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
                                    {"scenario", scenarioName},
                                    {"store", direct ? "direct" : "buffer"},
                                    {"coarse_group", hierarchy ? coarse : 0u},
+                                   {"residual_in_restriction", residualFused},
                                    {"steps", steps.value()},
                                    {"copy",
                                     {{"bytes", copy.bytes},

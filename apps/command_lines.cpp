@@ -130,6 +130,9 @@ CommandLine benchSolverCommandLine() {
         .option("coarse-group", "N",
                 "multigrid and mgpcg: invocations of the workgroup that cycles the coarse "
                 "levels (default 0: by device, 8 on a CPU device, 64 on a GPU)")
+        .option("residual-in-restriction", "auto|on|off",
+                "multigrid: the restriction computes the residual instead of a pass before it "
+                "(default auto: on a GPU only)")
         .option("copy-mib", "N",
                 "MiB the copy-bandwidth yardstick copies (default 256, at most one storage "
                 "buffer binding)")

@@ -48,6 +48,12 @@ uint32_t coarseCycleGroup(uint32_t requested, const gpu::Context& ctx) {
     return ctx.info().isCpu() ? kCpuCoarseGroup : kGpuCoarseGroup;
 }
 
+bool residualInRestriction(const SolverOptions& options, const gpu::Context& ctx) {
+    if (options.pressureSolver != PressureSolver::Multigrid) return false;
+    const ByDevice choice = options.multigrid.residualInRestriction;
+    return choice == ByDevice::On || (choice == ByDevice::Auto && !ctx.info().isCpu());
+}
+
 // --- Programs and dispatches ---------------------------------------------------------------------
 
 gpu::Program& GpuMultigrid::program(Kernel kernel) {
@@ -80,7 +86,8 @@ gpu::Program& GpuMultigrid::program(Kernel kernel) {
     desc.spirv = sources[kernel].spirv;
     desc.pushConstantSize = sizeof(shared::PressureDispatch);
     // Ids 0-2: the workgroup shape; 3-4: a brick's rows and layers; 5-7: the transfers' slots;
-    // 8: the V-cycle's kind (MGPCG's symmetric one, or the multigrid solver's).
+    // 8: the V-cycle's kind (MGPCG's symmetric one, or the multigrid solver's); 9: the residual
+    // computed by the restriction.
     const bool fused = kernel == CycleCoarseLevels;
     desc.specialization = {fused ? coarseGroup() : options_.workgroup[0],
                            fused ? 1u : options_.workgroup[1],
@@ -90,7 +97,8 @@ gpu::Program& GpuMultigrid::program(Kernel kernel) {
                            uint32_t(prolongSlots_),
                            uint32_t(restrictSlotsX_),
                            uint32_t(restrictSlotsYZ_),
-                           options_.pressureSolver == PressureSolver::MultigridPcg ? 1u : 0u};
+                           options_.pressureSolver == PressureSolver::MultigridPcg ? 1u : 0u,
+                           residualInRestriction(options_, ctx_) ? 1u : 0u};
     slot = gpu::createComputeProgram(ctx_, desc);
     return slot;
 }
@@ -250,15 +258,19 @@ void GpuMultigrid::vCycle(VkCommandBuffer cmd, size_t l, int rhs, uint32_t preSm
     Level& coarse = levels_[l + 1];
     relax(cmd, l, rhs, preSmooth, false, startFromZero, indirect);
 
-    shared::PressureDispatch residual = push(int(l));
-    residual.source = level.x[size_t(level.current)];
-    residual.rhs = rhs;
-    residual.result = level.r;
-    run(cmd, ComputeResidual, residual, Grid::Level, indirect);
-
-    // On the coarse level's elements; the coarse correction starts at 0.
+    // On the coarse level's elements; the coarse correction starts at 0. The restriction restricts
+    // the residual vector, or computes the residual of x as it goes (residualInRestriction).
     shared::PressureDispatch restriction = push(int(l));
-    restriction.source = level.r;
+    restriction.source = level.x[size_t(level.current)];
+    restriction.rhs = rhs;
+    if (!residualInRestriction(options_, ctx_)) {
+        shared::PressureDispatch residual = push(int(l));
+        residual.source = level.x[size_t(level.current)];
+        residual.rhs = rhs;
+        residual.result = level.r;
+        run(cmd, ComputeResidual, residual, Grid::Level, indirect);
+        restriction.source = level.r;
+    }
     restriction.result = coarse.b;
     restriction.other = coarse.x[size_t(coarse.current)];
     run(cmd, RestrictResidual, restriction, Grid::Level, indirect, int(l + 1));

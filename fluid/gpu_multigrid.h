@@ -39,6 +39,9 @@ namespace mfx::fluid {
 
 // MultigridOptions::coarseGroup on `ctx`'s device: `requested`, or with 0 the device's choice.
 uint32_t coarseCycleGroup(uint32_t requested, const gpu::Context& ctx);
+// Whether `options`' V-cycle restricts with the residual computed in the restriction
+// (MultigridOptions::residualInRestriction on `ctx`'s device; the multigrid solver only).
+bool residualInRestriction(const SolverOptions& options, const gpu::Context& ctx);
 
 class GpuMultigrid {
 public:

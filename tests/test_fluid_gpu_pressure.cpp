@@ -132,18 +132,33 @@ const Variant kRedBlackVariants[] = {
          o.warmStart = true;
      }}};
 
-const Variant kMultigridVariants[] = {{"2 cycles 2+2 cold",
-                                       [](SolverOptions& o) {
-                                           o.multigrid.cycles = 2;
-                                           o.multigrid.preSmooth = 2;
-                                           o.multigrid.postSmooth = 2;
-                                       }},
-                                      {"1 cycle 1+3 warm", [](SolverOptions& o) {
-                                           o.multigrid.cycles = 1;
-                                           o.multigrid.preSmooth = 1;
-                                           o.multigrid.postSmooth = 3;
-                                           o.warmStart = true;
-                                       }}};
+const Variant kMultigridVariants[] = {
+    {"2 cycles 2+2 cold",
+     [](SolverOptions& o) {
+         o.multigrid.cycles = 2;
+         o.multigrid.preSmooth = 2;
+         o.multigrid.postSmooth = 2;
+     }},
+    {"1 cycle 1+3 warm",
+     [](SolverOptions& o) {
+         o.multigrid.cycles = 1;
+         o.multigrid.preSmooth = 1;
+         o.multigrid.postSmooth = 3;
+         o.warmStart = true;
+     }},
+    // The GPU's restriction, which computes the residual.
+    {"2 cycles 2+2 cold, residual in restriction",
+     [](SolverOptions& o) {
+         o.multigrid.cycles = 2;
+         o.multigrid.residualInRestriction = fluid::ByDevice::On;
+     }},
+    {"1 cycle 1+3 warm, residual in restriction", [](SolverOptions& o) {
+         o.multigrid.cycles = 1;
+         o.multigrid.preSmooth = 1;
+         o.multigrid.postSmooth = 3;
+         o.warmStart = true;
+         o.multigrid.residualInRestriction = fluid::ByDevice::On;
+     }}};
 
 // A tolerance of 0 runs exactly cgMaxIterations iterations on both sides (a stop on a
 // tolerance is checked on its own below: near the tolerance, fp32 and fp64 could stop one
@@ -177,6 +192,23 @@ TEST_F(GpuPressureTest, MultigridMatchesReferenceEvenGrid) {
 
 TEST_F(GpuPressureTest, MultigridMatchesReferenceOddGrid) {
     matchesReference(*this, kOddGrid, PressureSolver::Multigrid, kMultigridVariants);
+}
+
+// A grid whose level 1 is odd and dispatched over the whole level (300 bricks): its cells halve
+// with a lone first cell (Multigrid's constructor), so R0's coarse bricks do not start on a
+// fine brick, and a restriction that computes the residual computes it over the shifted range.
+TEST_F(GpuPressureTest, MultigridMatchesReferenceShiftedLevel) {
+    constexpr GridShape grid{74, 44, 38, 0.05f};
+    uint32_t seed = 900;
+    for (fluid::ByDevice fused : {fluid::ByDevice::Off, fluid::ByDevice::On})
+        for (Boundaries b : {Boundaries::Mixed, Boundaries::Periodic}) {
+            SolverOptions options = pressureOptions(grid, b, PressureSolver::Multigrid);
+            options.multigrid.cycles = 1;
+            options.multigrid.residualInRestriction = fused;
+            const double d = solveBoth(options, randomState(grid, ++seed));
+            EXPECT_LE(d, 1e-5) << boundariesName(b) << " residual in restriction "
+                               << (fused == fluid::ByDevice::On ? "on" : "off");
+        }
 }
 
 TEST_F(GpuPressureTest, MgpcgMatchesReferenceEvenGrid) {

@@ -37,7 +37,7 @@ ivec3 brickOrigin(ivec3 bricks, int index) {
 
 // The phases of the cycle, in order (each separated from the next by a barrier):
 const int kPhaseRelax = 0;    // a half-sweep of level `level`
-const int kPhaseResidual = 1; // its residual
+const int kPhaseResidual = 1; // its residual (unless the restriction computes it)
 const int kPhaseRestrict = 2; // onto level `level` + 1
 const int kPhaseCoarsest = 3; // the coarsest level's exact solve
 const int kPhaseProlong = 4;  // level `level` + 1's correction onto level `level`
@@ -48,13 +48,20 @@ struct Phase {
     bool post;     // kPhaseRelax: post-smoothing
 };
 
+// The phases per level on the way down: 2 preSmooth half-sweeps, the residual (kResidualPass)
+// and the restriction.
+int phasesPerLevelDown() {
+    return 2 * int(pc.preSmooth) + (kResidualPass ? 2 : 1);
+}
+
 // Phase `index` of the cycle from level `first` to the coarsest: per level on the way down
-// 2 preSmooth half-sweeps, the residual and the restriction; the coarsest solve; per level on the
+// 2 preSmooth half-sweeps, the residual (kResidualPass) and the restriction; the coarsest
+// solve; per level on the
 // way up the prolongation and 2 postSmooth half-sweeps. (Decoded rather than written as nested
 // loops, so that each operation has one call site: the shader's size, and its compile time, stay
 // those of the operations once each.)
 Phase phaseAt(int index, int first, int coarsest) {
-    int down = 2 * int(pc.preSmooth) + 2;
+    int down = phasesPerLevelDown();
     int up = 1 + 2 * int(pc.postSmooth);
     int downPhases = down * (coarsest - first);
     Phase p;
@@ -63,7 +70,8 @@ Phase phaseAt(int index, int first, int coarsest) {
     if (index < downPhases) {
         p.level = first + index / down;
         int i = index % down;
-        p.kind = i < down - 2 ? kPhaseRelax : (i == down - 2 ? kPhaseResidual : kPhaseRestrict);
+        int relaxPhases = 2 * int(pc.preSmooth);
+        p.kind = i < relaxPhases ? kPhaseRelax : (i == down - 1 ? kPhaseRestrict : kPhaseResidual);
         p.halfSweep = i;
     } else if (index == downPhases) {
         p.kind = kPhaseCoarsest;
@@ -82,7 +90,7 @@ Phase phaseAt(int index, int first, int coarsest) {
 void main() {
     int first = pc.level;
     int coarsest = int(pc.limit) - 1;
-    int phases = (2 * int(pc.preSmooth) + 2) * (coarsest - first) + 1 +
+    int phases = phasesPerLevelDown() * (coarsest - first) + 1 +
                  (1 + 2 * int(pc.postSmooth)) * (coarsest - first);
     int lane = int(gl_LocalInvocationIndex);
     for (int index = 0; index < phases; ++index) {
@@ -100,7 +108,8 @@ void main() {
         } else if (p.kind == kPhaseRestrict) {
             ivec4 coarse = levels[p.level + 1].vectors;
             for (int i = lane; i < count; i += groupSize())
-                restrictBrick(p.level, x.w, coarse.z, coarse.x, brickOrigin(bricks, i));
+                restrictBrick(p.level, kResidualPass ? x.w : x.x, rhs, coarse.z, coarse.x,
+                              brickOrigin(bricks, i));
         } else {
             // A half-sweep (the live x alternates between the level's two, and is the first
             // again after an even count; the smoothing is red-black, the preconditioner's

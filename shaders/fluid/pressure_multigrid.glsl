@@ -22,6 +22,11 @@ layout(constant_id = 7) const int kRestrictSlotsYZ = 10;
 // Which V-cycle the solver runs: the multigrid solver's (restriction R0) or the MGPCG
 // preconditioner's (P^T, and black-red post-smoothing): only one is compiled.
 layout(constant_id = 8) const bool kSymmetric = false;
+// The multigrid solver's restriction computes the residual it restricts (no residual pass before
+// it): MultigridOptions::residualInRestriction.
+layout(constant_id = 9) const bool kResidualInRestriction = false;
+// Whether the V-cycle runs a residual pass before its restriction.
+const bool kResidualPass = kSymmetric || !kResidualInRestriction;
 
 // --- Stencils: red-black relaxation, residual, A p ------------------------------------------------
 
@@ -29,6 +34,7 @@ layout(constant_id = 8) const bool kSymmetric = false;
 const int kVisitRelax = 0;
 const int kVisitResidual = 1;
 const int kVisitApply = 2;
+const int kVisitRestrict = 3;
 int visitMode = kVisitRelax;
 int visitLevel = 0;
 int visitRhs = 0;
@@ -36,6 +42,10 @@ int visitResult = 0;
 int visitColour = 0;
 // Sums over the rows visited: residual: sum r; A p: (p, A p).
 vec4 visitSums = vec4(0.0);
+// kVisitRestrict: the coarse brick (its first element, row and layer) whose right-hand side the
+// visited rows' residuals are summed into, by the coarse cell each fine cell lies in.
+ivec3 visitCoarseOrigin = ivec3(0);
+vec4 visitCoarse[kBrickLayers][kBrickRows];
 
 void visitRow(ivec3 q, int element, vec4 centre, vec4 weighted, vec4 total) {
     if (visitMode == kVisitRelax) {
@@ -50,6 +60,18 @@ void visitRow(ivec3 q, int element, vec4 centre, vec4 weighted, vec4 total) {
         vec4 r = vectors[visitRhs + element] - (total * centre - weighted); // padding: 0
         vectors[visitResult + element] = r;
         visitSums.x += r.x + r.y + r.z + r.w;
+    } else if (visitMode == kVisitRestrict) {
+        // R0 of the residual: each fine cell's r into its parent (MultigridAxisCell's
+        // neighbours.z) when the parent lies in the coarse brick (padding: parent -1).
+        vec4 r = vectors[visitRhs + element] - (total * centre - weighted);
+        ivec4 axes = levels[visitLevel].axisCells;
+        int row = axisCells[axes.y + q.y].neighbours.z - visitCoarseOrigin.y;
+        int layer = axisCells[axes.z + q.z].neighbours.z - visitCoarseOrigin.z;
+        if (row < 0 || row >= kBrickRows || layer < 0 || layer >= kBrickLayers) return;
+        for (int c = 0; c < 4; ++c) {
+            int column = axisCells[axes.x + 4 * q.x + c].neighbours.z - 4 * visitCoarseOrigin.x;
+            if (column >= 0 && column < 4) visitCoarse[layer][row][column] += r[c];
+        }
     } else {
         vec4 product = total * centre - weighted;
         vectors[visitResult + element] = product;
@@ -134,6 +156,50 @@ void restrictSumBrick(int level, int source, int result, int correction, ivec3 o
             vectors[correction + element] = vec4(0.0);
         }
     }
+}
+
+// The same with the residual r = b - A p computed here from p (`source`) and b (`rhs`), by the
+// stencil compute_residual runs (the same arithmetic, so the same r), rather than read from a
+// vector a dispatch wrote before: one dispatch and a write and a read of r fewer per level
+// (kResidualInRestriction). The
+// fine cells of the brick's coarse cells are visited as fine bricks from the first one's first
+// fine cell: 2 x 2 x 2 of them where each axis halves from an even start; a parent shifted by
+// a lone first cell (Multigrid's constructor) costs up to a third more along x.
+void restrictResidualSumBrick(int level, int source, int rhs, int result, int correction,
+                               ivec3 origin) {
+    int coarse = level + 1;
+    ivec4 cells = levels[coarse].cells;
+    ivec4 lists = levels[level].restrictSum;
+    ivec3 last = ivec3(min(4 * origin.x + 3, cells.x - 1), min(origin.y + kBrickRows - 1, cells.y - 1),
+                       min(origin.z + kBrickLayers - 1, cells.z - 1));
+    // The fine range: the first coarse cell's first fine cell to the last one's last.
+    ivec3 first = ivec3(restrictions[lists.x + 4 * origin.x].fine.x,
+                        restrictions[lists.y + origin.y].fine.x,
+                        restrictions[lists.z + origin.z].fine.x);
+    ivec2 lastX = restrictions[lists.x + last.x].fine.xy;
+    ivec2 lastY = restrictions[lists.y + last.y].fine.xy;
+    ivec2 lastZ = restrictions[lists.z + last.z].fine.xy;
+    ivec3 end = ivec3(max(lastX.x, lastX.y), max(lastY.x, lastY.y), max(lastZ.x, lastZ.y));
+
+    for (int l = 0; l < kBrickLayers; ++l)
+        for (int r = 0; r < kBrickRows; ++r)
+            visitCoarse[l][r] = vec4(0.0);
+    visitMode = kVisitRestrict;
+    visitLevel = level;
+    visitRhs = rhs;
+    visitCoarseOrigin = origin;
+    for (int z = first.z; z <= end.z; z += kBrickLayers)
+        for (int y = first.y; y <= end.y; y += kBrickRows)
+            for (int x = first.x / 4; x <= end.x / 4; ++x)
+                stencilBrick(level, source, ivec3(x, y, z), false);
+    for (int l = 0; l < kBrickLayers; ++l)
+        for (int r = 0; r < kBrickRows; ++r) {
+            ivec3 q = origin + ivec3(0, r, l);
+            if (q.y >= cells.y || q.z >= cells.z) continue;
+            int element = elementIndex(cells, q.x, q.y, q.z);
+            vectors[result + element] = visitCoarse[l][r];
+            vectors[correction + element] = vec4(0.0);
+        }
 }
 
 // P^T: separably, each fine row restricted along x once (to the brick's four coarse cells), then
@@ -320,10 +386,14 @@ void prolongBrick(int level, int source, int result, ivec3 origin) {
         }
 }
 
-// The solver's restriction (kSymmetric: P^T, else R0).
-void restrictBrick(int level, int source, int result, int correction, ivec3 origin) {
+// The solver's restriction onto the coarse brick at `origin`. kSymmetric: P^T of the residual
+// vector `source`; else R0, of the residual vector `source` or, with kResidualInRestriction, of
+// the residual of p = `source` for b = `rhs`, computed here.
+void restrictBrick(int level, int source, int rhs, int result, int correction, ivec3 origin) {
     if (kSymmetric)
         restrictTransposeBrick(level, source, result, correction, origin);
+    else if (kResidualInRestriction)
+        restrictResidualSumBrick(level, source, rhs, result, correction, origin);
     else
         restrictSumBrick(level, source, result, correction, origin);
 }
