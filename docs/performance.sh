@@ -17,11 +17,20 @@ gpu)
         --plot "$plots/bench_solver_roofline_gpu.svg" --json out/bench_solver_gpu.json
     "$MOTIONFX" bench solver --grids 256,128,64 --steps 20 --store buffer --markdown "$out"
     "$MOTIONFX" bench solver --grids 256,128,64 --steps 10 --pressure multigrid --markdown "$out"
+    # The multigrid's by-device choices the other way: the lavapipe coarse workgroup (8), the
+    # residual pass before the restriction; then MGPCG.
+    "$MOTIONFX" bench solver --grids 256,128,64 --steps 10 --pressure multigrid --coarse-group 8 \
+        --markdown "$out"
+    "$MOTIONFX" bench solver --grids 256,128,64 --steps 10 --pressure multigrid \
+        --residual-in-restriction off --markdown "$out"
+    "$MOTIONFX" bench solver --grids 256,128,64 --steps 10 --pressure mgpcg --markdown "$out"
     # Time to a divergence 1e-3 of the start at 128^3 (printed; not a Markdown section yet).
     "$MOTIONFX" bench accuracy --grid 16 --steps 4 --scenarios puff --target-grid 128 \
         --csv out/bench_accuracy_gpu.csv --plot out/bench_accuracy_gpu.svg
     # Frames: the hero frame at 1920x1080 and 960x540; the sparse kick against the dense grid.
     "$MOTIONFX" bench frame --size 1920x1080 --frames 60 --markdown "$out"
+    # A per-sample cost (the rasteriser's, the ROPs') falls about 4x with one sample.
+    "$MOTIONFX" bench frame --size 1920x1080 --frames 60 --samples 1 --markdown "$out"
     "$MOTIONFX" bench frame --frames 60 --markdown "$out"
     "$MOTIONFX" bench frame docs/scenes/smoke.json --sparse 256 --frames 60 --markdown "$out"
     ;;

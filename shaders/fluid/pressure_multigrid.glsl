@@ -164,7 +164,7 @@ void restrictSumBrick(int level, int source, int result, int correction, ivec3 o
 // (kResidualInRestriction). The
 // fine cells of the brick's coarse cells are visited as fine bricks from the first one's first
 // fine cell: 2 x 2 x 2 of them where each axis halves from an even start; a parent shifted by
-// a lone first cell (Multigrid's constructor) costs up to a third more along x.
+// a lone first cell (Multigrid's constructor) visits three fine elements along x instead of two.
 void restrictResidualSumBrick(int level, int source, int rhs, int result, int correction,
                                ivec3 origin) {
     int coarse = level + 1;
