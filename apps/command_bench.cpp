@@ -195,14 +195,12 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
     auto coarseGroup =
         cli::parseUnsigned(parsed.value("coarse-group", "0"), 0, 1024, "--coarse-group");
     if (reportFirstError(grids, jacobi, steps, workgroups, copyMib, coarseGroup)) return kExitUsage;
-    const std::string fusedName = parsed.value("residual-in-restriction", "auto");
-    if (fusedName != "auto" && fusedName != "on" && fusedName != "off") {
-        printError("--residual-in-restriction must be auto, on or off, not \"" + fusedName + "\"");
+    const auto fused = fluid::byDeviceFromName(parsed.value("residual-in-restriction", "auto"));
+    if (!fused) {
+        printError("--residual-in-restriction must be auto, on or off, not \"" +
+                   parsed.value("residual-in-restriction") + "\"");
         return kExitUsage;
     }
-    const fluid::ByDevice fused = fusedName == "on"    ? fluid::ByDevice::On
-                                  : fusedName == "off" ? fluid::ByDevice::Off
-                                                       : fluid::ByDevice::Auto;
     const auto pressure = fluid::pressureSolverFromName(parsed.value("pressure", "jacobi"));
     if (!pressure) {
         printError("--pressure: no pressure solver \"" + parsed.value("pressure") +
@@ -246,7 +244,7 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
                            *pressure == fluid::PressureSolver::MultigridPcg;
     fluid::SolverOptions resolved;
     resolved.pressureSolver = *pressure;
-    resolved.multigrid.residualInRestriction = fused;
+    resolved.multigrid.residualInRestriction = *fused;
     const bool residualFused = fluid::residualInRestriction(resolved, ctx);
     if (hierarchy)
         std::printf("the coarse levels (16³ cells and below) cycled by one workgroup of %u "
@@ -259,7 +257,7 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
     for (const auto& cells : grids.value())
         for (const auto& workgroup : workgroups.value()) {
             auto r = benchGrid(ctx, scenarioName, cells, workgroup,
-                               {jacobi.value(), *pressure, *store, coarseGroup.value(), fused},
+                               {jacobi.value(), *pressure, *store, coarseGroup.value(), *fused},
                                steps.value());
             if (!r) {
                 printError(r.error().message);

@@ -83,6 +83,8 @@ constexpr NamedValue<Storage> kStorageNames[] = {{Storage::Float32, "fp32"},
                                                  {Storage::Float16, "fp16"}};
 constexpr NamedValue<StorePath> kStorePathNames[] = {
     {StorePath::Auto, "auto"}, {StorePath::Buffer, "buffer"}, {StorePath::Direct, "direct"}};
+constexpr NamedValue<ByDevice> kByDeviceNames[] = {
+    {ByDevice::Auto, "auto"}, {ByDevice::Off, "off"}, {ByDevice::On, "on"}};
 } // namespace
 
 const char* pressureSolverName(PressureSolver solver) {
@@ -115,6 +117,10 @@ const char* storePathName(StorePath path) {
 
 std::optional<StorePath> storePathFromName(std::string_view name) {
     return valueOf(name, kStorePathNames);
+}
+
+std::optional<ByDevice> byDeviceFromName(std::string_view name) {
+    return valueOf(name, kByDeviceNames);
 }
 
 Status validateSparseOptions(const SolverOptions& o, uint32_t maxDimension,

@@ -83,6 +83,7 @@ const char* storageName(Storage storage);
 std::optional<Storage> storageFromName(std::string_view name);
 const char* storePathName(StorePath path); // "auto", "buffer", "direct"
 std::optional<StorePath> storePathFromName(std::string_view name);
+std::optional<ByDevice> byDeviceFromName(std::string_view name); // "auto", "off", "on"
 
 // Domain faces in the order -x, +x, -y, +y, -z, +z.
 enum Face { FaceLowX = 0, FaceHighX, FaceLowY, FaceHighY, FaceLowZ, FaceHighZ };

@@ -43,7 +43,8 @@ int visitColour = 0;
 // Sums over the rows visited: residual: sum r; A p: (p, A p).
 vec4 visitSums = vec4(0.0);
 // kVisitRestrict: the coarse brick (its first element, row and layer) whose right-hand side the
-// visited rows' residuals are summed into, by the coarse cell each fine cell lies in.
+// visited rows' residuals are summed into, by the coarse cell each fine cell lies in; the P^T
+// restriction sums into visitCoarse too (storeCoarseBrick writes it).
 ivec3 visitCoarseOrigin = ivec3(0);
 vec4 visitCoarse[kBrickLayers][kBrickRows];
 
@@ -121,6 +122,19 @@ int fineIndex(int n, int u) {
     return u < 0 ? u + n : (u >= n ? u - n : u);
 }
 
+// A restriction's result: the coarse brick at `origin` (its rows and layers inside the level, of
+// `cells`) takes visitCoarse as its b (`result`) and 0 as its correction.
+void storeCoarseBrick(ivec4 cells, ivec3 origin, int result, int correction) {
+    for (int l = 0; l < kBrickLayers; ++l)
+        for (int r = 0; r < kBrickRows; ++r) {
+            ivec3 q = origin + ivec3(0, r, l);
+            if (q.y >= cells.y || q.z >= cells.z) continue;
+            int element = elementIndex(cells, q.x, q.y, q.z);
+            vectors[result + element] = visitCoarse[l][r];
+            vectors[correction + element] = vec4(0.0);
+        }
+}
+
 // R0: each coarse cell sums the residuals of the (up to 2 x 2 x 2) fine cells it covers.
 void restrictSumBrick(int level, int source, int result, int correction, ivec3 origin) {
     int coarse = level + 1;
@@ -192,14 +206,7 @@ void restrictResidualSumBrick(int level, int source, int rhs, int result, int co
         for (int y = first.y; y <= end.y; y += kBrickRows)
             for (int x = first.x / 4; x <= end.x / 4; ++x)
                 stencilBrick(level, source, ivec3(x, y, z), false);
-    for (int l = 0; l < kBrickLayers; ++l)
-        for (int r = 0; r < kBrickRows; ++r) {
-            ivec3 q = origin + ivec3(0, r, l);
-            if (q.y >= cells.y || q.z >= cells.z) continue;
-            int element = elementIndex(cells, q.x, q.y, q.z);
-            vectors[result + element] = visitCoarse[l][r];
-            vectors[correction + element] = vec4(0.0);
-        }
+    storeCoarseBrick(cells, origin, result, correction);
 }
 
 // P^T: separably, each fine row restricted along x once (to the brick's four coarse cells), then
@@ -251,10 +258,9 @@ void restrictTransposeBrick(int level, int source, int result, int correction, i
     for (int s = 0; s < kRestrictSlotsX; ++s)
         columnX[s] = fineIndex(fineCells.x, baseX + s);
 
-    vec4 b[kBrickLayers][kBrickRows];
     for (int l = 0; l < kBrickLayers; ++l)
         for (int r = 0; r < kBrickRows; ++r)
-            b[l][r] = vec4(0.0);
+            visitCoarse[l][r] = vec4(0.0);
     for (int sz = 0; sz <= lastZ - baseZ; ++sz) {
         int z = fineIndex(fineCells.z, baseZ + sz);
         vec4 alongY[kBrickRows];
@@ -276,17 +282,10 @@ void restrictTransposeBrick(int level, int source, int result, int correction, i
             for (int k = 0; k < 4; ++k)
                 w += fineZ[l][k] == sz ? weightZ[l][k] : 0.0;
             for (int r = 0; r < kBrickRows; ++r)
-                b[l][r] += w * alongY[r];
+                visitCoarse[l][r] += w * alongY[r];
         }
     }
-    for (int l = 0; l < kBrickLayers; ++l)
-        for (int r = 0; r < kBrickRows; ++r) {
-            ivec3 q = origin + ivec3(0, r, l);
-            if (q.y >= cells.y || q.z >= cells.z) continue;
-            int element = elementIndex(cells, q.x, q.y, q.z);
-            vectors[result + element] = b[l][r];
-            vectors[correction + element] = vec4(0.0);
-        }
+    storeCoarseBrick(cells, origin, result, correction);
 }
 
 // Coarse index `u` along an axis of the coarse level, given relative to the axis (-1 and n lie
