@@ -96,6 +96,7 @@ struct SolverChoice {
     fluid::StorePath store = fluid::StorePath::Auto;
     uint32_t coarseGroup = 0;
     fluid::ByDevice residualInRestriction = fluid::ByDevice::Auto;
+    fluid::ByDevice firstSweepInDivergence = fluid::ByDevice::Auto;
 };
 
 // Times one grid with one workgroup shape: the median of `steps` steps after 3 warm-up steps.
@@ -110,6 +111,7 @@ Result<GridResult> benchGrid(const gpu::Context& ctx, const std::string& scenari
     scenario.options.storePath = choice.store;
     scenario.options.multigrid.coarseGroup = choice.coarseGroup;
     scenario.options.multigrid.residualInRestriction = choice.residualInRestriction;
+    scenario.options.firstSweepInDivergence = choice.firstSweepInDivergence;
     auto solverResult = fluid::SmokeSolver::create(ctx, scenario.options);
     if (!solverResult) return solverResult.error();
     fluid::SmokeSolver& solver = *solverResult.value();
@@ -170,7 +172,7 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
     const std::string domain = parsed.value("domain", "dense");
     if (domain == "sparse") {
         for (const char* denseOnly : {"store", "copy-mib", "markdown", "workgroups", "coarse-group",
-                                      "residual-in-restriction"})
+                                      "residual-in-restriction", "first-sweep-in-divergence"})
             if (parsed.has(denseOnly)) {
                 printError(std::string("--") + denseOnly + " is an option of the dense domain");
                 return kExitUsage;
@@ -196,11 +198,14 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
         cli::parseUnsigned(parsed.value("coarse-group", "0"), 0, 1024, "--coarse-group");
     if (reportFirstError(grids, jacobi, steps, workgroups, copyMib, coarseGroup)) return kExitUsage;
     const auto fused = fluid::byDeviceFromName(parsed.value("residual-in-restriction", "auto"));
-    if (!fused) {
-        printError("--residual-in-restriction must be auto, on or off, not \"" +
-                   parsed.value("residual-in-restriction") + "\"");
-        return kExitUsage;
-    }
+    const auto firstSweep =
+        fluid::byDeviceFromName(parsed.value("first-sweep-in-divergence", "auto"));
+    for (const char* option : {"residual-in-restriction", "first-sweep-in-divergence"})
+        if (!fluid::byDeviceFromName(parsed.value(option, "auto"))) {
+            printError(std::string("--") + option + " must be auto, on or off, not \"" +
+                       parsed.value(option) + "\"");
+            return kExitUsage;
+        }
     const auto pressure = fluid::pressureSolverFromName(parsed.value("pressure", "jacobi"));
     if (!pressure) {
         printError("--pressure: no pressure solver \"" + parsed.value("pressure") +
@@ -246,6 +251,12 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
     resolved.pressureSolver = *pressure;
     resolved.multigrid.residualInRestriction = *fused;
     const bool residualFused = fluid::residualInRestriction(resolved, ctx);
+    resolved.jacobiIterations = jacobi.value();
+    resolved.firstSweepInDivergence = *firstSweep;
+    const bool firstSweepFused = resolved.firstSweepFused();
+    if (*pressure == fluid::PressureSolver::Jacobi)
+        std::printf("the first sweep %s\n\n", firstSweepFused ? "computed by the divergence pass"
+                                                              : "computed by the pressure pass");
     if (hierarchy)
         std::printf("the coarse levels (16³ cells and below) cycled by one workgroup of %u "
                     "invocations; the residual %s\n\n",
@@ -256,9 +267,10 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
     std::vector<GridResult> results;
     for (const auto& cells : grids.value())
         for (const auto& workgroup : workgroups.value()) {
-            auto r = benchGrid(ctx, scenarioName, cells, workgroup,
-                               {jacobi.value(), *pressure, *store, coarseGroup.value(), *fused},
-                               steps.value());
+            auto r = benchGrid(
+                ctx, scenarioName, cells, workgroup,
+                {jacobi.value(), *pressure, *store, coarseGroup.value(), *fused, *firstSweep},
+                steps.value());
             if (!r) {
                 printError(r.error().message);
                 return kExitFailure;
@@ -352,6 +364,9 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
         const std::string title =
             std::string("Solver stages, ") + fluid::pressureSolverName(*pressure) + " pressure, " +
             (hierarchy ? "coarse group " + std::to_string(coarse) + ", " : std::string()) +
+            (*pressure == fluid::PressureSolver::Jacobi && !firstSweepFused
+                 ? "first sweep in the solve, "
+                 : "") +
             (direct ? "direct" : "buffer") + " store (" + scenarioName + ")";
         if (Status written = writeMarkdownSection(parsed.value("markdown"), title, ctx,
                                                   reproduceCommand("bench solver", parsed), body);
@@ -420,6 +435,7 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
                                    {"store", direct ? "direct" : "buffer"},
                                    {"coarse_group", hierarchy ? coarse : 0u},
                                    {"residual_in_restriction", residualFused},
+                                   {"first_sweep_in_divergence", firstSweepFused},
                                    {"steps", steps.value()},
                                    {"copy",
                                     {{"bytes", copy.bytes},

@@ -133,6 +133,9 @@ CommandLine benchSolverCommandLine() {
         .option("residual-in-restriction", "auto|on|off",
                 "multigrid: the restriction computes the residual instead of a pass before it "
                 "(default auto: on a GPU only)")
+        .option("first-sweep-in-divergence", "auto|on|off",
+                "jacobi: the divergence pass computes the cold solve's first sweep (default "
+                "auto: on every device)")
         .option("copy-mib", "N",
                 "MiB the copy-bandwidth yardstick copies (default 256, at most one storage "
                 "buffer binding)")

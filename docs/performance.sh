@@ -16,6 +16,9 @@ gpu)
     "$MOTIONFX" bench solver --grids 256,192,128,96,64,32 --steps 20 --markdown "$out" \
         --plot "$plots/bench_solver_roofline_gpu.svg" --json out/bench_solver_gpu.json
     "$MOTIONFX" bench solver --grids 256,128,64 --steps 20 --store buffer --markdown "$out"
+    # The Jacobi solve's first sweep in its own pass instead of the divergence pass.
+    "$MOTIONFX" bench solver --grids 256,128,64 --steps 20 --first-sweep-in-divergence off \
+        --markdown "$out"
     "$MOTIONFX" bench solver --grids 256,128,64 --steps 10 --pressure multigrid --markdown "$out"
     # The multigrid's by-device choices the other way: the lavapipe coarse workgroup (8), the
     # residual pass before the restriction; then MGPCG.

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <utility>
 
 namespace mfx::fluid {
 
@@ -359,11 +360,22 @@ void SmokeSolver::applyBoundaries(VkCommandBuffer cmd) {
 
 void SmokeSolver::computeDivergence(VkCommandBuffer cmd) {
     SmokeFields& f = fields_;
+    // In a step, a cold Jacobi solve's first sweep (shaders/fluid/compute_divergence.comp):
+    // packed where the solve keeps pressure packed until its last sweep, else into the image the
+    // first sweep writes.
+    const bool packed = f.packedSolve && options_.jacobiIterations > 1;
+    const uint32_t firstSweep = stepping_ && options_.firstSweepFused() ? (packed ? 1u : 2u) : 0u;
     Writes w = withVelocity(f.currentVelocity);
     w.push_back(gpu::bindBuffer(4, f.scratch[0]));
     w.push_back(storage(5, f.divergence));
-    dispatch(cmd, programs_.get("compute_divergence", 0, 0, direct_), w, f.cells);
+    w.push_back(gpu::bindBuffer(6, f.packedDivergence));
+    w.push_back(gpu::bindBuffer(7, f.packedPressure[1]));
+    w.push_back(storage(8, f.pressure[size_t(1 - f.currentPressure)]));
+    dispatch(cmd, programs_.get("compute_divergence", 0, firstSweep, direct_), w, f.cells);
     storeFields(cmd, direct_, {{&f.scratch[0], &f.divergence}});
+    // The copy's barriers cover the divergence image alone; the sweep's output needs its own.
+    if (firstSweep != 0 && !direct_) fieldBarrier(cmd);
+    firstSweepDone_ = firstSweep != 0;
 }
 
 void SmokeSolver::solvePressure(VkCommandBuffer cmd) {
@@ -377,8 +389,10 @@ void SmokeSolver::solvePressure(VkCommandBuffer cmd) {
     }
     const uint32_t sweeps = options_.jacobiIterations;
     // A cold start: the first sweep takes its input as 0 (mode bit 2) and reads no pressure; with
-    // no sweep at all the pressure is cleared.
+    // no sweep at all the pressure is cleared. In a step the divergence pass may have done the
+    // first sweep already (packed into packedPressure[1], or into the other image).
     const bool zeroFirst = !options_.warmStart && sweeps > 0;
+    const uint32_t done = std::exchange(firstSweepDone_, false) ? 1u : 0u;
     if (!options_.warmStart && sweeps == 0) {
         const VkClearColorValue zero{};
         const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
@@ -393,7 +407,13 @@ void SmokeSolver::solvePressure(VkCommandBuffer cmd) {
                             (f.cells.y + kPressureRows - 1) / kPressureRows,
                             (f.cells.z + kPressureLayers - 1) / kPressureLayers);
     size_t packedIn = 0;
-    for (uint32_t sweep = 0; sweep < sweeps; ++sweep) {
+    if (done == 1) {
+        if (f.packedSolve && sweeps > 1)
+            packedIn = 1;
+        else
+            f.currentPressure = 1 - f.currentPressure;
+    }
+    for (uint32_t sweep = done; sweep < sweeps; ++sweep) {
         const bool first = sweep == 0, last = sweep + 1 == sweeps;
         const uint32_t mode = (f.packedSolve ? (first ? 0u : 1u) | (last ? 0u : 2u) : 0u) |
                               (first && zeroFirst ? 4u : 0u);
@@ -448,12 +468,14 @@ void SmokeSolver::recordStageOnly(VkCommandBuffer cmd, Stage stage, gpu::GpuTime
 void SmokeSolver::recordStep(VkCommandBuffer cmd, gpu::GpuTimer* timer) {
     writeParameters(); // once: every sub-step and stage reads the same uniform
     lastStepDispatches_.clear();
+    stepping_ = true;
     for (uint32_t substep = 0; substep < options_.substeps; ++substep)
         for (Stage stage : stepOrder()) {
             const uint32_t before = dispatches_;
             recordStageOnly(cmd, stage, timer);
             countStageDispatches(lastStepDispatches_, stage, dispatches_ - before);
         }
+    stepping_ = false;
 }
 
 uint64_t SmokeSolver::memoryBytes() const {

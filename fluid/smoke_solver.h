@@ -159,6 +159,10 @@ private:
     std::unique_ptr<GpuMultigrid> multigrid_; // every pressure solver but Jacobi
     bool direct_ = false;                     // options.storePath resolved for the device
     bool fusedVorticity_ = false;             // the direct path's one-dispatch curl and force
+    // Recording a step (not a stage alone): the divergence pass may do the Jacobi solve's first
+    // sweep (SolverOptions::firstSweepInDivergence); firstSweepDone_ tells solvePressure it did.
+    bool stepping_ = false;
+    bool firstSweepDone_ = false;
 
     gpu::Buffer parameters_;
     gpu::Buffer ownEmitters_;

@@ -112,6 +112,10 @@ struct SolverOptions {
     float cgTolerance = 1e-3f;     // MultigridPcg: stop at this relative residual ...
     uint32_t cgMaxIterations = 20; // ... or after this many iterations
     bool warmStart = false;        // start the pressure solve from the last step's pressure
+    // A step whose Jacobi solve starts cold computes its first sweep in the divergence pass (the
+    // sweep needs each cell's own divergence only): one dispatch, its barrier and a read of the
+    // divergence fewer, the same values. Auto: on every device (a performance setting only).
+    ByDevice firstSweepInDivergence = ByDevice::Auto;
     AdvectionScheme advection = AdvectionScheme::SemiLagrangian;
     Storage storage = Storage::Float32;
     std::array<FaceBoundary, 6> boundaries{};
@@ -121,6 +125,11 @@ struct SolverOptions {
     StorePath storePath = StorePath::Auto; // a performance setting only, as the workgroup
 
     float substepDt() const { return dt / float(substeps); }
+    // Whether a step computes the pressure solve's first sweep in the divergence pass.
+    bool firstSweepFused() const {
+        return pressureSolver == PressureSolver::Jacobi && !warmStart && jacobiIterations > 0 &&
+               firstSweepInDivergence != ByDevice::Off;
+    }
     bool periodic(int axis) const { return boundaries[2 * axis].kind == Boundary::Periodic; }
 };
 

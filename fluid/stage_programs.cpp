@@ -16,7 +16,7 @@ namespace {
 // What a kernel takes from constant id 11 on.
 enum class Extra {
     None,
-    Variant,       // id 11: the variant (an advection pass)
+    Variant,       // id 11: the variant (an advection pass, the divergence's first sweep)
     PressureBrick, // ids 11-13: the variant (which side is packed), a brick's layers and rows
 };
 
@@ -44,7 +44,8 @@ const Kernel* findKernel(std::string_view name) {
         {"vorticity_force", vorticity_force_comp, vorticity_force_comp_half},
         {"diffuse_viscosity", diffuse_viscosity_comp, diffuse_viscosity_comp_half},
         {"apply_boundaries", apply_boundaries_comp, apply_boundaries_comp_half},
-        {"compute_divergence", compute_divergence_comp, compute_divergence_comp_half},
+        {"compute_divergence", compute_divergence_comp, compute_divergence_comp_half,
+         Extra::Variant},
         {"solve_pressure", solve_pressure_comp, solve_pressure_comp_half, Extra::PressureBrick},
         {"project", project_comp, project_comp_half},
         {"measure_activity", measure_activity_comp, measure_activity_comp_half},

@@ -109,8 +109,9 @@ StageBytes boundariesBytes(const SolverOptions& o, const StageWork&) {
 }
 
 StageBytes divergenceBytes(const SolverOptions& o, const StageWork&) {
+    // With the Jacobi solve's first sweep in it, it also writes that sweep's pressure.
     const Counts c = countsOf(o);
-    return values(c, c.faces3(), c.cells);
+    return values(c, c.faces3(), c.cells * (o.firstSweepFused() ? 2.0 : 1.0));
 }
 
 // One V-cycle from the finest level down: per level of N cells, each smoothing sweep reads x and
@@ -142,9 +143,11 @@ StageBytes pressureBytes(const SolverOptions& o, const StageWork& w) {
     switch (o.pressureSolver) {
     case PressureSolver::Jacobi:
         // Each sweep reads pressure and divergence and writes pressure; a cold start's first
-        // sweep reads no pressure (it is 0), and with no sweep the pressure is cleared.
+        // sweep reads no pressure (it is 0), and with no sweep the pressure is cleared. In a step
+        // the divergence pass may do that first sweep (SolverOptions::firstSweepInDivergence).
         if (o.warmStart) return values(c, 2.0 * n * sweeps, n * sweeps);
         if (sweeps == 0.0) return values(c, 0.0, n);
+        if (o.firstSweepFused()) return values(c, 2.0 * n * (sweeps - 1.0), n * (sweeps - 1.0));
         return values(c, 2.0 * n * sweeps - n, n * sweeps);
     case PressureSolver::RedBlackGaussSeidel:
         // Each sweep reads pressure and divergence and writes pressure; a cold start clears it.
@@ -220,11 +223,16 @@ std::span<const StageEntry> stageTable() {
         {Stage::ComputeDivergence, "compute_divergence", "compute_divergence",
          "sparse_compute_divergence", &SmokeSolver::computeDivergence,
          &SparseSmokeSolver::computeDivergence, referenceStage<&ReferenceSolver::computeDivergence>,
-         divergenceBytes, "velocity read, divergence written", true},
+         divergenceBytes,
+         "velocity read, divergence written (a cold Jacobi solve: and its first sweep's pressure)",
+         true},
         {Stage::SolvePressure, "solve_pressure", "solve_pressure", "sparse_solve_pressure",
          &SmokeSolver::solvePressure, &SparseSmokeSolver::solvePressure,
          referenceStage<&ReferenceSolver::solvePressure>, pressureBytes,
-         "per sweep: pressure and divergence read, pressure written (multigrid: per level)", true},
+         "per sweep: pressure and divergence read, pressure written (a cold Jacobi solve: the "
+         "first "
+         "sweep in the divergence; multigrid: per level)",
+         true},
         {Stage::Project, "project", "project", "sparse_project", &SmokeSolver::project,
          &SparseSmokeSolver::project, referenceStage<&ReferenceSolver::project>, projectBytes,
          "velocity and pressure read, velocity written", true},

@@ -91,8 +91,9 @@ TEST(Cli, BenchSolverPrintsATableAndWritesJson) {
     EXPECT_NE(r.out.find("solve_pressure"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("whole step (GPU)"), std::string::npos) << r.out;
     const std::string text = readFile(json);
-    for (const char* key : {"\"device\"", "\"results\"", "\"grid\"", "\"jacobi\": 3", "\"step_ms\"",
-                            "\"stages\"", "\"workgroup\"", "\"solve_pressure\""})
+    for (const char* key :
+         {"\"device\"", "\"results\"", "\"grid\"", "\"jacobi\": 3", "\"step_ms\"", "\"stages\"",
+          "\"workgroup\"", "\"solve_pressure\"", "\"first_sweep_in_divergence\": true"})
         EXPECT_NE(text.find(key), std::string::npos) << key << " missing from " << text;
 }
 
@@ -233,7 +234,8 @@ TEST(Cli, BenchAccuracyWritesTableCsvPlotAndJson) {
 
 TEST(Cli, BenchSolverBadValuesAreOneLine) {
     for (const char* args : {"--grids 0", "--grids 8x8", "--workgroups 8x8", "--workgroups 0x8x4",
-                             "--jacobi -1", "--steps 0", "--scenario nope"}) {
+                             "--jacobi -1", "--steps 0", "--scenario nope",
+                             "--residual-in-restriction yes", "--first-sweep-in-divergence 1"}) {
         const RunResult r = runMotionfx(std::string("bench solver ") + args);
         EXPECT_EQ(r.exitCode, 2) << args;
         EXPECT_EQ(lineCount(r.err), 1u) << args << ": " << r.err;
@@ -281,9 +283,10 @@ TEST(Cli, BenchSolverSparsePrintsATableWritesJsonAndAPlot) {
 }
 
 TEST(Cli, BenchSolverSparseBadValuesAreOneLine) {
-    for (const char* args : {"--domain bogus", "--domain sparse --virtual 20",
-                             "--domain sparse --virtual 32 --bricks 65",
-                             "--domain sparse --bricks 0", "--virtual 64"}) {
+    for (const char* args :
+         {"--domain bogus", "--domain sparse --virtual 20",
+          "--domain sparse --virtual 32 --bricks 65", "--domain sparse --bricks 0", "--virtual 64",
+          "--domain sparse --first-sweep-in-divergence off"}) {
         const RunResult r = runMotionfx(std::string("bench solver ") + args);
         EXPECT_EQ(r.exitCode, 2) << args;
         EXPECT_EQ(lineCount(r.err), 1u) << args << ": " << r.err;

@@ -18,6 +18,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "fluid_common.glsl"
+#include "jacobi_neighbours.glsl"
 
 layout(binding = 1, r32f) uniform readonly image3D divergence;
 layout(binding = 2, MFX_PRESSURE_FORMAT) uniform readonly image3D pressureIn;
@@ -36,11 +37,6 @@ layout(std430, binding = 7) readonly buffer PackedInCells {
     float packedInCells[];
 };
 
-// Element of row (y, z)'s four cells 4 texel .. 4 texel + 3 in a packed buffer.
-int packedIndex(int texel, int y, int z) {
-    return texel + ((cellCount().x + 3) / 4) * (y + cellCount().y * z);
-}
-
 // Which side is packed (see above), and the brick's rows along y and layers along z
 // (SmokeSolver::solvePressure sizes the dispatch by them).
 layout(constant_id = 11) const uint kPressureMode = 0;
@@ -49,29 +45,6 @@ layout(constant_id = 13) const int kPressureRows = 4;
 const bool kPackedIn = (kPressureMode & 1u) != 0u;
 const bool kPackedOut = (kPressureMode & 2u) != 0u;
 const bool kZeroIn = (kPressureMode & 4u) != 0u;
-
-// A neighbour coordinate i (at most one step outside 0..n-1, or anywhere past n - 1 for a cell
-// beyond the grid's last one) along `axis`: the cell to read, whether its value counts and
-// whether it counts in the divisor (open faces: ghost p = 0). Branch-free.
-struct NeighbourRef {
-    int index;
-    bool value;
-    bool counted;
-};
-
-NeighbourRef neighbourRef(int axis, int i) {
-    int n = cellCount()[axis];
-    bool high = i >= n;
-    uint kind = boundaryKind(axis, high);
-    bool inside = i >= 0 && !high;
-    bool periodic = kind == MFX_BOUNDARY_PERIODIC;
-    int wrapped = periodic ? wrapIndex(i, n) : i;
-    NeighbourRef ref;
-    ref.index = clamp(wrapped, 0, n - 1);
-    ref.value = inside || periodic;
-    ref.counted = inside || periodic || kind == MFX_BOUNDARY_OPEN;
-    return ref;
-}
 
 // Four cells of a row from an r32f field, at columns x.
 vec4 loadRow(ivec4 x, int y, int z) {
