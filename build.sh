@@ -151,6 +151,9 @@ SANITIZER_EXCLUDED=(
     # a hang guard over 64 effects and 100,000 frames (it runs in the normal pass); the bounded
     # sampling it guards: HostileScene.LiveSampledFramesAreBoundedAndSpanTheWindow
     'LongSceneWithManyAutomaticEffects'
+    # the install and a separate project built against it (cmake and the compiler, which the
+    # preloaded sanitizer runtime would instrument); the library's entry points: RuntimeApi.*
+    '^RuntimeInstall[.]'
     # benchmarks run as the program (GPU timings); their bad values and refusals stay
     # (Cli.Bench*BadValuesAreOneLine, Cli.BenchEffectsRefuses*)
     '^Cli[.]Bench.*(Prints|Writes)'

@@ -197,6 +197,63 @@ struct FeatureChain {
     }
 };
 
+// The optional capabilities a device was created with (`enabled`).
+DeviceFeatures recordedFeatures(const FeatureChain& enabled, bool hasTransformFeedback,
+                                bool hasAtomicFloat, bool timestamps) {
+    const VkPhysicalDeviceFeatures& use = enabled.core.features;
+    DeviceFeatures f;
+    f.geometryShader = use.geometryShader;
+    f.fillModeNonSolid = use.fillModeNonSolid;
+    f.wideLines = use.wideLines;
+    f.samplerAnisotropy = use.samplerAnisotropy;
+    f.storageImageReadWithoutFormat = use.shaderStorageImageReadWithoutFormat;
+    f.storageImageWriteWithoutFormat = use.shaderStorageImageWriteWithoutFormat;
+    f.shaderFloat16 = enabled.v12.shaderFloat16;
+    f.storageBuffer16BitAccess = enabled.v11.storageBuffer16BitAccess;
+    f.transformFeedback = hasTransformFeedback && enabled.transformFeedback.transformFeedback;
+    f.geometryStreams = hasTransformFeedback && enabled.transformFeedback.geometryStreams;
+    f.bufferFloat32AtomicAdd = hasAtomicFloat && enabled.atomicFloat.shaderBufferFloat32AtomicAdd;
+    f.imageFloat32AtomicAdd = hasAtomicFloat && enabled.atomicFloat.shaderImageFloat32AtomicAdd;
+    f.timestamps = timestamps;
+    return f;
+}
+
+// The host's feature chain copied into ours (the structures it does not have stay all false).
+FeatureChain copiedChain(const VkPhysicalDeviceFeatures2& host) {
+    FeatureChain chain;
+    chain.link(true, true);
+    chain.core.features = host.features;
+    // Walks at most 64 structures: a chain that loops is the host's bug, not a hang of ours.
+    const auto* next = static_cast<const VkBaseInStructure*>(host.pNext);
+    for (int i = 0; next != nullptr && i < 64; ++i, next = next->pNext) {
+        auto copy = [&](auto& into) {
+            void* keep = into.pNext;
+            std::memcpy(&into, next, sizeof into);
+            into.pNext = keep;
+        };
+        switch (next->sType) {
+        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES:
+            copy(chain.v11);
+            break;
+        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES:
+            copy(chain.v12);
+            break;
+        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES:
+            copy(chain.v13);
+            break;
+        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_TRANSFORM_FEEDBACK_FEATURES_EXT:
+            copy(chain.transformFeedback);
+            break;
+        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_FLOAT_FEATURES_EXT:
+            copy(chain.atomicFloat);
+            break;
+        default:
+            break;
+        }
+    }
+    return chain;
+}
+
 // Why `device` cannot be used, or empty when it can.
 std::string unsuitableReason(VkPhysicalDevice device) {
     const DeviceInfo info = describe(device);
@@ -408,28 +465,17 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
     std::vector<VkQueueFamilyProperties> families(familyCount);
     vkGetPhysicalDeviceQueueFamilyProperties(best, &familyCount, families.data());
 
-    DeviceFeatures& f = ctx->features_;
-    f.geometryShader = use.geometryShader;
-    f.fillModeNonSolid = use.fillModeNonSolid;
-    f.wideLines = use.wideLines;
-    f.samplerAnisotropy = use.samplerAnisotropy;
-    f.storageImageReadWithoutFormat = use.shaderStorageImageReadWithoutFormat;
-    f.storageImageWriteWithoutFormat = use.shaderStorageImageWriteWithoutFormat;
-    f.shaderFloat16 = enabled.v12.shaderFloat16;
-    f.storageBuffer16BitAccess = enabled.v11.storageBuffer16BitAccess;
-    f.transformFeedback = hasTransformFeedback && enabled.transformFeedback.transformFeedback;
-    f.geometryStreams = hasTransformFeedback && enabled.transformFeedback.geometryStreams;
-    f.bufferFloat32AtomicAdd = hasAtomicFloat && enabled.atomicFloat.shaderBufferFloat32AtomicAdd;
-    f.imageFloat32AtomicAdd = hasAtomicFloat && enabled.atomicFloat.shaderImageFloat32AtomicAdd;
-    f.timestamps =
-        families[family].timestampValidBits > 0 && ctx->properties_.limits.timestampPeriod > 0;
+    ctx->features_ = recordedFeatures(enabled, hasTransformFeedback, hasAtomicFloat,
+                                      families[family].timestampValidBits > 0 &&
+                                          ctx->properties_.limits.timestampPeriod > 0);
 
     // --- Logical device -------------------------------------------------------------------------
     std::vector<const char*> enabledExtensions = options.deviceExtensions;
     for (const char* name : enabledExtensions)
         if (!contains(deviceExtensions, name))
             return Error{ctx->info_.name + " lacks the device extension " + name};
-    enabledExtensions.push_back(VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME);
+    for (const char* name : requiredDeviceExtensions())
+        enabledExtensions.push_back(name);
     if (hasTransformFeedback) enabledExtensions.push_back(VK_EXT_TRANSFORM_FEEDBACK_EXTENSION_NAME);
     if (hasAtomicFloat) enabledExtensions.push_back(VK_EXT_SHADER_ATOMIC_FLOAT_EXTENSION_NAME);
     if (contains(deviceExtensions, "VK_KHR_portability_subset"))
@@ -455,28 +501,100 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
 
     ctx->graphicsQueue_.family = family;
     vkGetDeviceQueue(ctx->device_, family, 0, &ctx->graphicsQueue_.queue);
-    ctx->pushDescriptorSet_ = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(
-        ctx->deviceFunction("vkCmdPushDescriptorSetKHR"));
-    if (ctx->pushDescriptorSet_ == nullptr)
-        return Error{ctx->info_.name + " offers no vkCmdPushDescriptorSetKHR"};
+    vkGetDeviceQueue(ctx->device_, family, queueCount - 1, &ctx->computeQueue_.queue);
+    ctx->computeQueue_.family = family;
+    if (Status ready = ctx->finishDevice(); !ready) return ready.error();
+
+    return Result<std::unique_ptr<Context>>(std::move(ctx));
+}
+
+Status Context::finishDevice() {
+    pushDescriptorSet_ = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(
+        deviceFunction("vkCmdPushDescriptorSetKHR"));
+    if (pushDescriptorSet_ == nullptr)
+        return Error{info_.name + " offers no vkCmdPushDescriptorSetKHR"};
     VkPhysicalDevicePushDescriptorPropertiesKHR pushProperties{
         VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PUSH_DESCRIPTOR_PROPERTIES_KHR};
     VkPhysicalDeviceProperties2 properties2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
     properties2.pNext = &pushProperties;
-    vkGetPhysicalDeviceProperties2(best, &properties2);
-    ctx->maxPushDescriptors_ = pushProperties.maxPushDescriptors;
-    ctx->computeQueue_.family = family;
-    vkGetDeviceQueue(ctx->device_, family, queueCount - 1, &ctx->computeQueue_.queue);
+    vkGetPhysicalDeviceProperties2(physicalDevice_, &properties2);
+    maxPushDescriptors_ = pushProperties.maxPushDescriptors;
 
     VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
     poolInfo.flags =
         VK_COMMAND_POOL_CREATE_TRANSIENT_BIT | VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-    poolInfo.queueFamilyIndex = family;
+    poolInfo.queueFamilyIndex = graphicsQueue_.family;
     VkCommandPool pool = VK_NULL_HANDLE;
-    MFX_VK_CHECK(vkCreateCommandPool(ctx->device_, &poolInfo, nullptr, &pool));
-    ctx->oneShotPool_ = UniqueCommandPool(ctx->device_, pool);
+    if (const VkResult made = vkCreateCommandPool(device_, &poolInfo, nullptr, &pool);
+        made != VK_SUCCESS)
+        return Error{std::string("could not create a command pool: ") + toString(made)};
+    oneShotPool_ = UniqueCommandPool(device_, pool);
+    return Ok{};
+}
 
+Result<std::unique_ptr<Context>> Context::adopt(const AdoptedDevice& host) {
+    if (host.instance == VK_NULL_HANDLE || host.physicalDevice == VK_NULL_HANDLE ||
+        host.device == VK_NULL_HANDLE || host.queue == VK_NULL_HANDLE)
+        return Error{"the host's instance, physical device, device and queue must all be given"};
+    if (host.enabledFeatures == nullptr ||
+        host.enabledFeatures->sType != VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2)
+        return Error{"the host's enabled features must be a VkPhysicalDeviceFeatures2 chain"};
+    std::unique_ptr<Context> ctx(new Context());
+    ctx->ownsDevice_ = false;
+    ctx->instance_ = host.instance;
+    ctx->physicalDevice_ = host.physicalDevice;
+    ctx->device_ = host.device;
+    ctx->info_ = describe(host.physicalDevice);
+    vkGetPhysicalDeviceProperties(host.physicalDevice, &ctx->properties_);
+    vkGetPhysicalDeviceMemoryProperties(host.physicalDevice, &ctx->memory_);
+
+    // Everything that is missing, one a line.
+    std::vector<std::string> missing;
+    if (ctx->info_.apiVersion < kRequiredApiVersion)
+        missing.push_back("Vulkan 1.3 (the device supports " +
+                          versionString(ctx->info_.apiVersion) + ")");
+    uint32_t familyCount = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(host.physicalDevice, &familyCount, nullptr);
+    std::vector<VkQueueFamilyProperties> families(familyCount);
+    vkGetPhysicalDeviceQueueFamilyProperties(host.physicalDevice, &familyCount, families.data());
+    const VkQueueFlags wanted = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
+    if (host.queueFamily >= familyCount)
+        missing.push_back("queue family " + std::to_string(host.queueFamily) + " (the device has " +
+                          std::to_string(familyCount) + ")");
+    else if ((families[host.queueFamily].queueFlags & wanted) != wanted)
+        missing.push_back("graphics and compute on queue family " +
+                          std::to_string(host.queueFamily));
+    const FeatureChain enabled = copiedChain(*host.enabledFeatures);
+    const auto feature = [&](bool on, const char* name) {
+        if (!on) missing.push_back(std::string("the feature ") + name);
+    };
+    feature(enabled.v13.dynamicRendering, "dynamicRendering (VkPhysicalDeviceVulkan13Features)");
+    feature(enabled.v13.synchronization2, "synchronization2 (VkPhysicalDeviceVulkan13Features)");
+    feature(enabled.core.features.geometryShader, "geometryShader (VkPhysicalDeviceFeatures)");
+    const auto extension = [&](const char* name) { return contains(host.enabledExtensions, name); };
+    for (const char* name : requiredDeviceExtensions())
+        if (!extension(name)) missing.push_back(std::string("the device extension ") + name);
+    if (!missing.empty()) {
+        std::string text = ctx->info_.name + " was not created with what motionfx needs:";
+        for (const std::string& line : missing)
+            text += "\n  " + line;
+        return Error{text};
+    }
+
+    ctx->graphicsQueue_ = {host.queue, host.queueFamily};
+    ctx->computeQueue_ = ctx->graphicsQueue_;
+    const bool transformFeedback = extension(VK_EXT_TRANSFORM_FEEDBACK_EXTENSION_NAME);
+    const bool atomicFloat = extension(VK_EXT_SHADER_ATOMIC_FLOAT_EXTENSION_NAME);
+    ctx->features_ = recordedFeatures(enabled, transformFeedback, atomicFloat,
+                                      families[host.queueFamily].timestampValidBits > 0 &&
+                                          ctx->properties_.limits.timestampPeriod > 0);
+    if (Status ready = ctx->finishDevice(); !ready) return ready.error();
     return Result<std::unique_ptr<Context>>(std::move(ctx));
+}
+
+std::span<const char* const> requiredDeviceExtensions() {
+    static constexpr const char* kNames[] = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
+    return kNames;
 }
 
 std::shared_ptr<const ProgramObjects> Context::findProgram(const std::string& key) const {
@@ -492,6 +610,12 @@ void Context::keepProgram(const std::string& key,
 }
 
 Context::~Context() {
+    if (!ownsDevice_) { // the host's device and instance stay; what was made on them goes
+        if (graphicsQueue_.queue != VK_NULL_HANDLE) vkQueueWaitIdle(graphicsQueue_.queue);
+        programs_.clear();
+        oneShotPool_.reset();
+        return;
+    }
     if (device_ != VK_NULL_HANDLE) {
         vkDeviceWaitIdle(device_);
         programs_.clear(); // their pipelines and layouts, before the device

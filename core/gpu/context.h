@@ -1,6 +1,7 @@
 // The Vulkan context: instance, chosen physical device, logical device, queues, limits and the
-// optional features the project uses. One Context is created by the program and passed explicitly
-// as the first argument to everything that touches the GPU; there are no globals.
+// optional features the project uses. One Context is created by the program (or adopted from a
+// host program's device by the runtime library, include/motionfx/motionfx.h) and passed
+// explicitly as the first argument to everything that touches the GPU; there are no globals.
 //
 // Device choice: a real GPU first (discrete, then integrated, then virtual), else a CPU
 // implementation such as Mesa's lavapipe ("llvmpipe"). ContextOptions::deviceName, or the
@@ -14,6 +15,7 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <span>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -56,6 +58,21 @@ struct Queue {
     uint32_t family = 0;
 };
 
+// A device the host application made and keeps (the runtime library, include/motionfx/motionfx.h):
+// its handles, a queue of a family with graphics and compute, and what it was created with.
+struct AdoptedDevice {
+    VkInstance instance = VK_NULL_HANDLE;
+    VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
+    VkDevice device = VK_NULL_HANDLE;
+    uint32_t queueFamily = 0;
+    VkQueue queue = VK_NULL_HANDLE;
+    const VkPhysicalDeviceFeatures2* enabledFeatures = nullptr; // and the structs chained to it
+    std::vector<std::string> enabledExtensions;
+};
+
+// The device extensions motionfx needs beyond Vulkan 1.3 (a Context made by create() enables them).
+std::span<const char* const> requiredDeviceExtensions();
+
 enum class MessageSeverity { Warning, Error };
 
 struct ValidationMessage {
@@ -83,6 +100,12 @@ public:
     // rendering and synchronization2, push descriptors, a queue with graphics and compute), or
     // validation was asked for but the layer is not installed.
     static Result<std::unique_ptr<Context>> create(const ContextOptions& options);
+    // Borrows the host's device: nothing of it is destroyed with the Context (its queue is waited
+    // for, then what the Context made goes). Fails, naming every one that is missing, unless the
+    // device has Vulkan 1.3, the queue's family graphics and compute, and was created with
+    // dynamicRendering, synchronization2, geometryShader and requiredDeviceExtensions(). The
+    // optional features are those the host enabled. No validation hook: the host's own reports.
+    static Result<std::unique_ptr<Context>> adopt(const AdoptedDevice& host);
 
     ~Context();
     Context(const Context&) = delete;
@@ -140,6 +163,8 @@ public:
 
 private:
     Context() = default;
+    // After the device and queues: the push-descriptor entry point and limit, the one-shot pool.
+    Status finishDevice();
     static VKAPI_ATTR VkBool32 VKAPI_CALL debugCallback(
         VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT types,
         const VkDebugUtilsMessengerCallbackDataEXT* data, void* user);
@@ -155,6 +180,7 @@ private:
     VkPhysicalDeviceProperties properties_{};
     VkPhysicalDeviceMemoryProperties memory_{};
     bool validation_ = false;
+    bool ownsDevice_ = true; // false: adopt()ed, the host's instance and device
     bool printValidation_ = true;
     mutable std::mutex programsMutex_;
     mutable std::unordered_map<std::string, std::shared_ptr<const ProgramObjects>> programs_;

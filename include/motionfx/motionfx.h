@@ -1,0 +1,107 @@
+/* motionfx: real-time motion effects (speed-lines, trails, smoke) for skinned characters, drawn
+ * into a host application's Vulkan frame.
+ *
+ * The one public header of the motionfx runtime library (find_package(motionfx CONFIG),
+ * target motionfx::runtime). Plain C, usable from C and C++; the only other header it needs is
+ * <vulkan/vulkan.h>. docs/embedding.md shows every call in order.
+ *
+ * The host owns the Vulkan instance, physical device, device and queue; a runtime borrows them
+ * (it never destroys them) and checks that the device was created with what motionfx needs
+ * (mfxRequiredDeviceExtensions, and the features listed in docs/embedding.md), naming each thing
+ * that is missing. A runtime holds no global state: several can live in one process, on one
+ * device or on several.
+ *
+ * Threads: calls on one runtime (and on what it made) must not overlap; separate runtimes are
+ * independent. A call that submits to the host's queue says so: the host must not use that queue
+ * on another thread meanwhile (Vulkan's external synchronisation of queues).
+ */
+#ifndef MOTIONFX_MOTIONFX_H
+#define MOTIONFX_MOTIONFX_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <vulkan/vulkan.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#if defined(__GNUC__)
+#define MFX_API __attribute__((visibility("default")))
+#else
+#define MFX_API
+#endif
+
+/* The library's version (also motionfx_VERSION in CMake). */
+#define MFX_VERSION_MAJOR 0
+#define MFX_VERSION_MINOR 2
+#define MFX_VERSION_PATCH 0
+/* The version the library was built as: MFX_VERSION_MAJOR * 10000 + MINOR * 100 + PATCH. A host
+ * may compare it with the header's to catch a mismatched install. */
+MFX_API uint32_t mfxVersion(void);
+
+typedef enum MfxResult {
+    MFX_SUCCESS = 0,
+    MFX_ERROR_INVALID_ARGUMENT = 1, /* a null pointer, an unknown struct version, a bad value */
+    MFX_ERROR_UNSUPPORTED_DEVICE = 2, /* the device lacks a feature or extension motionfx needs */
+    MFX_ERROR_VULKAN = 3,            /* a Vulkan call failed (out of memory, device lost) */
+    MFX_ERROR_INTERNAL = 4
+} MfxResult;
+
+/* A short name for a result ("MFX_ERROR_UNSUPPORTED_DEVICE"); never null. */
+MFX_API const char* mfxResultName(MfxResult result);
+
+/* Receives the message of every failed call: one or more lines saying what is wrong and where.
+ * `message` lives until the callback returns. */
+typedef void (*MfxMessageCallback)(MfxResult result, const char* message, void* user);
+
+/* The device extensions motionfx needs the host's device to have enabled: writes up to
+ * `capacity` names into `names` (static strings) and returns how many there are in all. */
+MFX_API uint32_t mfxRequiredDeviceExtensions(const char** names, uint32_t capacity);
+
+typedef struct MfxRuntime_T* MfxRuntime;
+
+#define MFX_RUNTIME_DESC_VERSION 1
+
+typedef struct MfxRuntimeDesc {
+    uint32_t structVersion; /* MFX_RUNTIME_DESC_VERSION */
+    VkInstance instance;    /* created with apiVersion 1.3 or later */
+    VkPhysicalDevice physicalDevice;
+    VkDevice device;
+    /* A family with graphics and compute, and one of its queues: one-shot uploads while effects
+     * are made are submitted there and waited for. */
+    uint32_t queueFamilyIndex;
+    VkQueue queue;
+    /* What the device was created with: its VkDeviceCreateInfo's feature chain (a
+     * VkPhysicalDeviceFeatures2 with VkPhysicalDeviceVulkan11Features, ...12Features and
+     * ...13Features linked after it, in any order; other structs are skipped) and its enabled
+     * extensions. Vulkan cannot be asked which features a device enabled, so the host says. */
+    const VkPhysicalDeviceFeatures2* enabledFeatures;
+    uint32_t enabledExtensionCount;
+    const char* const* enabledExtensionNames;
+    /* Optional: where the messages of failed calls go (none: they are kept for
+     * mfxRuntimeLastError only, and a failed mfxCreateRuntime says only its result). */
+    MfxMessageCallback messageCallback;
+    void* messageUser;
+} MfxRuntimeDesc;
+
+/* Makes a runtime on the host's device. MFX_ERROR_UNSUPPORTED_DEVICE when the device lacks what
+ * motionfx needs; the message names every missing feature and extension, one a line. */
+MFX_API MfxResult mfxCreateRuntime(const MfxRuntimeDesc* desc, MfxRuntime* runtime);
+
+/* Waits for the runtime's queue to be idle, then frees everything the runtime made. The host's
+ * objects stay. Null is allowed. */
+MFX_API void mfxDestroyRuntime(MfxRuntime runtime);
+
+/* The message of the runtime's last failed call ("" when none failed); valid until the next call
+ * on the runtime. */
+MFX_API const char* mfxRuntimeLastError(MfxRuntime runtime);
+
+/* The name of the device the runtime runs on (valid while the runtime lives). */
+MFX_API const char* mfxRuntimeDeviceName(MfxRuntime runtime);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* MOTIONFX_MOTIONFX_H */

@@ -1,0 +1,72 @@
+#include "tests/runtime/host_device.h"
+
+namespace mfx::test {
+
+std::unique_ptr<HostDevice> HostDevice::make(const HostDeviceOptions& options, std::string& why) {
+    std::unique_ptr<HostDevice> host(new HostDevice());
+    VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+    app.pApplicationName = "motionfx runtime test host";
+    app.apiVersion = VK_API_VERSION_1_3;
+    VkInstanceCreateInfo instanceInfo{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+    instanceInfo.pApplicationInfo = &app;
+    if (vkCreateInstance(&instanceInfo, nullptr, &host->instance) != VK_SUCCESS) {
+        why = "no Vulkan 1.3 instance";
+        return nullptr;
+    }
+    uint32_t count = 0;
+    vkEnumeratePhysicalDevices(host->instance, &count, nullptr);
+    std::vector<VkPhysicalDevice> devices(count);
+    vkEnumeratePhysicalDevices(host->instance, &count, devices.data());
+    for (VkPhysicalDevice candidate : devices) {
+        uint32_t familyCount = 0;
+        vkGetPhysicalDeviceQueueFamilyProperties(candidate, &familyCount, nullptr);
+        std::vector<VkQueueFamilyProperties> families(familyCount);
+        vkGetPhysicalDeviceQueueFamilyProperties(candidate, &familyCount, families.data());
+        for (uint32_t f = 0; f < familyCount && host->physicalDevice == VK_NULL_HANDLE; ++f)
+            if ((families[f].queueFlags & (VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT)) ==
+                (VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT)) {
+                host->physicalDevice = candidate;
+                host->family = f;
+            }
+    }
+    if (host->physicalDevice == VK_NULL_HANDLE) {
+        why = "no device with a graphics and compute queue family";
+        return nullptr;
+    }
+    VkPhysicalDeviceProperties properties{};
+    vkGetPhysicalDeviceProperties(host->physicalDevice, &properties);
+    host->name = properties.deviceName;
+
+    host->features.pNext = &host->v11;
+    host->v11.pNext = &host->v12;
+    host->v12.pNext = &host->v13;
+    host->features.features.geometryShader = options.geometryShader ? VK_TRUE : VK_FALSE;
+    host->v13.dynamicRendering = options.dynamicRendering ? VK_TRUE : VK_FALSE;
+    host->v13.synchronization2 = options.synchronization2 ? VK_TRUE : VK_FALSE;
+    if (options.pushDescriptor) host->extensions.push_back(VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME);
+
+    const float priority = 1.0f;
+    VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+    queueInfo.queueFamilyIndex = host->family;
+    queueInfo.queueCount = 1;
+    queueInfo.pQueuePriorities = &priority;
+    VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+    deviceInfo.pNext = &host->features;
+    deviceInfo.queueCreateInfoCount = 1;
+    deviceInfo.pQueueCreateInfos = &queueInfo;
+    deviceInfo.enabledExtensionCount = uint32_t(host->extensions.size());
+    deviceInfo.ppEnabledExtensionNames = host->extensions.data();
+    if (vkCreateDevice(host->physicalDevice, &deviceInfo, nullptr, &host->device) != VK_SUCCESS) {
+        why = "could not create the device on " + host->name;
+        return nullptr;
+    }
+    vkGetDeviceQueue(host->device, host->family, 0, &host->queue);
+    return host;
+}
+
+HostDevice::~HostDevice() {
+    if (device != VK_NULL_HANDLE) vkDestroyDevice(device, nullptr);
+    if (instance != VK_NULL_HANDLE) vkDestroyInstance(instance, nullptr);
+}
+
+} // namespace mfx::test

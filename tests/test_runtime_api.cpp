@@ -1,0 +1,192 @@
+// The runtime library's C API (include/motionfx/motionfx.h) on a device the host made with plain
+// Vulkan calls: it borrows the device and leaves it working, several runtimes live in one process,
+// and a device without what motionfx needs is refused with every missing thing named.
+#include "motionfx/motionfx.h"
+#include "tests/runtime/host_device.h"
+
+#include <gtest/gtest.h>
+#include <string>
+#include <vector>
+
+namespace mfx::test {
+namespace {
+
+// The messages a callback received.
+struct Messages {
+    std::vector<std::pair<MfxResult, std::string>> received;
+    static void callback(MfxResult result, const char* message, void* user) {
+        static_cast<Messages*>(user)->received.emplace_back(result, message);
+    }
+};
+
+MfxRuntimeDesc describe(const HostDevice& host, Messages* messages = nullptr) {
+    MfxRuntimeDesc desc{};
+    desc.structVersion = MFX_RUNTIME_DESC_VERSION;
+    desc.instance = host.instance;
+    desc.physicalDevice = host.physicalDevice;
+    desc.device = host.device;
+    desc.queueFamilyIndex = host.family;
+    desc.queue = host.queue;
+    desc.enabledFeatures = &host.features;
+    desc.enabledExtensionCount = uint32_t(host.extensions.size());
+    desc.enabledExtensionNames = host.extensions.data();
+    if (messages != nullptr) {
+        desc.messageCallback = &Messages::callback;
+        desc.messageUser = messages;
+    }
+    return desc;
+}
+
+std::unique_ptr<HostDevice> makeHost(const HostDeviceOptions& options = {}) {
+    std::string why;
+    auto host = HostDevice::make(options, why);
+    EXPECT_NE(host, nullptr) << why;
+    return host;
+}
+
+size_t lineCount(const std::string& text) {
+    size_t lines = text.empty() ? 0 : 1;
+    for (char c : text)
+        lines += c == '\n' ? 1 : 0;
+    return lines;
+}
+
+// A buffer made and freed on the host's device: it still works.
+bool deviceStillWorks(const HostDevice& host) {
+    VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+    info.size = 256;
+    info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    VkBuffer buffer = VK_NULL_HANDLE;
+    if (vkCreateBuffer(host.device, &info, nullptr, &buffer) != VK_SUCCESS) return false;
+    vkDestroyBuffer(host.device, buffer, nullptr);
+    return vkQueueWaitIdle(host.queue) == VK_SUCCESS;
+}
+
+TEST(RuntimeApi, TheLibraryIsTheHeadersVersion) {
+    EXPECT_EQ(mfxVersion(),
+              MFX_VERSION_MAJOR * 10000u + MFX_VERSION_MINOR * 100u + MFX_VERSION_PATCH);
+    EXPECT_STREQ(mfxResultName(MFX_ERROR_UNSUPPORTED_DEVICE), "MFX_ERROR_UNSUPPORTED_DEVICE");
+}
+
+TEST(RuntimeApi, RequiredExtensionsAreListed) {
+    ASSERT_EQ(mfxRequiredDeviceExtensions(nullptr, 0), 1u);
+    const char* names[4] = {};
+    EXPECT_EQ(mfxRequiredDeviceExtensions(names, 4), 1u);
+    EXPECT_STREQ(names[0], VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME);
+    EXPECT_EQ(names[1], nullptr);
+}
+
+TEST(RuntimeApi, MadeOnTheHostsDeviceAndGoneWithoutIt) {
+    auto host = makeHost();
+    ASSERT_NE(host, nullptr);
+    Messages messages;
+    const MfxRuntimeDesc desc = describe(*host, &messages);
+    MfxRuntime runtime = nullptr;
+    ASSERT_EQ(mfxCreateRuntime(&desc, &runtime), MFX_SUCCESS)
+        << (messages.received.empty() ? "" : messages.received[0].second);
+    ASSERT_NE(runtime, nullptr);
+    EXPECT_EQ(std::string(mfxRuntimeDeviceName(runtime)), host->name);
+    EXPECT_STREQ(mfxRuntimeLastError(runtime), "");
+    EXPECT_TRUE(messages.received.empty());
+    mfxDestroyRuntime(runtime);
+    // The host's device and queue are the host's still.
+    EXPECT_TRUE(deviceStillWorks(*host));
+    mfxDestroyRuntime(nullptr); // allowed
+}
+
+TEST(RuntimeApi, SeveralRuntimesInOneProcess) {
+    auto first = makeHost(), second = makeHost();
+    ASSERT_NE(first, nullptr);
+    ASSERT_NE(second, nullptr);
+    const MfxRuntimeDesc a = describe(*first), b = describe(*second);
+    MfxRuntime onFirst = nullptr, alsoOnFirst = nullptr, onSecond = nullptr;
+    ASSERT_EQ(mfxCreateRuntime(&a, &onFirst), MFX_SUCCESS);
+    ASSERT_EQ(mfxCreateRuntime(&a, &alsoOnFirst), MFX_SUCCESS);
+    ASSERT_EQ(mfxCreateRuntime(&b, &onSecond), MFX_SUCCESS);
+    EXPECT_NE(onFirst, alsoOnFirst);
+    mfxDestroyRuntime(alsoOnFirst);
+    // The others are untouched by it.
+    EXPECT_EQ(std::string(mfxRuntimeDeviceName(onFirst)), first->name);
+    EXPECT_EQ(std::string(mfxRuntimeDeviceName(onSecond)), second->name);
+    mfxDestroyRuntime(onFirst);
+    mfxDestroyRuntime(onSecond);
+    EXPECT_TRUE(deviceStillWorks(*first));
+    EXPECT_TRUE(deviceStillWorks(*second));
+}
+
+TEST(RuntimeApi, ADeviceWithoutWhatMotionfxNeedsIsRefusedNamingEachMissingThing) {
+    HostDeviceOptions lacking;
+    lacking.pushDescriptor = false;
+    lacking.geometryShader = false;
+    auto host = makeHost(lacking);
+    ASSERT_NE(host, nullptr);
+    Messages messages;
+    const MfxRuntimeDesc desc = describe(*host, &messages);
+    MfxRuntime runtime = reinterpret_cast<MfxRuntime>(&messages); // overwritten with null
+    EXPECT_EQ(mfxCreateRuntime(&desc, &runtime), MFX_ERROR_UNSUPPORTED_DEVICE);
+    EXPECT_EQ(runtime, nullptr);
+    ASSERT_EQ(messages.received.size(), 1u);
+    const std::string& text = messages.received[0].second;
+    EXPECT_EQ(messages.received[0].first, MFX_ERROR_UNSUPPORTED_DEVICE);
+    EXPECT_NE(text.find(host->name), std::string::npos) << text;
+    EXPECT_NE(text.find("geometryShader"), std::string::npos) << text;
+    EXPECT_NE(text.find(VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME), std::string::npos) << text;
+    EXPECT_EQ(lineCount(text), 3u) << text; // the device, then one line for each
+    EXPECT_TRUE(deviceStillWorks(*host));
+}
+
+TEST(RuntimeApi, AMissingVulkan13FeatureIsNamed) {
+    HostDeviceOptions lacking;
+    lacking.synchronization2 = false;
+    auto host = makeHost(lacking);
+    ASSERT_NE(host, nullptr);
+    Messages messages;
+    const MfxRuntimeDesc desc = describe(*host, &messages);
+    MfxRuntime runtime = nullptr;
+    EXPECT_EQ(mfxCreateRuntime(&desc, &runtime), MFX_ERROR_UNSUPPORTED_DEVICE);
+    ASSERT_EQ(messages.received.size(), 1u);
+    EXPECT_NE(messages.received[0].second.find("synchronization2"), std::string::npos);
+    EXPECT_EQ(messages.received[0].second.find("dynamicRendering"), std::string::npos);
+    EXPECT_EQ(lineCount(messages.received[0].second), 2u);
+}
+
+TEST(RuntimeApi, BadDescriptionsAreRefused) {
+    auto host = makeHost();
+    ASSERT_NE(host, nullptr);
+    MfxRuntime runtime = nullptr;
+    EXPECT_EQ(mfxCreateRuntime(nullptr, &runtime), MFX_ERROR_INVALID_ARGUMENT);
+    Messages messages;
+    MfxRuntimeDesc desc = describe(*host, &messages);
+    EXPECT_EQ(mfxCreateRuntime(&desc, nullptr), MFX_ERROR_INVALID_ARGUMENT);
+
+    const auto refused = [&](MfxRuntimeDesc bad, const char* word) {
+        messages.received.clear();
+        EXPECT_EQ(mfxCreateRuntime(&bad, &runtime), MFX_ERROR_INVALID_ARGUMENT) << word;
+        EXPECT_EQ(runtime, nullptr);
+        ASSERT_EQ(messages.received.size(), 1u) << word;
+        EXPECT_NE(messages.received[0].second.find(word), std::string::npos)
+            << messages.received[0].second;
+    };
+    MfxRuntimeDesc version = desc;
+    version.structVersion = 99;
+    refused(version, "structVersion");
+    MfxRuntimeDesc noDevice = desc;
+    noDevice.device = VK_NULL_HANDLE;
+    refused(noDevice, "device");
+    MfxRuntimeDesc noFeatures = desc;
+    noFeatures.enabledFeatures = nullptr;
+    refused(noFeatures, "VkPhysicalDeviceFeatures2");
+    MfxRuntimeDesc noNames = desc;
+    noNames.enabledExtensionCount = 2;
+    noNames.enabledExtensionNames = nullptr;
+    refused(noNames, "enabledExtensionNames");
+    MfxRuntimeDesc badFamily = desc;
+    badFamily.queueFamilyIndex = 1000;
+    messages.received.clear();
+    EXPECT_EQ(mfxCreateRuntime(&badFamily, &runtime), MFX_ERROR_UNSUPPORTED_DEVICE);
+    ASSERT_EQ(messages.received.size(), 1u);
+    EXPECT_NE(messages.received[0].second.find("queue family 1000"), std::string::npos);
+}
+
+} // namespace
+} // namespace mfx::test
