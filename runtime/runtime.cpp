@@ -3,11 +3,15 @@
 #include "motionfx/motionfx.h"
 
 #include "core/gpu/context.h"
+#include "core/scene/scene.h"
+#include "sim/scene_simulation.h"
 
 #include <exception>
+#include <filesystem>
 #include <memory>
 #include <new>
 #include <string>
+#include <vector>
 
 static_assert(MFX_VERSION_MAJOR == MOTIONFX_VERSION_MAJOR &&
                   MFX_VERSION_MINOR == MOTIONFX_VERSION_MINOR &&
@@ -21,6 +25,12 @@ struct MfxRuntime_T {
     std::string lastError;
 };
 
+struct MfxEffects_T {
+    MfxRuntime runtime = nullptr;
+    std::unique_ptr<mfx::sim::SceneSimulation> simulation;
+    std::vector<std::string> names;
+};
+
 namespace {
 
 // Reports a failure through the callback (when there is one) and keeps it for LastError.
@@ -29,6 +39,22 @@ MfxResult fail(MfxRuntime runtime, MfxMessageCallback callback, void* user, MfxR
     if (runtime != nullptr) runtime->lastError = message;
     if (callback != nullptr) callback(result, message.c_str(), user);
     return result;
+}
+
+MfxResult fail(MfxRuntime runtime, MfxResult result, const std::string& message) {
+    return fail(runtime, runtime->callback, runtime->user, result, message);
+}
+
+// The scene a description names, parsed and checked.
+mfx::Result<mfx::scene::Scene> readScene(const MfxEffectsDesc& desc) {
+    namespace fs = std::filesystem;
+    if (desc.sceneFile != nullptr) return mfx::scene::loadScene(fs::path(desc.sceneFile));
+    // The text's relative paths are read against the base folder: the scene's `file` is where
+    // they are resolved from (scene::characterFile) and what its errors name.
+    const std::string where = desc.baseFolder != nullptr && *desc.baseFolder != '\0'
+                                  ? (fs::path(desc.baseFolder) / "(scene JSON)").string()
+                                  : std::string("(scene JSON)");
+    return mfx::scene::parseScene(desc.sceneJson, where);
 }
 
 } // namespace
@@ -51,6 +77,8 @@ const char* mfxResultName(MfxResult result) {
         return "MFX_ERROR_VULKAN";
     case MFX_ERROR_INTERNAL:
         return "MFX_ERROR_INTERNAL";
+    case MFX_ERROR_SCENE:
+        return "MFX_ERROR_SCENE";
     }
     return "MFX_ERROR_UNKNOWN";
 }
@@ -118,6 +146,67 @@ const char* mfxRuntimeLastError(MfxRuntime runtime) {
 
 const char* mfxRuntimeDeviceName(MfxRuntime runtime) {
     return runtime != nullptr ? runtime->context->info().name.c_str() : "";
+}
+
+MfxResult mfxCreateEffects(MfxRuntime runtime, const MfxEffectsDesc* desc, MfxEffects* effects) {
+    if (effects != nullptr) *effects = nullptr;
+    if (runtime == nullptr) return MFX_ERROR_INVALID_ARGUMENT;
+    runtime->lastError.clear();
+    if (desc == nullptr || effects == nullptr)
+        return fail(runtime, MFX_ERROR_INVALID_ARGUMENT,
+                    "mfxCreateEffects: the description and the handle to fill must be given");
+    if (desc->structVersion != MFX_EFFECTS_DESC_VERSION)
+        return fail(runtime, MFX_ERROR_INVALID_ARGUMENT,
+                    "MfxEffectsDesc.structVersion is " + std::to_string(desc->structVersion) +
+                        "; this library reads version " + std::to_string(MFX_EFFECTS_DESC_VERSION));
+    if ((desc->sceneFile == nullptr) == (desc->sceneJson == nullptr))
+        return fail(runtime, MFX_ERROR_INVALID_ARGUMENT,
+                    "MfxEffectsDesc: give exactly one of sceneFile and sceneJson");
+    try {
+        auto scene = readScene(*desc);
+        if (!scene) return fail(runtime, MFX_ERROR_SCENE, scene.error().message);
+        auto character = mfx::scene::loadCharacter(scene.value());
+        if (!character) return fail(runtime, MFX_ERROR_SCENE, character.error().message);
+        auto simulation =
+            mfx::sim::SceneSimulation::create(*runtime->context, scene.value(), character.value());
+        if (!simulation) return fail(runtime, MFX_ERROR_SCENE, simulation.error().message);
+        auto made = std::make_unique<MfxEffects_T>();
+        made->runtime = runtime;
+        made->simulation = std::move(simulation).value();
+        for (const mfx::scene::EffectSpec& effect : made->simulation->scene().effects)
+            made->names.push_back(effect.name);
+        *effects = made.release();
+        return MFX_SUCCESS;
+    } catch (const std::bad_alloc&) {
+        return fail(runtime, MFX_ERROR_VULKAN, "out of host memory");
+    } catch (const std::exception& e) {
+        return fail(runtime, MFX_ERROR_INTERNAL, e.what());
+    }
+}
+
+void mfxDestroyEffects(MfxEffects effects) {
+    if (effects == nullptr) return;
+    // Frames recorded into the host's command buffers may still run.
+    vkQueueWaitIdle(effects->runtime->context->graphicsQueue().queue);
+    delete effects;
+}
+
+MfxResult mfxGetEffectsInfo(MfxEffects effects, MfxEffectsInfo* info) {
+    if (effects == nullptr) return MFX_ERROR_INVALID_ARGUMENT;
+    if (info == nullptr)
+        return fail(effects->runtime, MFX_ERROR_INVALID_ARGUMENT,
+                    "mfxGetEffectsInfo: the info to fill must be given");
+    const mfx::sim::SceneSimulation& simulation = *effects->simulation;
+    info->effectCount = uint32_t(effects->names.size());
+    info->smokeGrids = uint32_t(simulation.smokeGrids().size());
+    info->frameCount = simulation.frameCount();
+    info->framesPerSecond = simulation.scene().output.fps;
+    return MFX_SUCCESS;
+}
+
+const char* mfxEffectName(MfxEffects effects, uint32_t index) {
+    if (effects == nullptr || index >= effects->names.size()) return nullptr;
+    return effects->names[index].c_str();
 }
 
 } // extern "C"

@@ -1,6 +1,7 @@
 // The runtime library's C API (include/motionfx/motionfx.h) on a device the host made with plain
 // Vulkan calls: it borrows the device and leaves it working, several runtimes live in one process,
 // and a device without what motionfx needs is refused with every missing thing named.
+#include "core/scene/scene.h"
 #include "motionfx/motionfx.h"
 #include "tests/runtime/host_device.h"
 
@@ -186,6 +187,123 @@ TEST(RuntimeApi, BadDescriptionsAreRefused) {
     EXPECT_EQ(mfxCreateRuntime(&badFamily, &runtime), MFX_ERROR_UNSUPPORTED_DEVICE);
     ASSERT_EQ(messages.received.size(), 1u);
     EXPECT_NE(messages.received[0].second.find("queue family 1000"), std::string::npos);
+}
+
+// A runtime on a host device, for the effects tests.
+class RuntimeEffects : public ::testing::Test {
+protected:
+    void SetUp() override {
+        host_ = makeHost();
+        ASSERT_NE(host_, nullptr);
+        const MfxRuntimeDesc desc = describe(*host_, &messages_);
+        ASSERT_EQ(mfxCreateRuntime(&desc, &runtime_), MFX_SUCCESS);
+    }
+    void TearDown() override { mfxDestroyRuntime(runtime_); }
+
+    MfxEffectsDesc fromFile(const std::string& path) {
+        path_ = path;
+        MfxEffectsDesc desc{};
+        desc.structVersion = MFX_EFFECTS_DESC_VERSION;
+        desc.sceneFile = path_.c_str();
+        return desc;
+    }
+    MfxEffectsDesc fromJson(const std::string& json, const char* baseFolder = nullptr) {
+        json_ = json;
+        MfxEffectsDesc desc{};
+        desc.structVersion = MFX_EFFECTS_DESC_VERSION;
+        desc.sceneJson = json_.c_str();
+        desc.baseFolder = baseFolder;
+        return desc;
+    }
+    // The one message a refused call sent, after checking its result.
+    std::string refusal(const MfxEffectsDesc& desc, MfxResult expected) {
+        messages_.received.clear();
+        MfxEffects effects = reinterpret_cast<MfxEffects>(&messages_);
+        EXPECT_EQ(mfxCreateEffects(runtime_, &desc, &effects), expected);
+        EXPECT_EQ(effects, nullptr);
+        EXPECT_EQ(messages_.received.size(), 1u);
+        if (messages_.received.empty()) return {};
+        EXPECT_EQ(messages_.received[0].first, expected);
+        EXPECT_EQ(messages_.received[0].second, mfxRuntimeLastError(runtime_));
+        return messages_.received[0].second;
+    }
+
+    std::unique_ptr<HostDevice> host_;
+    Messages messages_;
+    MfxRuntime runtime_ = nullptr;
+    std::string path_, json_;
+};
+
+TEST_F(RuntimeEffects, FromASceneFileWithItsEffectsInOrder) {
+    const MfxEffectsDesc desc = fromFile(std::string(MFX_SOURCE_DIR) + "/docs/scenes/hero.json");
+    MfxEffects effects = nullptr;
+    ASSERT_EQ(mfxCreateEffects(runtime_, &desc, &effects), MFX_SUCCESS)
+        << mfxRuntimeLastError(runtime_);
+    MfxEffectsInfo info{};
+    ASSERT_EQ(mfxGetEffectsInfo(effects, &info), MFX_SUCCESS);
+    // What the program reads from the same file.
+    const auto scene = scene::loadScene(std::string(MFX_SOURCE_DIR) + "/docs/scenes/hero.json");
+    ASSERT_TRUE(scene) << scene.error().message;
+    ASSERT_EQ(info.effectCount, scene.value().effects.size());
+    for (uint32_t i = 0; i < info.effectCount; ++i)
+        EXPECT_EQ(std::string(mfxEffectName(effects, i)), scene.value().effects[i].name);
+    EXPECT_EQ(mfxEffectName(effects, info.effectCount), nullptr);
+    EXPECT_EQ(info.smokeGrids, 1u);
+    EXPECT_FLOAT_EQ(info.framesPerSecond, scene.value().output.fps);
+    EXPECT_GT(info.frameCount, 10u);
+    mfxDestroyEffects(effects);
+    mfxDestroyEffects(nullptr); // allowed
+    EXPECT_TRUE(deviceStillWorks(*host_));
+}
+
+TEST_F(RuntimeEffects, FromSceneJsonWithPathsAgainstTheBaseFolder) {
+    const std::string assets = std::string(MFX_SOURCE_DIR) + "/../shared/assets";
+    const MfxEffectsDesc desc = fromJson(
+        R"({"character": {"source": "RiggedSimple.gltf"},
+            "effects": [{"type": "speed_lines", "name": "lines"}]})",
+        assets.c_str());
+    MfxEffects effects = nullptr;
+    ASSERT_EQ(mfxCreateEffects(runtime_, &desc, &effects), MFX_SUCCESS)
+        << mfxRuntimeLastError(runtime_);
+    EXPECT_STREQ(mfxEffectName(effects, 0), "lines");
+    mfxDestroyEffects(effects);
+    // Without the base folder the same text looks in the working folder, and says so.
+    const std::string message = refusal(fromJson(json_), MFX_ERROR_SCENE);
+    EXPECT_NE(message.find("RiggedSimple.gltf"), std::string::npos) << message;
+}
+
+TEST_F(RuntimeEffects, ABadSceneIsOneErrorNamingWhatAndWhere) {
+    std::string message = refusal(
+        fromJson(R"({"effects": [{"type": "speed_lines", "widht": 0.1}]})"), MFX_ERROR_SCENE);
+    EXPECT_NE(message.find("(scene JSON)"), std::string::npos) << message;
+    EXPECT_NE(message.find("widht"), std::string::npos) << message;
+    EXPECT_EQ(lineCount(message), 1u) << message;
+
+    message = refusal(fromJson("{\"effects\": [}"), MFX_ERROR_SCENE);
+    EXPECT_NE(message.find("(scene JSON)"), std::string::npos) << message;
+
+    const std::string missing = std::string(MFX_TEST_OUTPUT_DIR) + "/no_such_scene.json";
+    message = refusal(fromFile(missing), MFX_ERROR_SCENE);
+    EXPECT_NE(message.find("no_such_scene.json"), std::string::npos) << message;
+
+    MfxEffectsDesc both = fromJson("{}");
+    both.sceneFile = "scene.json";
+    EXPECT_NE(refusal(both, MFX_ERROR_INVALID_ARGUMENT).find("exactly one"), std::string::npos);
+    MfxEffectsDesc neither = fromJson("{}");
+    neither.sceneJson = nullptr;
+    EXPECT_NE(refusal(neither, MFX_ERROR_INVALID_ARGUMENT).find("exactly one"), std::string::npos);
+    MfxEffectsDesc version = fromJson("{}");
+    version.structVersion = 7;
+    EXPECT_NE(refusal(version, MFX_ERROR_INVALID_ARGUMENT).find("structVersion"),
+              std::string::npos);
+    MfxEffects effects = nullptr;
+    EXPECT_EQ(mfxCreateEffects(nullptr, &version, &effects), MFX_ERROR_INVALID_ARGUMENT);
+    // The runtime still makes effects after all that.
+    const MfxEffectsDesc good = fromJson(R"({"effects": [{"type": "speed_lines"}]})");
+    ASSERT_EQ(mfxCreateEffects(runtime_, &good, &effects), MFX_SUCCESS)
+        << mfxRuntimeLastError(runtime_);
+    EXPECT_STREQ(mfxRuntimeLastError(runtime_), "");
+    mfxDestroyEffects(effects);
 }
 
 } // namespace

@@ -1,8 +1,8 @@
 /* A host application that embeds motionfx (docs/embedding.md): it makes its own Vulkan instance
  * and device, as an engine does, enabling what motionfx asks for, and hands them to a motionfx
- * runtime. Headless: no window, no surface.
+ * runtime, then makes the effects of a scene file on it. Headless: no window, no surface.
  *
- *   motionfx_host [--headless]
+ *   motionfx_host [--headless] [--scene FILE]
  */
 #include <motionfx/motionfx.h>
 
@@ -116,15 +116,20 @@ int main(int argc, char** argv) {
     Host host;
     MfxRuntimeDesc desc;
     MfxRuntime runtime = NULL;
+    const char* sceneFile = NULL;
     uint32_t version;
     int i;
 
-    for (i = 1; i < argc; ++i)
-        if (strcmp(argv[i], "--headless") != 0) {
-            fprintf(stderr, "motionfx_host: unknown argument \"%s\"; usage: motionfx_host "
-                            "[--headless]\n", argv[i]);
-            return 2;
+    for (i = 1; i < argc; ++i) {
+        if (strcmp(argv[i], "--headless") == 0) continue;
+        if (strcmp(argv[i], "--scene") == 0 && i + 1 < argc) {
+            sceneFile = argv[++i];
+            continue;
         }
+        fprintf(stderr, "motionfx_host: unknown argument \"%s\"; usage: motionfx_host "
+                        "[--headless] [--scene FILE]\n", argv[i]);
+        return 2;
+    }
     if (!makeHost(&host)) {
         destroyHost(&host);
         return 1;
@@ -148,6 +153,28 @@ int main(int argc, char** argv) {
     version = mfxVersion();
     printf("motionfx %u.%u.%u runtime on %s\n", version / 10000, version / 100 % 100,
            version % 100, mfxRuntimeDeviceName(runtime));
+
+    if (sceneFile != NULL) {
+        MfxEffectsDesc effectsDesc;
+        MfxEffects effects = NULL;
+        MfxEffectsInfo info;
+        uint32_t e;
+        memset(&effectsDesc, 0, sizeof effectsDesc);
+        effectsDesc.structVersion = MFX_EFFECTS_DESC_VERSION;
+        effectsDesc.sceneFile = sceneFile;
+        if (mfxCreateEffects(runtime, &effectsDesc, &effects) != MFX_SUCCESS ||
+            mfxGetEffectsInfo(effects, &info) != MFX_SUCCESS) {
+            mfxDestroyEffects(effects);
+            mfxDestroyRuntime(runtime);
+            destroyHost(&host);
+            return 1;
+        }
+        printf("%s: %u effects, %u smoke grids, %u frames at %g fps\n", sceneFile,
+               info.effectCount, info.smokeGrids, info.frameCount, (double)info.framesPerSecond);
+        for (e = 0; e < info.effectCount; ++e)
+            printf("  %s\n", mfxEffectName(effects, e));
+        mfxDestroyEffects(effects);
+    }
 
     mfxDestroyRuntime(runtime);
     destroyHost(&host);

@@ -45,7 +45,9 @@ typedef enum MfxResult {
     MFX_ERROR_INVALID_ARGUMENT = 1, /* a null pointer, an unknown struct version, a bad value */
     MFX_ERROR_UNSUPPORTED_DEVICE = 2, /* the device lacks a feature or extension motionfx needs */
     MFX_ERROR_VULKAN = 3,            /* a Vulkan call failed (out of memory, device lost) */
-    MFX_ERROR_INTERNAL = 4
+    MFX_ERROR_INTERNAL = 4,
+    MFX_ERROR_SCENE = 5 /* a scene file, its text or its character is wrong (the message says
+                           what and where) */
 } MfxResult;
 
 /* A short name for a result ("MFX_ERROR_UNSUPPORTED_DEVICE"); never null. */
@@ -90,7 +92,7 @@ typedef struct MfxRuntimeDesc {
 MFX_API MfxResult mfxCreateRuntime(const MfxRuntimeDesc* desc, MfxRuntime* runtime);
 
 /* Waits for the runtime's queue to be idle, then frees everything the runtime made. The host's
- * objects stay. Null is allowed. */
+ * objects stay. The effects made on the runtime must be destroyed before it. Null is allowed. */
 MFX_API void mfxDestroyRuntime(MfxRuntime runtime);
 
 /* The message of the runtime's last failed call ("" when none failed); valid until the next call
@@ -99,6 +101,47 @@ MFX_API const char* mfxRuntimeLastError(MfxRuntime runtime);
 
 /* The name of the device the runtime runs on (valid while the runtime lives). */
 MFX_API const char* mfxRuntimeDeviceName(MfxRuntime runtime);
+
+/* --- Effects ------------------------------------------------------------------------------ */
+
+/* The effects of one scene (the files in docs/scenes; README.md, "Scene files"): its character, its
+ * trail effects (speed-lines, blur volumes, particles, ...) and its smoke grids, with the GPU
+ * resources they simulate in. */
+typedef struct MfxEffects_T* MfxEffects;
+
+#define MFX_EFFECTS_DESC_VERSION 1
+
+typedef struct MfxEffectsDesc {
+    uint32_t structVersion; /* MFX_EFFECTS_DESC_VERSION */
+    /* Exactly one of the two: a scene file's path, or a scene's JSON text. */
+    const char* sceneFile;
+    const char* sceneJson;
+    /* With sceneJson: the folder its relative paths (character.source) are read against; null:
+     * the working folder. A scene file's relative paths are read against its own folder. */
+    const char* baseFolder;
+} MfxEffectsDesc;
+
+/* Reads the scene and its character (the built-in fighter or a glTF file) and makes its effects
+ * on the runtime's device; uploads are submitted to the runtime's queue and waited for.
+ * MFX_ERROR_SCENE names what in the scene is wrong, and where. */
+MFX_API MfxResult mfxCreateEffects(MfxRuntime runtime, const MfxEffectsDesc* desc,
+                                   MfxEffects* effects);
+
+/* Waits for the runtime's queue to be idle, then frees the effects. Null is allowed. */
+MFX_API void mfxDestroyEffects(MfxEffects effects);
+
+typedef struct MfxEffectsInfo {
+    uint32_t effectCount;   /* the scene's effects, in its order */
+    uint32_t smokeGrids;    /* smoke effects with equal grid settings share one grid */
+    uint32_t frameCount;    /* the frames the scene's clip (or output.frames) lasts */
+    float framesPerSecond;  /* the scene's output.fps: the simulation's frame rate */
+} MfxEffectsInfo;
+
+MFX_API MfxResult mfxGetEffectsInfo(MfxEffects effects, MfxEffectsInfo* info);
+
+/* The name of effect `index` (the scene's "name", or its kind and index, e.g. "speed_lines#0");
+ * null past the last. Valid while the effects live. */
+MFX_API const char* mfxEffectName(MfxEffects effects, uint32_t index);
 
 #ifdef __cplusplus
 }

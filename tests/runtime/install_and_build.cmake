@@ -36,8 +36,12 @@ run("configuring examples/host" ${CMAKE_COMMAND} -S ${SOURCE_DIR}/examples/host 
     -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF
     -DCMAKE_FIND_USE_SYSTEM_PACKAGE_REGISTRY=OFF -DCMAKE_BUILD_TYPE=Release)
 run("building examples/host" ${CMAKE_COMMAND} --build ${example_build} -j 2)
-run("running examples/host" ${example_build}/motionfx_host --headless)
+run("running examples/host" ${example_build}/motionfx_host --headless
+    --scene ${SOURCE_DIR}/docs/scenes/hero.json)
 message(STATUS "${last_output}")
 if(NOT last_output MATCHES "motionfx 0\\.[0-9]+\\.[0-9]+ runtime on ")
     message(FATAL_ERROR "examples/host did not report its runtime:\n${last_output}")
+endif()
+if(NOT last_output MATCHES "hero.json: [1-9][0-9]* effects, 1 smoke grids")
+    message(FATAL_ERROR "examples/host did not make the hero scene's effects:\n${last_output}")
 endif()
