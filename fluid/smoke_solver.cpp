@@ -372,9 +372,8 @@ void SmokeSolver::computeDivergence(VkCommandBuffer cmd) {
     w.push_back(gpu::bindBuffer(7, f.packedPressure[1]));
     w.push_back(storage(8, f.pressure[size_t(1 - f.currentPressure)]));
     dispatch(cmd, programs_.get("compute_divergence", 0, firstSweep, direct_), w, f.cells);
+    // Either path's barriers (the copy's carry a global memory barrier) cover the sweep's output.
     storeFields(cmd, direct_, {{&f.scratch[0], &f.divergence}});
-    // The copy's barriers cover the divergence image alone; the sweep's output needs its own.
-    if (firstSweep != 0 && !direct_) fieldBarrier(cmd);
     firstSweepDone_ = firstSweep != 0;
 }
 
@@ -468,14 +467,25 @@ void SmokeSolver::recordStageOnly(VkCommandBuffer cmd, Stage stage, gpu::GpuTime
 void SmokeSolver::recordStep(VkCommandBuffer cmd, gpu::GpuTimer* timer) {
     writeParameters(); // once: every sub-step and stage reads the same uniform
     lastStepDispatches_.clear();
-    stepping_ = true;
+    // Reset however the recording ends (a pipeline that cannot be made throws): a stage recorded
+    // alone afterwards must neither fuse nor skip its first sweep.
+    struct StepScope {
+        SmokeSolver& solver;
+        explicit StepScope(SmokeSolver& s) : solver(s) {
+            solver.stepping_ = true;
+            solver.firstSweepDone_ = false;
+        }
+        ~StepScope() {
+            solver.stepping_ = false;
+            solver.firstSweepDone_ = false;
+        }
+    } scope(*this);
     for (uint32_t substep = 0; substep < options_.substeps; ++substep)
         for (Stage stage : stepOrder()) {
             const uint32_t before = dispatches_;
             recordStageOnly(cmd, stage, timer);
             countStageDispatches(lastStepDispatches_, stage, dispatches_ - before);
         }
-    stepping_ = false;
 }
 
 uint64_t SmokeSolver::memoryBytes() const {

@@ -2,6 +2,7 @@
 // catches what the code below it throws: nothing but a result crosses the C boundary.
 #include "motionfx/motionfx.h"
 
+#include "core/gpu/check.h"
 #include "core/gpu/context.h"
 #include "core/scene/scene.h"
 #include "sim/scene_simulation.h"
@@ -10,6 +11,7 @@
 #include <filesystem>
 #include <memory>
 #include <new>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -23,10 +25,12 @@ struct MfxRuntime_T {
     MfxMessageCallback callback = nullptr;
     void* user = nullptr;
     std::string lastError;
+    std::set<MfxEffects> effects; // alive: freed with the runtime if the host has not
 };
 
 struct MfxEffects_T {
     MfxRuntime runtime = nullptr;
+    mfx::anim::Character character; // the simulation keeps a reference to it: declared first
     std::unique_ptr<mfx::sim::SceneSimulation> simulation;
     std::vector<std::string> names;
 };
@@ -131,12 +135,19 @@ MfxResult mfxCreateRuntime(const MfxRuntimeDesc* desc, MfxRuntime* runtime) {
         return MFX_SUCCESS;
     } catch (const std::bad_alloc&) {
         return fail(nullptr, callback, user, MFX_ERROR_VULKAN, "out of host memory");
+    } catch (const mfx::gpu::VulkanError& e) {
+        return fail(nullptr, callback, user, MFX_ERROR_VULKAN, e.what());
     } catch (const std::exception& e) {
         return fail(nullptr, callback, user, MFX_ERROR_INTERNAL, e.what());
     }
 }
 
 void mfxDestroyRuntime(MfxRuntime runtime) {
+    if (runtime == nullptr) return;
+    // Effects the host did not destroy go first: they use the runtime's device objects.
+    if (!runtime->effects.empty()) vkQueueWaitIdle(runtime->context->graphicsQueue().queue);
+    for (MfxEffects effects : runtime->effects)
+        delete effects;
     delete runtime;
 }
 
@@ -167,18 +178,22 @@ MfxResult mfxCreateEffects(MfxRuntime runtime, const MfxEffectsDesc* desc, MfxEf
         if (!scene) return fail(runtime, MFX_ERROR_SCENE, scene.error().message);
         auto character = mfx::scene::loadCharacter(scene.value());
         if (!character) return fail(runtime, MFX_ERROR_SCENE, character.error().message);
-        auto simulation =
-            mfx::sim::SceneSimulation::create(*runtime->context, scene.value(), character.value());
-        if (!simulation) return fail(runtime, MFX_ERROR_SCENE, simulation.error().message);
         auto made = std::make_unique<MfxEffects_T>();
         made->runtime = runtime;
+        made->character = std::move(character).value();
+        auto simulation =
+            mfx::sim::SceneSimulation::create(*runtime->context, scene.value(), made->character);
+        if (!simulation) return fail(runtime, MFX_ERROR_SCENE, simulation.error().message);
         made->simulation = std::move(simulation).value();
         for (const mfx::scene::EffectSpec& effect : made->simulation->scene().effects)
             made->names.push_back(effect.name);
+        runtime->effects.insert(made.get());
         *effects = made.release();
         return MFX_SUCCESS;
     } catch (const std::bad_alloc&) {
         return fail(runtime, MFX_ERROR_VULKAN, "out of host memory");
+    } catch (const mfx::gpu::VulkanError& e) {
+        return fail(runtime, MFX_ERROR_VULKAN, e.what());
     } catch (const std::exception& e) {
         return fail(runtime, MFX_ERROR_INTERNAL, e.what());
     }
@@ -188,6 +203,7 @@ void mfxDestroyEffects(MfxEffects effects) {
     if (effects == nullptr) return;
     // Frames recorded into the host's command buffers may still run.
     vkQueueWaitIdle(effects->runtime->context->graphicsQueue().queue);
+    effects->runtime->effects.erase(effects);
     delete effects;
 }
 
@@ -196,6 +212,11 @@ MfxResult mfxGetEffectsInfo(MfxEffects effects, MfxEffectsInfo* info) {
     if (info == nullptr)
         return fail(effects->runtime, MFX_ERROR_INVALID_ARGUMENT,
                     "mfxGetEffectsInfo: the info to fill must be given");
+    if (info->structVersion != MFX_EFFECTS_INFO_VERSION)
+        return fail(effects->runtime, MFX_ERROR_INVALID_ARGUMENT,
+                    "MfxEffectsInfo.structVersion is " + std::to_string(info->structVersion) +
+                        "; this library writes version " +
+                        std::to_string(MFX_EFFECTS_INFO_VERSION));
     const mfx::sim::SceneSimulation& simulation = *effects->simulation;
     info->effectCount = uint32_t(effects->names.size());
     info->smokeGrids = uint32_t(simulation.smokeGrids().size());

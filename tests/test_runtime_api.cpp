@@ -93,6 +93,30 @@ TEST(RuntimeApi, MadeOnTheHostsDeviceAndGoneWithoutIt) {
     // The host's device and queue are the host's still.
     EXPECT_TRUE(deviceStillWorks(*host));
     mfxDestroyRuntime(nullptr); // allowed
+    // The validation layer watched it all (the set-up installs it; without it this proves less).
+    EXPECT_TRUE(host->validated());
+    EXPECT_EQ(host->validationErrors(), 0u);
+}
+
+// dynamicRendering and synchronization2 may come in their own structs instead of the 1.3 one.
+TEST(RuntimeApi, FeaturesInTheirOwnStructsAreRead) {
+    HostDeviceOptions standalone;
+    standalone.standaloneStructs = true;
+    auto host = makeHost(standalone);
+    ASSERT_NE(host, nullptr);
+    Messages messages;
+    const MfxRuntimeDesc desc = describe(*host, &messages);
+    MfxRuntime runtime = nullptr;
+    EXPECT_EQ(mfxCreateRuntime(&desc, &runtime), MFX_SUCCESS)
+        << (messages.received.empty() ? "" : messages.received[0].second);
+    mfxDestroyRuntime(runtime);
+    standalone.synchronization2 = false;
+    auto lacking = makeHost(standalone);
+    ASSERT_NE(lacking, nullptr);
+    const MfxRuntimeDesc without = describe(*lacking, &messages);
+    EXPECT_EQ(mfxCreateRuntime(&without, &runtime), MFX_ERROR_UNSUPPORTED_DEVICE);
+    ASSERT_FALSE(messages.received.empty());
+    EXPECT_NE(messages.received.back().second.find("synchronization2"), std::string::npos);
 }
 
 TEST(RuntimeApi, SeveralRuntimesInOneProcess) {
@@ -198,7 +222,11 @@ protected:
         const MfxRuntimeDesc desc = describe(*host_, &messages_);
         ASSERT_EQ(mfxCreateRuntime(&desc, &runtime_), MFX_SUCCESS);
     }
-    void TearDown() override { mfxDestroyRuntime(runtime_); }
+    void TearDown() override {
+        mfxDestroyRuntime(runtime_);
+        // Everything motionfx did on the host's device passed the validation layer.
+        if (host_ != nullptr) EXPECT_EQ(host_->validationErrors(), 0u);
+    }
 
     MfxEffectsDesc fromFile(const std::string& path) {
         path_ = path;
@@ -240,6 +268,8 @@ TEST_F(RuntimeEffects, FromASceneFileWithItsEffectsInOrder) {
     ASSERT_EQ(mfxCreateEffects(runtime_, &desc, &effects), MFX_SUCCESS)
         << mfxRuntimeLastError(runtime_);
     MfxEffectsInfo info{};
+    EXPECT_EQ(mfxGetEffectsInfo(effects, &info), MFX_ERROR_INVALID_ARGUMENT); // no version set
+    info.structVersion = MFX_EFFECTS_INFO_VERSION;
     ASSERT_EQ(mfxGetEffectsInfo(effects, &info), MFX_SUCCESS);
     // What the program reads from the same file.
     const auto scene = scene::loadScene(std::string(MFX_SOURCE_DIR) + "/docs/scenes/hero.json");
@@ -253,6 +283,18 @@ TEST_F(RuntimeEffects, FromASceneFileWithItsEffectsInOrder) {
     EXPECT_GT(info.frameCount, 10u);
     mfxDestroyEffects(effects);
     mfxDestroyEffects(nullptr); // allowed
+    EXPECT_TRUE(deviceStillWorks(*host_));
+}
+
+// Effects the host did not destroy go with their runtime (the sanitizers' pass sees no leak).
+TEST_F(RuntimeEffects, ARuntimeFreesTheEffectsLeftOnIt) {
+    const MfxEffectsDesc desc = fromFile(std::string(MFX_SOURCE_DIR) + "/docs/scenes/smoke.json");
+    MfxEffects first = nullptr, second = nullptr;
+    ASSERT_EQ(mfxCreateEffects(runtime_, &desc, &first), MFX_SUCCESS);
+    ASSERT_EQ(mfxCreateEffects(runtime_, &desc, &second), MFX_SUCCESS);
+    mfxDestroyEffects(first);
+    mfxDestroyRuntime(runtime_); // `second` goes with it
+    runtime_ = nullptr;
     EXPECT_TRUE(deviceStillWorks(*host_));
 }
 

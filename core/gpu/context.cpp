@@ -223,6 +223,7 @@ FeatureChain copiedChain(const VkPhysicalDeviceFeatures2& host) {
     FeatureChain chain;
     chain.link(true, true);
     chain.core.features = host.features;
+    VkBool32 dynamicRendering = VK_FALSE, synchronization2 = VK_FALSE;
     // Walks at most 64 structures: a chain that loops is the host's bug, not a hang of ours.
     const auto* next = static_cast<const VkBaseInStructure*>(host.pNext);
     for (int i = 0; next != nullptr && i < 64; ++i, next = next->pNext) {
@@ -247,10 +248,23 @@ FeatureChain copiedChain(const VkPhysicalDeviceFeatures2& host) {
         case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_FLOAT_FEATURES_EXT:
             copy(chain.atomicFloat);
             break;
+        // The 1.3 features a host may enable through their own structs instead.
+        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES:
+            dynamicRendering |=
+                reinterpret_cast<const VkPhysicalDeviceDynamicRenderingFeatures*>(next)
+                    ->dynamicRendering;
+            break;
+        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SYNCHRONIZATION_2_FEATURES:
+            synchronization2 |=
+                reinterpret_cast<const VkPhysicalDeviceSynchronization2Features*>(next)
+                    ->synchronization2;
+            break;
         default:
             break;
         }
     }
+    chain.v13.dynamicRendering |= dynamicRendering;
+    chain.v13.synchronization2 |= synchronization2;
     return chain;
 }
 

@@ -160,6 +160,8 @@ int main(int argc, char** argv) {
         MfxEffectsInfo info;
         uint32_t e;
         memset(&effectsDesc, 0, sizeof effectsDesc);
+        memset(&info, 0, sizeof info);
+        info.structVersion = MFX_EFFECTS_INFO_VERSION;
         effectsDesc.structVersion = MFX_EFFECTS_DESC_VERSION;
         effectsDesc.sceneFile = sceneFile;
         if (mfxCreateEffects(runtime, &effectsDesc, &effects) != MFX_SUCCESS ||

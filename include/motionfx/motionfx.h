@@ -11,9 +11,10 @@
  * that is missing. A runtime holds no global state: several can live in one process, on one
  * device or on several.
  *
- * Threads: calls on one runtime (and on what it made) must not overlap; separate runtimes are
- * independent. A call that submits to the host's queue says so: the host must not use that queue
- * on another thread meanwhile (Vulkan's external synchronisation of queues).
+ * Threads: calls on one runtime (and on what it made) must not overlap. Runtimes on different
+ * queues are independent; runtimes given the same queue must not be called at the same time
+ * either. A call that submits to or waits on the runtime's queue says so: the host must not use
+ * that queue on another thread meanwhile (Vulkan's external synchronisation of queues).
  */
 #ifndef MOTIONFX_MOTIONFX_H
 #define MOTIONFX_MOTIONFX_H
@@ -91,8 +92,9 @@ typedef struct MfxRuntimeDesc {
  * motionfx needs; the message names every missing feature and extension, one a line. */
 MFX_API MfxResult mfxCreateRuntime(const MfxRuntimeDesc* desc, MfxRuntime* runtime);
 
-/* Waits for the runtime's queue to be idle, then frees everything the runtime made. The host's
- * objects stay. The effects made on the runtime must be destroyed before it. Null is allowed. */
+/* Waits for the runtime's queue to be idle, then frees everything the runtime made, effects the
+ * host has not destroyed included (their handles are invalid afterwards). The host's objects
+ * stay. Null is allowed. */
 MFX_API void mfxDestroyRuntime(MfxRuntime runtime);
 
 /* The message of the runtime's last failed call ("" when none failed); valid until the next call
@@ -130,13 +132,17 @@ MFX_API MfxResult mfxCreateEffects(MfxRuntime runtime, const MfxEffectsDesc* des
 /* Waits for the runtime's queue to be idle, then frees the effects. Null is allowed. */
 MFX_API void mfxDestroyEffects(MfxEffects effects);
 
+#define MFX_EFFECTS_INFO_VERSION 1
+
 typedef struct MfxEffectsInfo {
+    uint32_t structVersion; /* MFX_EFFECTS_INFO_VERSION, set by the caller */
     uint32_t effectCount;   /* the scene's effects, in its order */
     uint32_t smokeGrids;    /* smoke effects with equal grid settings share one grid */
     uint32_t frameCount;    /* the frames the scene's clip (or output.frames) lasts */
     float framesPerSecond;  /* the scene's output.fps: the simulation's frame rate */
 } MfxEffectsInfo;
 
+/* Fills `info`, whose structVersion the caller has set. */
 MFX_API MfxResult mfxGetEffectsInfo(MfxEffects effects, MfxEffectsInfo* info);
 
 /* The name of effect `index` (the scene's "name", or its kind and index, e.g. "speed_lines#0");

@@ -4,6 +4,7 @@
 // extensions the test asks for.
 #pragma once
 
+#include <atomic>
 #include <memory>
 #include <string>
 #include <vector>
@@ -16,6 +17,9 @@ struct HostDeviceOptions {
     bool geometryShader = true;
     bool dynamicRendering = true;
     bool synchronization2 = true;
+    // dynamicRendering and synchronization2 through their own feature structs instead of
+    // VkPhysicalDeviceVulkan13Features (the chain may not hold both).
+    bool standaloneStructs = false;
 };
 
 class HostDevice {
@@ -37,10 +41,24 @@ public:
     VkPhysicalDeviceVulkan11Features v11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES};
     VkPhysicalDeviceVulkan12Features v12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
     VkPhysicalDeviceVulkan13Features v13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+    VkPhysicalDeviceDynamicRenderingFeatures dynamicRendering{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES};
+    VkPhysicalDeviceSynchronization2Features synchronization2{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SYNCHRONIZATION_2_FEATURES};
     std::vector<const char*> extensions;
+
+    // With the validation layer installed the instance has it, and its errors are counted here
+    // (and printed): what motionfx does on the host's device is checked as the program's is.
+    bool validated() const { return messenger_ != VK_NULL_HANDLE; }
+    uint32_t validationErrors() const { return errors_; }
 
 private:
     HostDevice() = default;
+    static VKAPI_ATTR VkBool32 VKAPI_CALL onMessage(
+        VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT types,
+        const VkDebugUtilsMessengerCallbackDataEXT* data, void* user);
+    VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+    std::atomic<uint32_t> errors_{0};
 };
 
 } // namespace mfx::test
