@@ -225,7 +225,9 @@ protected:
     void TearDown() override {
         mfxDestroyRuntime(runtime_);
         // Everything motionfx did on the host's device passed the validation layer.
-        if (host_ != nullptr) EXPECT_EQ(host_->validationErrors(), 0u);
+        if (host_ != nullptr) {
+            EXPECT_EQ(host_->validationErrors(), 0u);
+        }
     }
 
     MfxEffectsDesc fromFile(const std::string& path) {
