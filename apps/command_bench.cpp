@@ -197,15 +197,16 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
     auto coarseGroup =
         cli::parseUnsigned(parsed.value("coarse-group", "0"), 0, 1024, "--coarse-group");
     if (reportFirstError(grids, jacobi, steps, workgroups, copyMib, coarseGroup)) return kExitUsage;
-    const auto fused = fluid::byDeviceFromName(parsed.value("residual-in-restriction", "auto"));
-    const auto firstSweep =
-        fluid::byDeviceFromName(parsed.value("first-sweep-in-divergence", "auto"));
-    for (const char* option : {"residual-in-restriction", "first-sweep-in-divergence"})
-        if (!fluid::byDeviceFromName(parsed.value(option, "auto"))) {
+    std::optional<fluid::ByDevice> fused, firstSweep;
+    for (auto [option, choice] : {std::pair{"residual-in-restriction", &fused},
+                                  std::pair{"first-sweep-in-divergence", &firstSweep}}) {
+        *choice = fluid::byDeviceFromName(parsed.value(option, "auto"));
+        if (!*choice) {
             printError(std::string("--") + option + " must be auto, on or off, not \"" +
                        parsed.value(option) + "\"");
             return kExitUsage;
         }
+    }
     const auto pressure = fluid::pressureSolverFromName(parsed.value("pressure", "jacobi"));
     if (!pressure) {
         printError("--pressure: no pressure solver \"" + parsed.value("pressure") +

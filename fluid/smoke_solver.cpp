@@ -374,7 +374,7 @@ void SmokeSolver::computeDivergence(VkCommandBuffer cmd) {
     dispatch(cmd, programs_.get("compute_divergence", 0, firstSweep, direct_), w, f.cells);
     // Either path's barriers (the copy's carry a global memory barrier) cover the sweep's output.
     storeFields(cmd, direct_, {{&f.scratch[0], &f.divergence}});
-    firstSweepDone_ = firstSweep != 0;
+    firstSweepDone_ = firstSweep;
 }
 
 void SmokeSolver::solvePressure(VkCommandBuffer cmd) {
@@ -391,7 +391,7 @@ void SmokeSolver::solvePressure(VkCommandBuffer cmd) {
     // no sweep at all the pressure is cleared. In a step the divergence pass may have done the
     // first sweep already (packed into packedPressure[1], or into the other image).
     const bool zeroFirst = !options_.warmStart && sweeps > 0;
-    const uint32_t done = std::exchange(firstSweepDone_, false) ? 1u : 0u;
+    const uint32_t firstSweepDone = std::exchange(firstSweepDone_, 0u);
     if (!options_.warmStart && sweeps == 0) {
         const VkClearColorValue zero{};
         const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
@@ -406,13 +406,9 @@ void SmokeSolver::solvePressure(VkCommandBuffer cmd) {
                             (f.cells.y + kPressureRows - 1) / kPressureRows,
                             (f.cells.z + kPressureLayers - 1) / kPressureLayers);
     size_t packedIn = 0;
-    if (done == 1) {
-        if (f.packedSolve && sweeps > 1)
-            packedIn = 1;
-        else
-            f.currentPressure = 1 - f.currentPressure;
-    }
-    for (uint32_t sweep = done; sweep < sweeps; ++sweep) {
+    if (firstSweepDone == 1) packedIn = 1;                              // packed
+    if (firstSweepDone == 2) f.currentPressure = 1 - f.currentPressure; // the other image
+    for (uint32_t sweep = firstSweepDone != 0 ? 1u : 0u; sweep < sweeps; ++sweep) {
         const bool first = sweep == 0, last = sweep + 1 == sweeps;
         const uint32_t mode = (f.packedSolve ? (first ? 0u : 1u) | (last ? 0u : 2u) : 0u) |
                               (first && zeroFirst ? 4u : 0u);
@@ -473,11 +469,11 @@ void SmokeSolver::recordStep(VkCommandBuffer cmd, gpu::GpuTimer* timer) {
         SmokeSolver& solver;
         explicit StepScope(SmokeSolver& s) : solver(s) {
             solver.stepping_ = true;
-            solver.firstSweepDone_ = false;
+            solver.firstSweepDone_ = 0;
         }
         ~StepScope() {
             solver.stepping_ = false;
-            solver.firstSweepDone_ = false;
+            solver.firstSweepDone_ = 0;
         }
     } scope(*this);
     for (uint32_t substep = 0; substep < options_.substeps; ++substep)

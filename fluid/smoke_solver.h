@@ -160,9 +160,11 @@ private:
     bool direct_ = false;                     // options.storePath resolved for the device
     bool fusedVorticity_ = false;             // the direct path's one-dispatch curl and force
     // Recording a step (not a stage alone): the divergence pass may do the Jacobi solve's first
-    // sweep (SolverOptions::firstSweepInDivergence); firstSweepDone_ tells solvePressure it did.
+    // sweep (SolverOptions::firstSweepInDivergence); firstSweepDone_ tells solvePressure where it
+    // went: 0 not done, 1 packedPressure[1], 2 the other pressure image (compute_divergence.comp's
+    // kFirstSweep).
     bool stepping_ = false;
-    bool firstSweepDone_ = false;
+    uint32_t firstSweepDone_ = 0;
 
     gpu::Buffer parameters_;
     gpu::Buffer ownEmitters_;

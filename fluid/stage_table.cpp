@@ -230,8 +230,7 @@ std::span<const StageEntry> stageTable() {
          &SmokeSolver::solvePressure, &SparseSmokeSolver::solvePressure,
          referenceStage<&ReferenceSolver::solvePressure>, pressureBytes,
          "per sweep: pressure and divergence read, pressure written (a cold Jacobi solve: the "
-         "first "
-         "sweep in the divergence; multigrid: per level)",
+         "first sweep in the divergence; multigrid: per level)",
          true},
         {Stage::Project, "project", "project", "sparse_project", &SmokeSolver::project,
          &SparseSmokeSolver::project, referenceStage<&ReferenceSolver::project>, projectBytes,

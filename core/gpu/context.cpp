@@ -197,9 +197,11 @@ struct FeatureChain {
     }
 };
 
-// The optional capabilities a device was created with (`enabled`).
+// The optional capabilities a device was created with (`enabled`); timestamps where its queue's
+// family counts them.
 DeviceFeatures recordedFeatures(const FeatureChain& enabled, bool hasTransformFeedback,
-                                bool hasAtomicFloat, bool timestamps) {
+                                bool hasAtomicFloat, const VkQueueFamilyProperties& family,
+                                const VkPhysicalDeviceLimits& limits) {
     const VkPhysicalDeviceFeatures& use = enabled.core.features;
     DeviceFeatures f;
     f.geometryShader = use.geometryShader;
@@ -214,7 +216,7 @@ DeviceFeatures recordedFeatures(const FeatureChain& enabled, bool hasTransformFe
     f.geometryStreams = hasTransformFeedback && enabled.transformFeedback.geometryStreams;
     f.bufferFloat32AtomicAdd = hasAtomicFloat && enabled.atomicFloat.shaderBufferFloat32AtomicAdd;
     f.imageFloat32AtomicAdd = hasAtomicFloat && enabled.atomicFloat.shaderImageFloat32AtomicAdd;
-    f.timestamps = timestamps;
+    f.timestamps = family.timestampValidBits > 0 && limits.timestampPeriod > 0;
     return f;
 }
 
@@ -480,8 +482,7 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
     vkGetPhysicalDeviceQueueFamilyProperties(best, &familyCount, families.data());
 
     ctx->features_ = recordedFeatures(enabled, hasTransformFeedback, hasAtomicFloat,
-                                      families[family].timestampValidBits > 0 &&
-                                          ctx->properties_.limits.timestampPeriod > 0);
+                                      families[family], ctx->properties_.limits);
 
     // --- Logical device -------------------------------------------------------------------------
     std::vector<const char*> enabledExtensions = options.deviceExtensions;
@@ -600,8 +601,7 @@ Result<std::unique_ptr<Context>> Context::adopt(const AdoptedDevice& host) {
     const bool transformFeedback = extension(VK_EXT_TRANSFORM_FEEDBACK_EXTENSION_NAME);
     const bool atomicFloat = extension(VK_EXT_SHADER_ATOMIC_FLOAT_EXTENSION_NAME);
     ctx->features_ = recordedFeatures(enabled, transformFeedback, atomicFloat,
-                                      families[host.queueFamily].timestampValidBits > 0 &&
-                                          ctx->properties_.limits.timestampPeriod > 0);
+                                      families[host.queueFamily], ctx->properties_.limits);
     if (Status ready = ctx->finishDevice(); !ready) return ready.error();
     return Result<std::unique_ptr<Context>>(std::move(ctx));
 }
@@ -624,16 +624,15 @@ void Context::keepProgram(const std::string& key,
 }
 
 Context::~Context() {
-    if (!ownsDevice_) { // the host's device and instance stay; what was made on them goes
-        if (graphicsQueue_.queue != VK_NULL_HANDLE) vkQueueWaitIdle(graphicsQueue_.queue);
-        programs_.clear();
-        oneShotPool_.reset();
-        return;
-    }
     if (device_ != VK_NULL_HANDLE) {
-        vkDeviceWaitIdle(device_);
+        // An adopted device is the host's: only its queue is ours to wait for.
+        if (ownsDevice_)
+            vkDeviceWaitIdle(device_);
+        else if (graphicsQueue_.queue != VK_NULL_HANDLE)
+            vkQueueWaitIdle(graphicsQueue_.queue);
         programs_.clear(); // their pipelines and layouts, before the device
         oneShotPool_.reset();
+        if (!ownsDevice_) return; // the host's device and instance stay
         vkDestroyDevice(device_, nullptr);
     }
     if (messenger_ != VK_NULL_HANDLE) {

@@ -43,9 +43,9 @@ MFX_API uint32_t mfxVersion(void);
 
 typedef enum MfxResult {
     MFX_SUCCESS = 0,
-    MFX_ERROR_INVALID_ARGUMENT = 1, /* a null pointer, an unknown struct version, a bad value */
+    MFX_ERROR_INVALID_ARGUMENT = 1,   /* a null pointer, an unknown struct version, a bad value */
     MFX_ERROR_UNSUPPORTED_DEVICE = 2, /* the device lacks a feature or extension motionfx needs */
-    MFX_ERROR_VULKAN = 3,            /* a Vulkan call failed (out of memory, device lost) */
+    MFX_ERROR_VULKAN = 3,             /* a Vulkan call failed (out of memory, device lost) */
     MFX_ERROR_INTERNAL = 4,
     MFX_ERROR_SCENE = 5 /* a scene file, its text or its character is wrong (the message says
                            what and where) */
