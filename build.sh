@@ -152,8 +152,12 @@ SANITIZER_EXCLUDED=(
     # sampling it guards: HostileScene.LiveSampledFramesAreBoundedAndSpanTheWindow
     'LongSceneWithManyAutomaticEffects'
     # the install and a separate project built against it (cmake and the compiler, which the
-    # preloaded sanitizer runtime would instrument); the library's entry points: RuntimeApi.*
-    '^RuntimeInstall[.]'
+    # preloaded sanitizer runtime would instrument), and that project's program run (it is not
+    # built with the sanitizers); the library's entry points: RuntimeApi.*, RuntimeFrame.*
+    '^RuntimeInstall[.]' '^RuntimeExample[.]'
+    # the runtime's frames against the program's, 21 frames each side; the runtime's frame
+    # recording and its refusals: RuntimeFrame.BadTargets..., RuntimeFrame.TheTimeCannotGoBack
+    '^RuntimeFrame[.](OverTheProgramsPicture|WithFourSamples)'
     # benchmarks run as the program (GPU timings); their bad values and refusals stay
     # (Cli.Bench*BadValuesAreOneLine, Cli.BenchEffectsRefuses*)
     '^Cli[.]Bench.*(Prints|Writes)'

@@ -1,16 +1,15 @@
-// One frame of a scene, drawn: the character's skinning and shadow, the scene pass, the effect
-// passes and the smoke composite in linear HDR colour, then the bloom and the tone map into the
-// 8-bit output, recorded into one command buffer after the simulation's own
-// work for that frame, each pass bracketed by a GPU timestamp. `motionfx render`, `bench frame`
-// and `view` and the golden-image tests all draw through it.
+// One frame of a scene, drawn: the character's skinning and shadow, the scene pass, the effects
+// (render/effects_renderer.h: the effect passes and the smoke composite) in linear HDR colour, then
+// the bloom and the tone map into the 8-bit output, recorded into one command buffer after the
+// simulation's own work for that frame, each pass bracketed by a GPU timestamp. `motionfx render`,
+// `bench frame` and `view` and the golden-image tests all draw through it.
 #pragma once
 
 #include "core/gpu/timer.h"
 #include "render/bloom_pass.h"
 #include "render/character_pass.h"
-#include "render/effect_kind_pass.h"
+#include "render/effects_renderer.h"
 #include "render/render_target.h"
-#include "render/smoke_pass.h"
 #include "render/tone_map_pass.h"
 #include "sim/scene_simulation.h"
 
@@ -47,8 +46,8 @@ public:
 
     // Which of the scene's effects are drawn, by their index in scene.effects (all by default).
     // A smoke grid is drawn while any of its effects is shown.
-    void setShown(size_t effect, bool shown);
-    bool shown(size_t effect) const { return effect < shown_.size() && shown_[effect] != 0; }
+    void setShown(size_t effect, bool shown) { effects_.setShown(effect, shown); }
+    bool shown(size_t effect) const { return effects_.shown(effect); }
 
     // After the recording has finished executing: the GPU milliseconds of each drawing pass
     // (kFramePassNames; empty without timestamp support) and the number of effect draws.
@@ -62,9 +61,7 @@ public:
     // no effect it draws.
     template <class Pass>
     const Pass* effectPass() const {
-        for (const auto& pass : effectPasses_)
-            if (const auto* p = dynamic_cast<const Pass*>(pass.get())) return p;
-        return nullptr;
+        return effects_.effectPass<Pass>();
     }
     const SceneCamera& camera() const { return camera_; }
     // Draws from `camera` from now on instead of the scene's camera (a viewer's orbit camera).
@@ -79,15 +76,12 @@ private:
     RenderTarget target_;
     RenderTarget output_;
     CharacterPass scenePass_;
-    std::vector<std::unique_ptr<EffectKindPass>> effectPasses_; // in draw order
-    SmokePass smokePass_;
+    EffectsRenderer effects_;
     BloomPass bloomPass_;
     ToneMapPass toneMapPass_;
     scene::PostSpec post_;
     SceneCamera camera_;
     gpu::GpuTimer timer_;
-    std::vector<uint8_t> shown_;
-    bool fadesAgainstDepth_ = false; // an effect fades in front of the scene (depth_fade)
     uint32_t draws_ = 0;
 };
 

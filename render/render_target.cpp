@@ -76,10 +76,11 @@ RenderTarget createOutputTarget(const gpu::Context& ctx, uint32_t width, uint32_
 
 namespace {
 
-// Begins rendering into the target's attachments: cleared (colour to `clearColor`, depth to 1) or
-// loaded; with MSAA resolved at the end, the multisampled images kept (stored) when `keep`.
+// Begins rendering into the target's attachments: colour cleared to `clearColor` or loaded, depth
+// cleared to 1 (`clearDepth`) or loaded; with MSAA resolved at the end, the multisampled images
+// kept (stored) when `keep`.
 void startRendering(VkCommandBuffer cmd, RenderTarget& target, const glm::vec4* clearColor,
-                    bool keep) {
+                    bool clearDepth, bool keep) {
     const bool msaa = target.samples != VK_SAMPLE_COUNT_1_BIT;
     auto colorBarrier = [&](gpu::Image& image) {
         gpu::imageBarrier(cmd, image, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
@@ -106,21 +107,20 @@ void startRendering(VkCommandBuffer cmd, RenderTarget& target, const glm::vec4* 
         depthBarrier(target.msaaDepth);
     }
 
-    const VkAttachmentLoadOp load =
-        clearColor ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
+    const VkAttachmentLoadOp load = VK_ATTACHMENT_LOAD_OP_LOAD, clear = VK_ATTACHMENT_LOAD_OP_CLEAR;
     const VkAttachmentStoreOp store =
         msaa && !keep ? VK_ATTACHMENT_STORE_OP_DONT_CARE : VK_ATTACHMENT_STORE_OP_STORE;
     VkRenderingAttachmentInfo colorAttachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     colorAttachment.imageView = (msaa ? target.msaaColor : target.color).view.get();
     colorAttachment.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-    colorAttachment.loadOp = load;
+    colorAttachment.loadOp = clearColor ? clear : load;
     colorAttachment.storeOp = store;
     if (clearColor)
         std::memcpy(colorAttachment.clearValue.color.float32, clearColor, sizeof(float) * 4);
     VkRenderingAttachmentInfo depthAttachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     depthAttachment.imageView = (msaa ? target.msaaDepth : target.depth).view.get();
     depthAttachment.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-    depthAttachment.loadOp = load;
+    depthAttachment.loadOp = clearDepth ? clear : load;
     depthAttachment.storeOp = store;
     depthAttachment.clearValue.depthStencil = {1.0f, 0};
     if (msaa) {
@@ -146,11 +146,16 @@ void startRendering(VkCommandBuffer cmd, RenderTarget& target, const glm::vec4* 
 
 void beginRendering(VkCommandBuffer cmd, RenderTarget& target, const glm::vec4& clearColor,
                     bool resumable) {
-    startRendering(cmd, target, &clearColor, resumable);
+    startRendering(cmd, target, &clearColor, true, resumable);
+}
+
+void beginRenderingOverDepth(VkCommandBuffer cmd, RenderTarget& target, const glm::vec4& clearColor,
+                             bool resumable) {
+    startRendering(cmd, target, &clearColor, false, resumable);
 }
 
 void resumeRendering(VkCommandBuffer cmd, RenderTarget& target) {
-    startRendering(cmd, target, nullptr, false);
+    startRendering(cmd, target, nullptr, false, false);
 }
 
 void copyFadeDepth(VkCommandBuffer cmd, RenderTarget& target) {

@@ -48,6 +48,10 @@ VkSampleCountFlagBits supportedSamples(const gpu::Context& ctx, VkSampleCountFla
 // when `resumable` (for resumeRendering).
 void beginRendering(VkCommandBuffer cmd, RenderTarget& target, const glm::vec4& clearColor,
                     bool resumable = false);
+// The same with the depth the target holds kept (loaded, not cleared): a layer drawn over a depth
+// put there before (HostFrame).
+void beginRenderingOverDepth(VkCommandBuffer cmd, RenderTarget& target, const glm::vec4& clearColor,
+                             bool resumable = false);
 void endRendering(VkCommandBuffer cmd);
 // After a resumable rendering has ended: copies the (resolved) depth into `fadeDepth`, left
 // shader-read-only for the passes that sample it.

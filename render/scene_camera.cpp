@@ -1,6 +1,8 @@
 #include "render/scene_camera.h"
 
+#include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
+#include <string>
 
 namespace mfx::render {
 
@@ -17,6 +19,44 @@ SceneCamera makeCamera(const scene::CameraSpec& spec, float aspect) {
     c.projection =
         glm::perspectiveRH_ZO(glm::radians(spec.fovDegrees), aspect, spec.nearPlane, spec.farPlane);
     c.viewProjection = c.projection * c.view;
+    return c;
+}
+
+Result<SceneCamera> cameraFromMatrices(const glm::mat4& view, const glm::mat4& projection,
+                                       bool clipYDown) {
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            if (!std::isfinite(view[c][r]) || !std::isfinite(projection[c][r]))
+                return Error{std::string("camera.") +
+                             (std::isfinite(view[c][r]) ? "projection" : "view") + "[" +
+                             std::to_string(c * 4 + r) + "] is not a finite number"};
+    // A perspective projection to depth 0..1 takes view-space z to clip w = -z and clip z =
+    // A z + B with A = far / (near - far), B = near far / (near - far): near = B / A and
+    // far = B / (A + 1).
+    const float w = projection[2][3], a = projection[2][2], b = projection[3][2];
+    if (std::abs(w + 1.0f) > 1e-4f || projection[3][3] != 0.0f)
+        return Error{"camera.projection is not a right-handed perspective projection (clip w "
+                     "must be -z in view space: projection[11] = -1 and projection[15] = 0)"};
+    const float nearPlane = a != 0.0f ? b / a : 0.0f;
+    const float farPlane = a + 1.0f != 0.0f ? b / (a + 1.0f) : 0.0f;
+    if (!(nearPlane > 0.0f) || !(farPlane > nearPlane) || !std::isfinite(farPlane))
+        return Error{"camera.projection does not map depth 0 to a near plane and 1 to a farther, "
+                     "finite far plane (reversed or infinite depth is not supported); its planes "
+                     "read as near " +
+                     std::to_string(nearPlane) + ", far " + std::to_string(farPlane)};
+    const glm::mat4 inverseView = glm::inverse(view);
+    if (!std::isfinite(inverseView[3][0]) || std::abs(glm::determinant(view)) < 1e-12f)
+        return Error{"camera.view cannot be inverted"};
+    SceneCamera c;
+    c.view = view;
+    c.projection = projection;
+    if (clipYDown) // row 1 negated: clip-space y up again, as motionfx's flipped viewport wants
+        for (int col = 0; col < 4; ++col)
+            c.projection[col][1] = -c.projection[col][1];
+    c.viewProjection = c.projection * c.view;
+    c.eye = glm::vec3(inverseView[3]);
+    c.nearPlane = nearPlane;
+    c.farPlane = farPlane;
     return c;
 }
 

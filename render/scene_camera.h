@@ -1,6 +1,7 @@
 // The camera and key light of a scene as the render passes use them.
 #pragma once
 
+#include "core/result.h"
 #include "core/scene/scene.h"
 #include "shaders/shared/scene_draw.h"
 
@@ -18,6 +19,14 @@ struct SceneCamera {
 };
 
 SceneCamera makeCamera(const scene::CameraSpec& camera, float aspect);
+
+// A camera from a host application's matrices (the runtime library's MfxCamera): `view` world to
+// view, right-handed; `projection` a perspective one to Vulkan's clip space with depth 0 at the
+// near plane and 1 at the far one, clip-space +y up or, with `clipYDown`, down (flipped for a
+// viewport of positive height). The planes are read from the projection; a projection that is
+// not such a perspective (orthographic, reversed or infinite depth, NaN) is refused, naming why.
+Result<SceneCamera> cameraFromMatrices(const glm::mat4& view, const glm::mat4& projection,
+                                       bool clipYDown);
 
 // The key light's view of the character's surroundings: an orthographic box of half-size
 // `radius` around `centre`, looking along the light's direction. Vulkan depth 0..1.

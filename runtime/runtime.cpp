@@ -2,13 +2,18 @@
 // catches what the code below it throws: nothing but a result crosses the C boundary.
 #include "motionfx/motionfx.h"
 
+#include "core/anim/skinning.h"
 #include "core/gpu/check.h"
 #include "core/gpu/context.h"
 #include "core/scene/scene.h"
+#include "render/host_frame.h"
 #include "sim/scene_simulation.h"
 
+#include <cmath>
+#include <cstring>
 #include <exception>
 #include <filesystem>
+#include <glm/gtc/type_ptr.hpp>
 #include <memory>
 #include <new>
 #include <set>
@@ -33,6 +38,12 @@ struct MfxEffects_T {
     mfx::anim::Character character; // the simulation keeps a reference to it: declared first
     std::unique_ptr<mfx::sim::SceneSimulation> simulation;
     std::vector<std::string> names;
+    // The drawing into the host's frames, made by the first mfxRecordFrame (again when the
+    // samples asked for change).
+    std::unique_ptr<mfx::render::HostFrame> frame;
+    uint32_t frameSamples = 0;
+    int64_t lastFrame = -1;     // the simulation frame last recorded
+    bool frameToFinish = false; // its statistics and sleep decisions not yet taken
 };
 
 namespace {
@@ -59,6 +70,24 @@ mfx::Result<mfx::scene::Scene> readScene(const MfxEffectsDesc& desc) {
                                   ? (fs::path(desc.baseFolder) / "(scene JSON)").string()
                                   : std::string("(scene JSON)");
     return mfx::scene::parseScene(desc.sceneJson, where);
+}
+
+// Runs `body` on `runtime`, turning what it throws into a result and a message.
+template <class Body>
+MfxResult guarded(MfxRuntime runtime, Body&& body) {
+    try {
+        return body();
+    } catch (const std::bad_alloc&) {
+        return fail(runtime, MFX_ERROR_VULKAN, "out of host memory");
+    } catch (const mfx::gpu::VulkanError& e) {
+        return fail(runtime, MFX_ERROR_VULKAN, e.what());
+    } catch (const std::exception& e) {
+        return fail(runtime, MFX_ERROR_INTERNAL, e.what());
+    }
+}
+
+mfx::render::HostImage hostImage(const MfxImage& image) {
+    return {image.image, image.format, image.layout, image.finalLayout};
 }
 
 } // namespace
@@ -222,12 +251,157 @@ MfxResult mfxGetEffectsInfo(MfxEffects effects, MfxEffectsInfo* info) {
     info->smokeGrids = uint32_t(simulation.smokeGrids().size());
     info->frameCount = simulation.frameCount();
     info->framesPerSecond = simulation.scene().output.fps;
+    info->floorHeight = simulation.scene().stage.floorHeight;
     return MFX_SUCCESS;
 }
 
 const char* mfxEffectName(MfxEffects effects, uint32_t index) {
     if (effects == nullptr || index >= effects->names.size()) return nullptr;
     return effects->names[index].c_str();
+}
+
+MfxResult mfxGetCharacterMeshSize(MfxEffects effects, uint32_t* vertexCount, uint32_t* indexCount) {
+    if (effects == nullptr) return MFX_ERROR_INVALID_ARGUMENT;
+    effects->runtime->lastError.clear();
+    if (vertexCount == nullptr || indexCount == nullptr)
+        return fail(effects->runtime, MFX_ERROR_INVALID_ARGUMENT,
+                    "mfxGetCharacterMeshSize: both counts to fill must be given");
+    uint64_t vertices = 0, indices = 0;
+    for (const mfx::anim::Mesh& mesh : effects->character.meshes)
+        for (const mfx::anim::Primitive& primitive : mesh.primitives) {
+            vertices += primitive.positions.size();
+            indices += primitive.indices.size();
+        }
+    if (vertices > UINT32_MAX || indices > UINT32_MAX)
+        return fail(effects->runtime, MFX_ERROR_INTERNAL, "the character has over 2^32 vertices");
+    *vertexCount = uint32_t(vertices);
+    *indexCount = uint32_t(indices);
+    return MFX_SUCCESS;
+}
+
+MfxResult mfxGetCharacterMesh(MfxEffects effects, double time, float* positions, float* normals,
+                              uint32_t* indices) {
+    if (effects == nullptr) return MFX_ERROR_INVALID_ARGUMENT;
+    MfxRuntime runtime = effects->runtime;
+    runtime->lastError.clear();
+    if (!std::isfinite(time) || time < 0.0)
+        return fail(runtime, MFX_ERROR_INVALID_ARGUMENT,
+                    "mfxGetCharacterMesh: time must be a finite number of seconds >= 0; got " +
+                        std::to_string(time));
+    return guarded(runtime, [&] {
+        const mfx::sim::SceneSimulation& simulation = *effects->simulation;
+        const mfx::anim::Pose pose = simulation.poseAt(float(time));
+        const glm::mat4 placement = simulation.placement();
+        const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(placement)));
+        size_t vertex = 0, index = 0;
+        for (const mfx::anim::Mesh& mesh : effects->character.meshes)
+            for (const mfx::anim::Primitive& primitive : mesh.primitives) {
+                if (indices != nullptr)
+                    for (uint32_t i : primitive.indices)
+                        indices[index++] = uint32_t(vertex) + i;
+                if (positions != nullptr || normals != nullptr)
+                    for (const mfx::anim::SkinnedVertex& v :
+                         mfx::anim::skinPrimitive(effects->character, primitive, pose)) {
+                        const glm::vec3 p = glm::vec3(placement * glm::vec4(v.position, 1.0f));
+                        const glm::vec3 n = glm::normalize(normalMatrix * v.normal);
+                        for (int c = 0; c < 3; ++c) {
+                            if (positions != nullptr) positions[3 * vertex + size_t(c)] = p[c];
+                            if (normals != nullptr) normals[3 * vertex + size_t(c)] = n[c];
+                        }
+                        ++vertex;
+                    }
+                else
+                    vertex += primitive.positions.size();
+            }
+        return MFX_SUCCESS;
+    });
+}
+
+MfxResult mfxGetSceneCamera(MfxEffects effects, float aspect, MfxCamera* camera) {
+    if (effects == nullptr) return MFX_ERROR_INVALID_ARGUMENT;
+    effects->runtime->lastError.clear();
+    if (camera == nullptr)
+        return fail(effects->runtime, MFX_ERROR_INVALID_ARGUMENT,
+                    "mfxGetSceneCamera: the camera to fill must be given");
+    if (!std::isfinite(aspect) || !(aspect > 1e-3f) || aspect > 1e3f)
+        return fail(effects->runtime, MFX_ERROR_INVALID_ARGUMENT,
+                    "mfxGetSceneCamera: aspect must be a width / height from 0.001 to 1000; got " +
+                        std::to_string(aspect));
+    const mfx::render::SceneCamera scene =
+        mfx::render::makeCamera(effects->simulation->scene().camera, aspect);
+    std::memcpy(camera->view, glm::value_ptr(scene.view), sizeof camera->view);
+    std::memcpy(camera->projection, glm::value_ptr(scene.projection), sizeof camera->projection);
+    camera->clipYDown = 0;
+    return MFX_SUCCESS;
+}
+
+MfxResult mfxRecordFrame(MfxEffects effects, const MfxFrameDesc* desc) {
+    if (effects == nullptr) return MFX_ERROR_INVALID_ARGUMENT;
+    MfxRuntime runtime = effects->runtime;
+    runtime->lastError.clear();
+    auto invalid = [&](const std::string& message) {
+        return fail(runtime, MFX_ERROR_INVALID_ARGUMENT, message);
+    };
+    if (desc == nullptr) return invalid("mfxRecordFrame: the frame's description must be given");
+    if (desc->structVersion != MFX_FRAME_DESC_VERSION)
+        return invalid("MfxFrameDesc.structVersion is " + std::to_string(desc->structVersion) +
+                       "; this library reads version " + std::to_string(MFX_FRAME_DESC_VERSION));
+    if (desc->commandBuffer == VK_NULL_HANDLE) return invalid("MfxFrameDesc.commandBuffer is null");
+    if (!std::isfinite(desc->time) || desc->time < 0.0 || desc->time > 1e7)
+        return invalid("MfxFrameDesc.time must be a number of seconds from 0 to 1e7; got " +
+                       std::to_string(desc->time));
+    const uint32_t samples = desc->samples == 0 ? 4u : desc->samples;
+    if (samples != 1 && samples != 2 && samples != 4 && samples != 8)
+        return invalid("MfxFrameDesc.samples must be 0, 1, 2, 4 or 8; got " +
+                       std::to_string(desc->samples));
+    auto camera = mfx::render::cameraFromMatrices(glm::make_mat4(desc->camera.view),
+                                                  glm::make_mat4(desc->camera.projection),
+                                                  desc->camera.clipYDown != 0);
+    if (!camera) return invalid("MfxFrameDesc." + camera.error().message);
+    return guarded(runtime, [&] {
+        mfx::sim::SceneSimulation& simulation = *effects->simulation;
+        if (!effects->frame || effects->frameSamples != samples) {
+            effects->frame = std::make_unique<mfx::render::HostFrame>(
+                *runtime->context, simulation, VkSampleCountFlagBits(samples));
+            effects->frameSamples = samples;
+        }
+        mfx::render::HostTargets targets;
+        targets.width = desc->width;
+        targets.height = desc->height;
+        targets.colour = hostImage(desc->colour);
+        targets.depth = hostImage(desc->depth);
+        if (auto checked = effects->frame->check(targets); !checked)
+            return invalid("MfxFrameDesc." + checked.error().message);
+
+        // The frame the time has reached (a thousandth of a frame early counts: times summed
+        // from 1 / fps in floating point fall just short of a frame's).
+        const double fps = double(simulation.scene().output.fps);
+        const int64_t reached = int64_t(std::floor(desc->time * fps + 1e-3));
+        if (reached < effects->lastFrame)
+            return invalid("MfxFrameDesc.time " + std::to_string(desc->time) +
+                           " s is before frame " + std::to_string(effects->lastFrame) +
+                           " already simulated (at " +
+                           std::to_string(double(effects->lastFrame) / fps) +
+                           " s): the effects only run forward; make them again to restart");
+        // The previous frame's commands have finished (the host waited): its statistics, and
+        // whether its grids sleep.
+        if (effects->frameToFinish) {
+            simulation.finishFrame();
+            effects->frameToFinish = false;
+        }
+        uint32_t next = 0;
+        const uint32_t* advance = nullptr;
+        if (reached > effects->lastFrame) {
+            next = uint32_t(effects->lastFrame + 1);
+            advance = &next;
+            effects->lastFrame = next;
+            effects->frameToFinish = true;
+        }
+        effects->frame->record(desc->commandBuffer, simulation, advance,
+                               simulation.frameTime(uint32_t(effects->lastFrame)), camera.value(),
+                               targets);
+        return MFX_SUCCESS;
+    });
 }
 
 } // extern "C"

@@ -207,10 +207,15 @@ void Queue::record(VkCommandBuffer cmd, const std::vector<anim::DualQuatJoint>& 
         recordUnsplit(cmd);
     }
     timer_.end(cmd);
+    // The transform feedback stage only where the segment was streamed out: a device without
+    // the transformFeedback feature (a host's) may not name it.
+    const bool streamed = options_.method == Method::StreamOutput;
     gpu::memoryBarrier(
         cmd,
-        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFORM_FEEDBACK_BIT_EXT,
-        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFORM_FEEDBACK_WRITE_BIT_EXT,
+        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT |
+            (streamed ? VK_PIPELINE_STAGE_2_TRANSFORM_FEEDBACK_BIT_EXT : 0),
+        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
+            (streamed ? VK_ACCESS_2_TRANSFORM_FEEDBACK_WRITE_BIT_EXT : 0),
         VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_VERTEX_INPUT_BIT |
             VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
         VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT |

@@ -140,6 +140,7 @@ typedef struct MfxEffectsInfo {
     uint32_t smokeGrids;    /* smoke effects with equal grid settings share one grid */
     uint32_t frameCount;    /* the frames the scene's clip (or output.frames) lasts */
     float framesPerSecond;  /* the scene's output.fps: the simulation's frame rate */
+    float floorHeight;      /* where the scene's stage has its floor (world y) */
 } MfxEffectsInfo;
 
 /* Fills `info`, whose structVersion the caller has set. */
@@ -148,6 +149,83 @@ MFX_API MfxResult mfxGetEffectsInfo(MfxEffects effects, MfxEffectsInfo* info);
 /* The name of effect `index` (the scene's "name", or its kind and index, e.g. "speed_lines#0");
  * null past the last. Valid while the effects live. */
 MFX_API const char* mfxEffectName(MfxEffects effects, uint32_t index);
+
+/* --- The character ------------------------------------------------------------------------- */
+
+/* The scene's character as triangles, for a host that draws it with its own shading and has no
+ * animation of its own: every primitive's vertices one after another. */
+MFX_API MfxResult mfxGetCharacterMeshSize(MfxEffects effects, uint32_t* vertexCount,
+                                          uint32_t* indexCount);
+
+/* The character at scene time `time` (seconds) as the scene animates and places it, in world
+ * space: `positions` and `normals` 3 floats a vertex, `indices` a triangle list (3 a triangle),
+ * each sized by mfxGetCharacterMeshSize; any may be null (not written). Skinned on the CPU by the
+ * same dual quaternion blend as motionfx's own drawing. */
+MFX_API MfxResult mfxGetCharacterMesh(MfxEffects effects, double time, float* positions,
+                                      float* normals, uint32_t* indices);
+
+/* --- One frame ---------------------------------------------------------------------------- */
+
+/* One of the host's images: 2D, one mip level and array layer, single-sampled. */
+typedef struct MfxImage {
+    VkImage image;
+    VkFormat format;
+    VkImageLayout layout;      /* the layout it is in when motionfx's commands begin */
+    VkImageLayout finalLayout; /* the layout motionfx leaves it in */
+} MfxImage;
+
+/* The host's camera, matrices column-major (as GLM and GLSL store them). */
+typedef struct MfxCamera {
+    float view[16]; /* world to view space, right-handed (the camera looks down -z) */
+    /* View to Vulkan's clip space: a perspective projection with depth 0 at the near plane and 1
+     * at the far one (as the host's depth image holds it; reversed or infinite depth is refused).
+     */
+    float projection[16];
+    /* 0: clip-space +y points up (glm::perspective as it comes); 1: down (the projection's y
+     * already flipped for a viewport of positive height). */
+    uint32_t clipYDown;
+} MfxCamera;
+
+/* The scene's camera (its "camera" keys, or the one framed on the character) for a picture of
+ * `aspect` = width / height, as motionfx render draws from it (clipYDown 0). */
+MFX_API MfxResult mfxGetSceneCamera(MfxEffects effects, float aspect, MfxCamera* camera);
+
+#define MFX_FRAME_DESC_VERSION 1
+
+typedef struct MfxFrameDesc {
+    uint32_t structVersion; /* MFX_FRAME_DESC_VERSION */
+    /* In the recording state, outside any render pass, for the runtime's queue family. */
+    VkCommandBuffer commandBuffer;
+    /* The scene time, in seconds, from 0 on the first frame; it must not go back. The effects
+     * advance at the scene's frame rate (mfxGetEffectsInfo: framesPerSecond), at most one of its
+     * frames a call: a call whose time reaches the next frame simulates it, others draw the frame
+     * they have again. */
+    double time;
+    MfxCamera camera;
+    uint32_t width, height; /* of both images */
+    /* Colour: made with COLOR_ATTACHMENT usage, of a format the device blends into (e.g.
+     * VK_FORMAT_R8G8B8A8_SRGB, VK_FORMAT_B8G8R8A8_UNORM, VK_FORMAT_R16G16B16A16_SFLOAT). The
+     * effects are laid over it as premultiplied colour: out = effects + (1 - coverage) colour. */
+    MfxImage colour;
+    /* Depth: made with SAMPLED usage, one of VK_FORMAT_D16_UNORM, VK_FORMAT_X8_D24_UNORM_PACK32,
+     * VK_FORMAT_D24_UNORM_S8_UINT, VK_FORMAT_D32_SFLOAT, VK_FORMAT_D32_SFLOAT_S8_UINT; the host's
+     * surfaces hide the effects behind them and the soft effects fade into them. Read only. */
+    MfxImage depth;
+    /* The effects' own antialiasing: 1, 2, 4 or 8 samples a pixel (fewer where the device has
+     * fewer); 0: 4. */
+    uint32_t samples;
+} MfxFrameDesc;
+
+/* Records one frame of the effects into the host's command buffer: the scene's next simulation
+ * frame when `time` has reached it (its trajectories and smoke steps), then the effects drawn from
+ * the host's camera against the host's depth and laid over the host's colour; both images are
+ * left in their final layouts. The host submits the command buffer; the commands of the previous
+ * mfxRecordFrame on these effects must have finished executing before this call (one frame in
+ * flight: wait for its fence first). A call may submit to and wait on the runtime's queue (a
+ * sparse smoke grid growing its storage). MFX_ERROR_INVALID_ARGUMENT names the field that is
+ * wrong: a depth format motionfx cannot read, a colour format the device cannot blend into, a
+ * layout, a camera that is not a perspective one. */
+MFX_API MfxResult mfxRecordFrame(MfxEffects effects, const MfxFrameDesc* frame);
 
 #ifdef __cplusplus
 }

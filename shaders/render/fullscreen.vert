@@ -1,5 +1,6 @@
 // One triangle that covers the whole target (vertices 0, 1, 2 at clip (-1,-1), (3,-1), (-1,3)),
-// for the passes that shade every pixel once: the tone map.
+// for the passes that shade every pixel once: the tone map, and the host frame's depth copy and
+// layer composite.
 #version 450
 
 void main() {

@@ -36,7 +36,8 @@ run("configuring examples/host" ${CMAKE_COMMAND} -S ${SOURCE_DIR}/examples/host 
     -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF
     -DCMAKE_FIND_USE_SYSTEM_PACKAGE_REGISTRY=OFF -DCMAKE_BUILD_TYPE=Release)
 run("building examples/host" ${CMAKE_COMMAND} --build ${example_build} -j 2)
-run("running examples/host" ${example_build}/motionfx_host --headless
+# Two small frames: the frames themselves are the RuntimeExample tests' (tests/CMakeLists.txt).
+run("running examples/host" ${example_build}/motionfx_host --headless --frames 2 --size 160x90
     --scene ${SOURCE_DIR}/docs/scenes/hero.json)
 message(STATUS "${last_output}")
 if(NOT last_output MATCHES "motionfx 0\\.[0-9]+\\.[0-9]+ runtime on ")
