@@ -232,7 +232,8 @@ VkImageView HostFrame::viewOf(const HostImage& image, VkImageAspectFlags aspect)
 }
 
 void HostFrame::record(VkCommandBuffer cmd, sim::SceneSimulation& simulation, const uint32_t* frame,
-                       float time, const SceneCamera& camera, const HostTargets& targets) {
+                       float time, const SceneCamera& camera, const HostTargets& targets,
+                       const anim::Pose* pose) {
     views_.clear(); // the previous recording has finished executing
     if (!layer_ || layer_->width != targets.width || layer_->height != targets.height)
         layer_ = createRenderTarget(ctx_, targets.width, targets.height, samples_);
@@ -240,7 +241,7 @@ void HostFrame::record(VkCommandBuffer cmd, sim::SceneSimulation& simulation, co
 
     effects_.setCamera(camera);
     if (frame) {
-        simulation.recordFrame(cmd, *frame);
+        simulation.recordFrame(cmd, *frame, pose);
         effects_.advance(cmd, simulation, *frame);
     }
 

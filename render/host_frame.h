@@ -64,8 +64,11 @@ public:
     // the effect passes' advance; then the effects at scene time `time` from `camera`, laid over
     // the host's colour. `targets` must pass check(). The previous recording must have finished
     // executing (the layer and the views made for the host's images are reused or freed here).
+    // With `frame` and `pose`, the simulation's frame has the character in that pose (the host's
+    // animation; SceneSimulation::recordFrame).
     void record(VkCommandBuffer cmd, sim::SceneSimulation& simulation, const uint32_t* frame,
-                float time, const SceneCamera& camera, const HostTargets& targets);
+                float time, const SceneCamera& camera, const HostTargets& targets,
+                const anim::Pose* pose = nullptr);
 
     VkSampleCountFlagBits samples() const { return samples_; }
     EffectsRenderer& effects() { return effects_; }

@@ -2,6 +2,7 @@
 // catches what the code below it throws: nothing but a result crosses the C boundary.
 #include "motionfx/motionfx.h"
 
+#include "core/anim/sampling.h"
 #include "core/anim/skinning.h"
 #include "core/gpu/check.h"
 #include "core/gpu/context.h"
@@ -16,6 +17,7 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <memory>
 #include <new>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -335,6 +337,35 @@ MfxResult mfxGetSceneCamera(MfxEffects effects, float aspect, MfxCamera* camera)
     return MFX_SUCCESS;
 }
 
+uint32_t mfxGetCharacterNodeCount(MfxEffects effects) {
+    return effects != nullptr ? uint32_t(effects->character.nodes.size()) : 0;
+}
+
+const char* mfxGetCharacterNodeName(MfxEffects effects, uint32_t index) {
+    if (effects == nullptr || index >= effects->character.nodes.size()) return nullptr;
+    return effects->character.nodes[index].name.c_str();
+}
+
+MfxResult mfxGetCharacterNodeMatrices(MfxEffects effects, double time, float* matrices) {
+    if (effects == nullptr) return MFX_ERROR_INVALID_ARGUMENT;
+    MfxRuntime runtime = effects->runtime;
+    runtime->lastError.clear();
+    if (matrices == nullptr)
+        return fail(runtime, MFX_ERROR_INVALID_ARGUMENT,
+                    "mfxGetCharacterNodeMatrices: the matrices to fill must be given");
+    if (!std::isfinite(time) || time < 0.0)
+        return fail(runtime, MFX_ERROR_INVALID_ARGUMENT,
+                    "mfxGetCharacterNodeMatrices: time must be a finite number of seconds >= 0; "
+                    "got " +
+                        std::to_string(time));
+    return guarded(runtime, [&] {
+        const mfx::anim::Pose pose = effects->simulation->poseAt(float(time));
+        for (size_t node = 0; node < pose.world.size(); ++node)
+            std::memcpy(matrices + 16 * node, glm::value_ptr(pose.world[node]), 16 * sizeof(float));
+        return MFX_SUCCESS;
+    });
+}
+
 MfxResult mfxRecordFrame(MfxEffects effects, const MfxFrameDesc* desc) {
     if (effects == nullptr) return MFX_ERROR_INVALID_ARGUMENT;
     MfxRuntime runtime = effects->runtime;
@@ -358,6 +389,27 @@ MfxResult mfxRecordFrame(MfxEffects effects, const MfxFrameDesc* desc) {
                                                   glm::make_mat4(desc->camera.projection),
                                                   desc->camera.clipYDown != 0);
     if (!camera) return invalid("MfxFrameDesc." + camera.error().message);
+    // The host's pose, checked whole before anything is recorded.
+    std::optional<mfx::anim::Pose> pose;
+    if (desc->nodeMatrices != nullptr || desc->nodeMatrixCount != 0) {
+        const size_t nodes = effects->character.nodes.size();
+        if (desc->nodeMatrices == nullptr || desc->nodeMatrixCount != nodes)
+            return invalid("MfxFrameDesc.nodeMatrixCount is " +
+                           std::to_string(desc->nodeMatrixCount) +
+                           (desc->nodeMatrices != nullptr ? "" : " and nodeMatrices is null") +
+                           "; the character has " + std::to_string(nodes) +
+                           " nodes (mfxGetCharacterNodeCount)");
+        std::vector<glm::mat4> world(nodes);
+        for (size_t node = 0; node < nodes; ++node) {
+            for (size_t k = 0; k < 16; ++k)
+                if (!std::isfinite(desc->nodeMatrices[16 * node + k]))
+                    return invalid("MfxFrameDesc.nodeMatrices: node " + std::to_string(node) +
+                                   " (" + effects->character.nodes[node].name +
+                                   ") has a value that is not a finite number");
+            world[node] = glm::make_mat4(desc->nodeMatrices + 16 * node);
+        }
+        pose = mfx::anim::poseFromWorld(effects->character, std::move(world));
+    }
     return guarded(runtime, [&] {
         mfx::sim::SceneSimulation& simulation = *effects->simulation;
         if (!effects->frame || effects->frameSamples != samples) {
@@ -399,7 +451,7 @@ MfxResult mfxRecordFrame(MfxEffects effects, const MfxFrameDesc* desc) {
         }
         effects->frame->record(desc->commandBuffer, simulation, advance,
                                simulation.frameTime(uint32_t(effects->lastFrame)), camera.value(),
-                               targets);
+                               targets, pose ? &*pose : nullptr);
         return MFX_SUCCESS;
     });
 }

@@ -220,11 +220,19 @@ void SceneSimulation::addPass(const std::string& name, uint32_t dispatches) {
     recorded_.push_back({name, dispatches, 0.0});
 }
 
-void SceneSimulation::recordFrame(VkCommandBuffer cmd, uint32_t frame) {
+void SceneSimulation::recordFrame(VkCommandBuffer cmd, uint32_t frame, const anim::Pose* given) {
     currentFrame_ = frame;
     recorded_.clear();
     const float t = frameTime(frame);
-    framePose_ = poseAt(t);
+    givenPose_ = given != nullptr;
+    if (givenPose_) {
+        previousPose_ = framePose_.world.size() == given->world.size()
+                            ? std::move(framePose_)
+                            : poseAt(frame > 0 ? frameTime(frame - 1) : t);
+        framePose_ = *given;
+    } else {
+        framePose_ = poseAt(t);
+    }
     const anim::Pose& pose = framePose_;
     timer_.reset(cmd);
     // The drawn effects: one segment per frame.
@@ -270,8 +278,13 @@ void SceneSimulation::recordSmoke(VkCommandBuffer cmd, SmokeGrid& grid, uint32_t
         if (step < 0) continue;
         const float t = float(step) / rate;
         bool anyLive = false;
-        // The frame's last step is at the frame's time, whose pose recordFrame already has.
-        const anim::Pose stepPose = k + 1 == n ? anim::Pose{} : poseAt(t);
+        // The frame's last step is at the frame's time, whose pose recordFrame already has; the
+        // others sample the clip, or blend a given pose with the previous frame's.
+        const anim::Pose stepPose = k + 1 == n ? anim::Pose{}
+                                    : givenPose_
+                                        ? anim::interpolatePose(character_, previousPose_,
+                                                                framePose_, float(k + 1) / float(n))
+                                        : poseAt(t);
         const anim::Pose& pose = k + 1 == n ? framePose_ : stepPose;
         for (size_t i : grid.effects) {
             TrajectoryEffect& effect = trajectories_[i];

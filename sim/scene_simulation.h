@@ -113,7 +113,11 @@ public:
     float frameTime(uint32_t frame) const { return float(frame) / scene_.output.fps; }
 
     // Records frame `frame`; frames are recorded in order, each after the previous one finished.
-    void recordFrame(VkCommandBuffer cmd, uint32_t frame);
+    // With `pose` (a host's animation: every node's world matrix, before placement()), the
+    // character is in that pose at the frame instead of the scene clip's, and a grid's steps
+    // between the previous frame and this one take the poses between the two
+    // (anim::interpolatePose); the previous frame's pose is the clip's when it had none.
+    void recordFrame(VkCommandBuffer cmd, uint32_t frame, const anim::Pose* pose = nullptr);
     // After the frame's submission has finished: its statistics (and the sleep decisions).
     SimulationFrameStats finishFrame();
     // recordFrame, submit, wait, finishFrame.
@@ -175,6 +179,8 @@ private:
     std::vector<PassRecord> recorded_; // names and dispatches of this frame's passes
     uint32_t currentFrame_ = 0;
     anim::Pose framePose_;
+    anim::Pose previousPose_; // the previous frame's, for a given pose's steps
+    bool givenPose_ = false;  // framePose_ came from recordFrame's caller
 };
 
 } // namespace mfx::sim

@@ -1,6 +1,7 @@
 // Animation: channel sampling against hand-computed values (LINEAR, STEP, CUBICSPLINE, before
 // the first and after the last key), clip time wrapping, poses, and the character invariants.
 #include "core/anim/character.h"
+#include "core/anim/fighter.h"
 #include "core/anim/sampling.h"
 
 #include <cmath>
@@ -130,6 +131,35 @@ TEST(AnimPose, WorldIsParentTimesLocal) {
     const anim::Pose end = anim::samplePose(c, &c.clips[0], 1.0f, anim::Wrap::Clamp);
     EXPECT_NEAR(end.world[1][3].x, -1.0f, 1e-5f);
     EXPECT_NEAR(end.world[1][3].y, 0.0f, 1e-5f);
+}
+
+// A host's pose comes as world matrices alone: the locals recovered from them give the same
+// world matrices again, for every node of the fighter in the middle of its kick.
+TEST(AnimPose, FromWorldMatricesTheLocalsRebuildThem) {
+    const anim::Character fighter = anim::makeFighter();
+    const anim::Pose sampled = anim::samplePose(fighter, &fighter.clips[0], 0.4f);
+    const anim::Pose given = anim::poseFromWorld(fighter, sampled.world);
+    ASSERT_EQ(given.local.size(), sampled.local.size());
+    const anim::Pose rebuilt = anim::interpolatePose(fighter, given, given, 0.5f);
+    for (size_t n = 0; n < sampled.world.size(); ++n)
+        for (int c = 0; c < 4; ++c)
+            expectNear(rebuilt.world[n][c], sampled.world[n][c], 1e-5f);
+}
+
+// Half way between two poses: the root at the middle of its path, and the child swung on an arc
+// about its parent (the offset keeps its length 2, where a blend of the world matrices would
+// shorten it to 2 cos 45 degrees).
+TEST(AnimPose, InterpolatedPosesSwingLimbsOnArcs) {
+    const anim::Character c = twoNodeCharacter();
+    const anim::Pose start = anim::samplePose(c, &c.clips[0], 0.0f, anim::Wrap::Clamp);
+    const anim::Pose end = anim::samplePose(c, &c.clips[0], 1.0f, anim::Wrap::Clamp);
+    const anim::Pose half = anim::interpolatePose(c, anim::poseFromWorld(c, start.world),
+                                                  anim::poseFromWorld(c, end.world), 0.5f);
+    const glm::vec3 offset = glm::vec3(half.world[1][3]) - glm::vec3(half.world[0][3]);
+    EXPECT_NEAR(glm::length(offset), 2.0f, 1e-5f);
+    const anim::Pose sampledHalf = anim::samplePose(c, &c.clips[0], 0.5f, anim::Wrap::Clamp);
+    for (int col = 0; col < 4; ++col)
+        expectNear(half.world[1][col], sampledHalf.world[1][col], 1e-5f);
 }
 
 TEST(AnimCharacter, InvariantsNameTheBadElement) {

@@ -14,7 +14,9 @@
 #include <cmath>
 #include <cstring>
 #include <functional>
+#include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/packing.hpp>
+#include <glm/gtc/type_ptr.hpp>
 #include <gtest/gtest.h>
 #include <string>
 #include <vector>
@@ -366,6 +368,129 @@ TEST_F(RuntimeFrame, TheTimeCannotGoBack) {
                   std::string::npos)
             << m;
     });
+}
+
+// Effects made again from another scene (the lines scene: speed-lines alone, no smoke).
+MfxEffects makeEffects(MfxRuntime runtime, const std::string& scene) {
+    const std::string file = std::string(MFX_SOURCE_DIR) + "/docs/scenes/" + scene + ".json";
+    MfxEffectsDesc desc{};
+    desc.structVersion = MFX_EFFECTS_DESC_VERSION;
+    desc.sceneFile = file.c_str();
+    MfxEffects effects = nullptr;
+    EXPECT_EQ(mfxCreateEffects(runtime, &desc, &effects), MFX_SUCCESS)
+        << mfxRuntimeLastError(runtime);
+    return effects;
+}
+
+// The host animates the character: given the clip's own node matrices, the effects are the
+// clip-driven ones bit for bit; given them moved 0.4 m along +x, the effects move right on
+// screen (the camera looks from +x +z).
+TEST_F(RuntimeFrame, TheHostsNodeMatricesDriveTheEffects) {
+    MfxEffects byClip = makeEffects(runtime_, "lines"), byHost = makeEffects(runtime_, "lines"),
+               moved = makeEffects(runtime_, "lines");
+    ASSERT_TRUE(byClip && byHost && moved);
+    const uint32_t nodes = mfxGetCharacterNodeCount(byHost);
+    ASSERT_GT(nodes, 10u);
+    EXPECT_NE(mfxGetCharacterNodeName(byHost, 0), nullptr);
+    EXPECT_EQ(mfxGetCharacterNodeName(byHost, nodes), nullptr);
+    std::vector<gpu::Image> colours;
+    for (int i = 0; i < 3; ++i)
+        colours.push_back(image(render::kSceneColorFormat,
+                                VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT |
+                                    VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                                    VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                                "host colour"));
+    std::vector<float> matrices(16 * size_t(nodes)), shifted(matrices.size());
+    for (uint32_t f = 0; f <= 12; ++f) {
+        ASSERT_EQ(mfxGetCharacterNodeMatrices(byHost, double(f) / 30.0, matrices.data()),
+                  MFX_SUCCESS);
+        for (size_t n = 0; n < nodes; ++n) {
+            const glm::mat4 m = glm::translate(glm::mat4(1.0f), glm::vec3(0.4f, 0.0f, 0.0f)) *
+                                glm::make_mat4(matrices.data() + 16 * n);
+            std::memcpy(shifted.data() + 16 * n, glm::value_ptr(m), sizeof(m));
+        }
+        std::vector<MfxResult> results;
+        gpu::submitOneShot(*ctx_, [&](VkCommandBuffer cmd) {
+            const VkClearColorValue grey{{0.2f, 0.2f, 0.2f, 1.0f}};
+            const VkClearDepthStencilValue far{1.0f, 0};
+            const VkImageSubresourceRange colourRange{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+            const VkImageSubresourceRange depthRange{VK_IMAGE_ASPECT_DEPTH_BIT, 0, 1, 0, 1};
+            for (gpu::Image* target : {&colours[0], &colours[1], &colours[2], &depth_}) {
+                gpu::imageBarrier(cmd, *target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                                  VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                                  VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT,
+                                  VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+                if (target == &depth_)
+                    vkCmdClearDepthStencilImage(cmd, target->get(),
+                                                VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &far, 1,
+                                                &depthRange);
+                else
+                    vkCmdClearColorImage(cmd, target->get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                                         &grey, 1, &colourRange);
+            }
+            gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                               VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                               VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
+            MfxEffects all[3] = {byClip, byHost, moved};
+            for (int i = 0; i < 3; ++i) {
+                MfxFrameDesc d = describe(cmd, f);
+                d.colour.image = colours[size_t(i)].get();
+                if (i > 0) {
+                    d.nodeMatrices = i == 1 ? matrices.data() : shifted.data();
+                    d.nodeMatrixCount = nodes;
+                }
+                results.push_back(mfxRecordFrame(all[i], &d));
+            }
+        });
+        for (MfxResult r : results)
+            ASSERT_EQ(r, MFX_SUCCESS) << mfxRuntimeLastError(runtime_);
+        for (gpu::Image& colour : colours)
+            colour.layout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+    }
+    std::vector<std::vector<float>> pictures;
+    for (gpu::Image& colour : colours)
+        pictures.push_back(halves(gpu::readImage(*ctx_, colour)));
+    EXPECT_EQ(pictures[0], pictures[1]) << "the clip's matrices given by the host";
+    // The effects' pixels (off the grey) and their mean column.
+    auto effectColumn = [](const std::vector<float>& p, size_t& count) {
+        double sum = 0.0;
+        count = 0;
+        for (size_t i = 0; i < p.size(); i += 4)
+            if (std::abs(p[i] - 0.2f) + std::abs(p[i + 1] - 0.2f) + std::abs(p[i + 2] - 0.2f) >
+                0.05f) {
+                sum += double((i / 4) % kWidth);
+                ++count;
+            }
+        return count > 0 ? sum / double(count) : 0.0;
+    };
+    size_t clipPixels = 0, movedPixels = 0;
+    const double clipColumn = effectColumn(pictures[0], clipPixels);
+    const double movedColumn = effectColumn(pictures[2], movedPixels);
+    EXPECT_GT(clipPixels, 100u);
+    EXPECT_GT(movedPixels, 100u);
+    EXPECT_GT(movedColumn, clipColumn + 5.0) << "the effects did not follow the moved pose";
+    std::printf("effects' mean column: %.1f by the clip, %.1f moved 0.4 m along +x\n", clipColumn,
+                movedColumn);
+
+    // A wrong count or a NaN is refused before anything is recorded.
+    gpu::submitOneShot(*ctx_, [&](VkCommandBuffer cmd) {
+        MfxFrameDesc d = describe(cmd, 13);
+        d.nodeMatrices = matrices.data();
+        d.nodeMatrixCount = nodes - 1;
+        messages_.received.clear();
+        EXPECT_EQ(mfxRecordFrame(byHost, &d), MFX_ERROR_INVALID_ARGUMENT);
+        EXPECT_EQ(std::string(mfxRuntimeLastError(runtime_)),
+                  "MfxFrameDesc.nodeMatrixCount is " + std::to_string(nodes - 1) +
+                      "; the character has " + std::to_string(nodes) +
+                      " nodes (mfxGetCharacterNodeCount)");
+        d.nodeMatrixCount = nodes;
+        matrices[5] = std::nanf("");
+        EXPECT_EQ(mfxRecordFrame(byHost, &d), MFX_ERROR_INVALID_ARGUMENT);
+        EXPECT_NE(std::string(mfxRuntimeLastError(runtime_)).find("node 0"), std::string::npos)
+            << mfxRuntimeLastError(runtime_);
+    });
+    for (MfxEffects e : {byClip, byHost, moved})
+        mfxDestroyEffects(e);
 }
 
 TEST_F(RuntimeFrame, TheCharacterMeshIsTheScenesCharacterPosedAtTheTime) {

@@ -108,4 +108,63 @@ std::vector<glm::mat4> jointMatrices(const Character& character, int skin, const
     return matrices;
 }
 
+namespace {
+
+// The world matrices of every node from the local transforms (parents come first).
+void composeWorld(const Character& character, Pose& pose) {
+    pose.world.resize(pose.local.size());
+    for (size_t i = 0; i < pose.local.size(); ++i) {
+        const int parent = character.nodes[i].parent;
+        const glm::mat4 local = pose.local[i].matrix();
+        pose.world[i] = parent < 0 ? local : pose.world[size_t(parent)] * local;
+    }
+}
+
+// A matrix T * R * S split into its parts (a mirrored one keeps its mirror in the scale's x).
+Transform split(const glm::mat4& m) {
+    Transform t;
+    t.translation = glm::vec3(m[3]);
+    glm::vec3 scale(glm::length(glm::vec3(m[0])), glm::length(glm::vec3(m[1])),
+                    glm::length(glm::vec3(m[2])));
+    if (glm::determinant(glm::mat3(m)) < 0.0f) scale.x = -scale.x;
+    t.scale = scale;
+    const glm::vec3 x = glm::vec3(m[0]) / (scale.x != 0.0f ? scale.x : 1.0f);
+    const glm::vec3 y = glm::vec3(m[1]) / (scale.y != 0.0f ? scale.y : 1.0f);
+    const glm::vec3 z = glm::vec3(m[2]) / (scale.z != 0.0f ? scale.z : 1.0f);
+    const glm::mat3 rotation{x, y, z};
+    t.rotation = glm::normalize(glm::quat_cast(rotation));
+    return t;
+}
+
+} // namespace
+
+Pose poseFromWorld(const Character& character, std::vector<glm::mat4> world) {
+    Pose pose;
+    pose.local.resize(world.size());
+    for (size_t i = 0; i < world.size(); ++i) {
+        const int parent = character.nodes[i].parent;
+        pose.local[i] =
+            split(parent < 0 ? world[i] : glm::inverse(world[size_t(parent)]) * world[i]);
+    }
+    pose.world = std::move(world);
+    return pose;
+}
+
+Pose interpolatePose(const Character& character, const Pose& a, const Pose& b, float s) {
+    Pose pose;
+    pose.local.resize(a.local.size());
+    for (size_t i = 0; i < a.local.size(); ++i) {
+        const Transform& from = a.local[i];
+        const Transform& to = b.local[i];
+        Transform& t = pose.local[i];
+        t.translation = glm::mix(from.translation, to.translation, s);
+        t.scale = glm::mix(from.scale, to.scale, s);
+        const glm::quat end =
+            glm::dot(from.rotation, to.rotation) < 0.0f ? -to.rotation : to.rotation;
+        t.rotation = glm::normalize(glm::slerp(from.rotation, end, s));
+    }
+    composeWorld(character, pose);
+    return pose;
+}
+
 } // namespace mfx::anim

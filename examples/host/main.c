@@ -5,7 +5,7 @@
  * Headless: no window, no surface; frames can be written as PPM pictures.
  *
  *   motionfx_host [--headless] [--scene FILE] [--frames N] [--size WxH] [--depth FORMAT]
- *                 [--save FRAME --out DIR] [--black] [--validate]
+ *                 [--save FRAME --out DIR] [--black] [--host-animation] [--validate]
  *
  * --frames N     draw N frames (default: the scene's clip; 0 makes the effects only)
  * --size WxH     the frame's size (default 640x360)
@@ -14,6 +14,9 @@
  *                motionfx drew into it as DIR/under_FRAME.ppm
  * --black        draw the sky, the floor and the character black (their depth as always): the
  *                frame is then the effects' own premultiplied colour, for comparisons
+ * --host-animation
+ *                give motionfx the character's node matrices each frame, as a host with its own
+ *                animation system does (here the scene clip's, read from motionfx)
  * --validate     run under the Vulkan validation layer; any error or warning it reports fails
  */
 #include <motionfx/motionfx.h>
@@ -496,6 +499,7 @@ typedef struct Options {
     long save; /* -1: none */
     const char* out;
     int black;
+    int hostAnimation;
     int validate;
 } Options;
 
@@ -525,6 +529,10 @@ static int parseOptions(int argc, char** argv, Options* options) {
         }
         if (strcmp(a, "--black") == 0) {
             options->black = 1;
+            continue;
+        }
+        if (strcmp(a, "--host-animation") == 0) {
+            options->hostAnimation = 1;
             continue;
         }
         if (value == NULL) {
@@ -581,7 +589,7 @@ static int parseOptions(int argc, char** argv, Options* options) {
             fprintf(stderr,
                     "motionfx_host: unknown option \"%s\"; usage: motionfx_host "
                     "[--headless] [--scene FILE] [--frames N] [--size WxH] [--depth F] "
-                    "[--save FRAME --out DIR] [--black] [--validate]\n",
+                    "[--save FRAME --out DIR] [--black] [--host-animation] [--validate]\n",
                     a);
             return 0;
         }
@@ -603,6 +611,8 @@ typedef struct Scene {
     Buffer floorPositions, floorNormals;
     Image colour, depth;
     Buffer readback, readbackUnder;
+    float* nodeMatrices; /* with --host-animation: 16 floats a character node */
+    uint32_t nodeCount;
     VkPipelineLayout layout;
     VkPipeline pipeline;
     VkCommandPool pool;
@@ -613,6 +623,7 @@ typedef struct Scene {
 static void destroyScene(const Host* host, Scene* s) {
     if (host->device != VK_NULL_HANDLE) vkDeviceWaitIdle(host->device);
     mfxDestroyEffects(s->effects);
+    free(s->nodeMatrices);
     destroyBuffer(host, &s->positions);
     destroyBuffer(host, &s->normals);
     destroyBuffer(host, &s->indices);
@@ -649,6 +660,12 @@ static int makeScene(const Host* host, MfxRuntime runtime, const Options* o, Sce
         mfxGetEffectsInfo(s->effects, &s->info) != MFX_SUCCESS ||
         mfxGetCharacterMeshSize(s->effects, &s->vertexCount, &s->indexCount) != MFX_SUCCESS)
         return 0;
+    s->nodeCount = mfxGetCharacterNodeCount(s->effects);
+    s->nodeMatrices = (float*)calloc(16u * s->nodeCount + 16u, sizeof(float));
+    if (s->nodeMatrices == NULL) {
+        fprintf(stderr, "motionfx_host: out of memory for the node matrices\n");
+        return 0;
+    }
     if (!makeBuffer(host, 12u * s->vertexCount + 12, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
                     &s->positions) ||
         !makeBuffer(host, 12u * s->vertexCount + 12, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
@@ -852,6 +869,14 @@ static int runFrame(const Host* host, const Options* o, Scene* s, long frame) {
     desc.depth.format = o->depthFormat;
     desc.depth.layout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
     desc.depth.finalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
+    if (o->hostAnimation) { /* the host's own animation system would fill these */
+        if (mfxGetCharacterNodeMatrices(s->effects, time, s->nodeMatrices) != MFX_SUCCESS) {
+            vkEndCommandBuffer(s->cmd);
+            return 0;
+        }
+        desc.nodeMatrices = s->nodeMatrices;
+        desc.nodeMatrixCount = s->nodeCount;
+    }
     result = mfxRecordFrame(s->effects, &desc);
     if (result != MFX_SUCCESS) {
         vkEndCommandBuffer(s->cmd);

@@ -164,6 +164,17 @@ MFX_API MfxResult mfxGetCharacterMeshSize(MfxEffects effects, uint32_t* vertexCo
 MFX_API MfxResult mfxGetCharacterMesh(MfxEffects effects, double time, float* positions,
                                       float* normals, uint32_t* indices);
 
+/* The character's nodes (its joints and the nodes above them; a glTF file's nodes, in its
+ * order): how many there are, and the name of node `index` (null past the last). */
+MFX_API uint32_t mfxGetCharacterNodeCount(MfxEffects effects);
+MFX_API const char* mfxGetCharacterNodeName(MfxEffects effects, uint32_t index);
+
+/* The world matrix of every node at scene time `time` as the scene's clip poses it (16 floats a
+ * node, column-major, before the scene's character.position and facing place it): what
+ * MfxFrameDesc.nodeMatrices takes, for a host that animates the character itself and wants a
+ * start from the scene's clip. `matrices` holds 16 * mfxGetCharacterNodeCount floats. */
+MFX_API MfxResult mfxGetCharacterNodeMatrices(MfxEffects effects, double time, float* matrices);
+
 /* --- One frame ---------------------------------------------------------------------------- */
 
 /* One of the host's images: 2D, one mip level and array layer, single-sampled. */
@@ -214,6 +225,13 @@ typedef struct MfxFrameDesc {
     /* The effects' own antialiasing: 1, 2, 4 or 8 samples a pixel (fewer where the device has
      * fewer); 0: 4. */
     uint32_t samples;
+    /* Optional, the host's animation: the world matrix of every character node at `time`
+     * (nodeMatrixCount = mfxGetCharacterNodeCount, 16 floats a node, column-major, in the
+     * character's own space: the scene's character.position and facing place it, so leave them
+     * at 0 for matrices already in the host's world). Used when the call simulates a frame; the
+     * smoke's steps between two frames blend the two poses. Null: the scene's clip poses it. */
+    const float* nodeMatrices;
+    uint32_t nodeMatrixCount;
 } MfxFrameDesc;
 
 /* Records one frame of the effects into the host's command buffer: the scene's next simulation
