@@ -121,28 +121,6 @@ std::string layoutProblem(const char* which, const HostImage& image, bool depth)
     return {};
 }
 
-// One barrier on a host image (every aspect of its format), with its layout change.
-void hostBarrier(VkCommandBuffer cmd, const HostImage& image, VkImageLayout from, VkImageLayout to,
-                 VkImageAspectFlags aspects, VkPipelineStageFlags2 srcStage,
-                 VkAccessFlags2 srcAccess, VkPipelineStageFlags2 dstStage,
-                 VkAccessFlags2 dstAccess) {
-    VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-    barrier.srcStageMask = srcStage;
-    barrier.srcAccessMask = srcAccess;
-    barrier.dstStageMask = dstStage;
-    barrier.dstAccessMask = dstAccess;
-    barrier.oldLayout = from;
-    barrier.newLayout = to;
-    barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    barrier.image = image.image;
-    barrier.subresourceRange = {aspects, 0, 1, 0, 1};
-    VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    dependency.imageMemoryBarrierCount = 1;
-    dependency.pImageMemoryBarriers = &barrier;
-    vkCmdPipelineBarrier2(cmd, &dependency);
-}
-
 gpu::DescriptorWrite bindView(uint32_t binding, VkImageView view, VkImageLayout layout,
                               VkSampler sampler) {
     gpu::DescriptorWrite write;
@@ -251,9 +229,10 @@ void HostFrame::record(VkCommandBuffer cmd, sim::SceneSimulation& simulation, co
         VK_IMAGE_ASPECT_DEPTH_BIT |
         (hasStencil(hostDepth.format) ? VK_IMAGE_ASPECT_STENCIL_BIT : 0);
     const VkImageView depthView = viewOf(hostDepth, VK_IMAGE_ASPECT_DEPTH_BIT);
-    hostBarrier(cmd, hostDepth, hostDepth.layout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                depthAspects, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
-                VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    gpu::imageBarrier(cmd, hostDepth.image, depthAspects, hostDepth.layout,
+                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                      VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
     gpu::Image& depth = samples_ != VK_SAMPLE_COUNT_1_BIT ? layer.msaaDepth : layer.depth;
     gpu::imageBarrier(
         cmd, depth, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
@@ -276,10 +255,10 @@ void HostFrame::record(VkCommandBuffer cmd, sim::SceneSimulation& simulation, co
         cmd, {bindView(0, depthView, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler_.get())});
     vkCmdDraw(cmd, 3, 1, 0, 0);
     vkCmdEndRendering(cmd);
-    hostBarrier(cmd, hostDepth, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, hostDepth.finalLayout,
-                depthAspects, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_NONE,
-                VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
-                VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
+    gpu::imageBarrier(cmd, hostDepth.image, depthAspects, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                      hostDepth.finalLayout, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                      VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                      VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
 
     // 2. The effects and the smoke into the layer, cleared to transparent black.
     beginRenderingOverDepth(cmd, layer, glm::vec4(0.0f), effects_.fadesAgainstDepth());
@@ -293,10 +272,11 @@ void HostFrame::record(VkCommandBuffer cmd, sim::SceneSimulation& simulation, co
                       VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
     const HostImage& hostColour = targets.colour;
     const VkImageView colourView = viewOf(hostColour, VK_IMAGE_ASPECT_COLOR_BIT);
-    hostBarrier(cmd, hostColour, hostColour.layout, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
-                VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+    gpu::imageBarrier(
+        cmd, hostColour.image, hostColour.layout, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+        VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
+        VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+        VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
     VkRenderingAttachmentInfo colourAttachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     colourAttachment.imageView = colourView;
     colourAttachment.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
@@ -312,10 +292,10 @@ void HostFrame::record(VkCommandBuffer cmd, sim::SceneSimulation& simulation, co
                                    sampler_.get())});
     vkCmdDraw(cmd, 3, 1, 0, 0);
     vkCmdEndRendering(cmd);
-    hostBarrier(cmd, hostColour, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, hostColour.finalLayout,
-                VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
-                VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
+    gpu::imageBarrier(cmd, hostColour.image, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                      hostColour.finalLayout, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                      VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                      VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
 }
 
 } // namespace mfx::render

@@ -70,11 +70,6 @@ public:
                 float time, const SceneCamera& camera, const HostTargets& targets,
                 const anim::Pose* pose = nullptr);
 
-    VkSampleCountFlagBits samples() const { return samples_; }
-    EffectsRenderer& effects() { return effects_; }
-    // The layer of the last recording (its resolved colour: premultiplied, linear); null before.
-    RenderTarget* layer() { return layer_ ? &*layer_ : nullptr; }
-
 private:
     gpu::Program& compositeFor(VkFormat format);
     VkImageView viewOf(const HostImage& image, VkImageAspectFlags aspect);

@@ -204,7 +204,7 @@ MfxResult mfxCreateEffects(MfxRuntime runtime, const MfxEffectsDesc* desc, MfxEf
     if ((desc->sceneFile == nullptr) == (desc->sceneJson == nullptr))
         return fail(runtime, MFX_ERROR_INVALID_ARGUMENT,
                     "MfxEffectsDesc: give exactly one of sceneFile and sceneJson");
-    try {
+    return guarded(runtime, [&] {
         auto scene = readScene(*desc);
         if (!scene) return fail(runtime, MFX_ERROR_SCENE, scene.error().message);
         auto character = mfx::scene::loadCharacter(scene.value());
@@ -221,13 +221,7 @@ MfxResult mfxCreateEffects(MfxRuntime runtime, const MfxEffectsDesc* desc, MfxEf
         runtime->effects.insert(made.get());
         *effects = made.release();
         return MFX_SUCCESS;
-    } catch (const std::bad_alloc&) {
-        return fail(runtime, MFX_ERROR_VULKAN, "out of host memory");
-    } catch (const mfx::gpu::VulkanError& e) {
-        return fail(runtime, MFX_ERROR_VULKAN, e.what());
-    } catch (const std::exception& e) {
-        return fail(runtime, MFX_ERROR_INTERNAL, e.what());
-    }
+    });
 }
 
 void mfxDestroyEffects(MfxEffects effects) {

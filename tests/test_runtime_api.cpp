@@ -22,21 +22,8 @@ struct Messages {
 };
 
 MfxRuntimeDesc describe(const HostDevice& host, Messages* messages = nullptr) {
-    MfxRuntimeDesc desc{};
-    desc.structVersion = MFX_RUNTIME_DESC_VERSION;
-    desc.instance = host.instance;
-    desc.physicalDevice = host.physicalDevice;
-    desc.device = host.device;
-    desc.queueFamilyIndex = host.family;
-    desc.queue = host.queue;
-    desc.enabledFeatures = &host.features;
-    desc.enabledExtensionCount = uint32_t(host.extensions.size());
-    desc.enabledExtensionNames = host.extensions.data();
-    if (messages != nullptr) {
-        desc.messageCallback = &Messages::callback;
-        desc.messageUser = messages;
-    }
-    return desc;
+    return messages != nullptr ? runtimeDesc(host, &Messages::callback, messages)
+                               : runtimeDesc(host);
 }
 
 std::unique_ptr<HostDevice> makeHost(const HostDeviceOptions& options = {}) {

@@ -47,31 +47,11 @@ protected:
         std::string why;
         host_ = HostDevice::make({}, why);
         ASSERT_NE(host_, nullptr) << why;
-        gpu::AdoptedDevice adopted;
-        adopted.instance = host_->instance;
-        adopted.physicalDevice = host_->physicalDevice;
-        adopted.device = host_->device;
-        adopted.queueFamily = host_->family;
-        adopted.queue = host_->queue;
-        adopted.enabledFeatures = &host_->features;
-        for (const char* e : host_->extensions)
-            adopted.enabledExtensions.emplace_back(e);
-        auto ctx = gpu::Context::adopt(adopted);
+        auto ctx = gpu::Context::adopt(adoptedDevice(*host_));
         ASSERT_TRUE(ctx) << ctx.error().message;
         ctx_ = std::move(ctx).value();
 
-        MfxRuntimeDesc desc{};
-        desc.structVersion = MFX_RUNTIME_DESC_VERSION;
-        desc.instance = host_->instance;
-        desc.physicalDevice = host_->physicalDevice;
-        desc.device = host_->device;
-        desc.queueFamilyIndex = host_->family;
-        desc.queue = host_->queue;
-        desc.enabledFeatures = &host_->features;
-        desc.enabledExtensionCount = uint32_t(host_->extensions.size());
-        desc.enabledExtensionNames = host_->extensions.data();
-        desc.messageCallback = &Messages::callback;
-        desc.messageUser = &messages_;
+        const MfxRuntimeDesc desc = runtimeDesc(*host_, &Messages::callback, &messages_);
         ASSERT_EQ(mfxCreateRuntime(&desc, &runtime_), MFX_SUCCESS);
         const std::string file = heroFile();
         MfxEffectsDesc effectsDesc{};
@@ -79,7 +59,7 @@ protected:
         effectsDesc.sceneFile = file.c_str();
         ASSERT_EQ(mfxCreateEffects(runtime_, &effectsDesc, &effects_), MFX_SUCCESS);
 
-        colour_ = image(kSceneColourFormat(),
+        colour_ = image(render::kSceneColorFormat,
                         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
                             VK_IMAGE_USAGE_TRANSFER_DST_BIT,
                         "host colour");
@@ -94,7 +74,6 @@ protected:
             EXPECT_EQ(host_->validationErrors(), 0u);
         }
     }
-    static VkFormat kSceneColourFormat() { return render::kSceneColorFormat; }
 
     gpu::Image image(VkFormat format, VkImageUsageFlags usage, const char* name) {
         gpu::ImageDesc d;

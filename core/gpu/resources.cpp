@@ -271,6 +271,14 @@ void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageLayout oldLayout,
                   dstStage, dstAccess);
 }
 
+void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect,
+                  VkImageLayout oldLayout, VkImageLayout newLayout, VkPipelineStageFlags2 srcStage,
+                  VkAccessFlags2 srcAccess, VkPipelineStageFlags2 dstStage,
+                  VkAccessFlags2 dstAccess) {
+    layoutBarrier(cmd, image, aspect, oldLayout, newLayout, srcStage, srcAccess, dstStage,
+                  dstAccess);
+}
+
 void transitionImage(VkCommandBuffer cmd, Image& image, VkImageLayout newLayout) {
     imageBarrier(cmd, image, newLayout, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
                  VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,

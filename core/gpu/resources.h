@@ -103,6 +103,11 @@ void imageBarrier(VkCommandBuffer cmd, Image& image, VkImageLayout newLayout,
 void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageLayout oldLayout,
                   VkImageLayout newLayout, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
                   VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
+// The same for the aspects `aspect` of an untracked image (a host's depth and stencil).
+void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect,
+                  VkImageLayout oldLayout, VkImageLayout newLayout, VkPipelineStageFlags2 srcStage,
+                  VkAccessFlags2 srcAccess, VkPipelineStageFlags2 dstStage,
+                  VkAccessFlags2 dstAccess);
 
 // One dependency for several colour images that move together from `oldLayout` to `newLayout`,
 // with a global memory barrier of the same stages and accesses (for buffers written or read on

@@ -215,12 +215,23 @@ static int memoryType(const Host* host, uint32_t bits, VkMemoryPropertyFlags wan
     return -1;
 }
 
+/* Memory of a type with the `wanted` properties for `needs`, into `memory`. */
+static int allocate(const Host* host, const VkMemoryRequirements* needs,
+                    VkMemoryPropertyFlags wanted, VkDeviceMemory* memory) {
+    VkMemoryAllocateInfo allocation;
+    const int type = memoryType(host, needs->memoryTypeBits, wanted);
+    if (type < 0) return 0;
+    memset(&allocation, 0, sizeof allocation);
+    allocation.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
+    allocation.allocationSize = needs->size;
+    allocation.memoryTypeIndex = (uint32_t)type;
+    return vkAllocateMemory(host->device, &allocation, NULL, memory) == VK_SUCCESS;
+}
+
 /* A host-visible, mapped buffer. */
 static int makeBuffer(const Host* host, VkDeviceSize size, VkBufferUsageFlags usage, Buffer* out) {
     VkBufferCreateInfo info;
     VkMemoryRequirements needs;
-    VkMemoryAllocateInfo allocation;
-    int type;
     memset(out, 0, sizeof *out);
     memset(&info, 0, sizeof info);
     info.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO;
@@ -228,14 +239,10 @@ static int makeBuffer(const Host* host, VkDeviceSize size, VkBufferUsageFlags us
     info.usage = usage;
     if (vkCreateBuffer(host->device, &info, NULL, &out->buffer) != VK_SUCCESS) return 0;
     vkGetBufferMemoryRequirements(host->device, out->buffer, &needs);
-    type = memoryType(host, needs.memoryTypeBits,
-                      VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-    if (type < 0) return 0;
-    memset(&allocation, 0, sizeof allocation);
-    allocation.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
-    allocation.allocationSize = needs.size;
-    allocation.memoryTypeIndex = (uint32_t)type;
-    if (vkAllocateMemory(host->device, &allocation, NULL, &out->memory) != VK_SUCCESS) return 0;
+    if (!allocate(host, &needs,
+                  VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT,
+                  &out->memory))
+        return 0;
     if (vkBindBufferMemory(host->device, out->buffer, out->memory, 0) != VK_SUCCESS) return 0;
     return vkMapMemory(host->device, out->memory, 0, VK_WHOLE_SIZE, 0, &out->mapped) == VK_SUCCESS;
 }
@@ -249,9 +256,7 @@ static int makeImage(const Host* host, uint32_t width, uint32_t height, VkFormat
                      VkImageUsageFlags usage, VkImageAspectFlags aspect, Image* out) {
     VkImageCreateInfo info;
     VkMemoryRequirements needs;
-    VkMemoryAllocateInfo allocation;
     VkImageViewCreateInfo viewInfo;
-    int type;
     memset(out, 0, sizeof *out);
     memset(&info, 0, sizeof info);
     info.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO;
@@ -267,13 +272,7 @@ static int makeImage(const Host* host, uint32_t width, uint32_t height, VkFormat
     info.usage = usage;
     if (vkCreateImage(host->device, &info, NULL, &out->image) != VK_SUCCESS) return 0;
     vkGetImageMemoryRequirements(host->device, out->image, &needs);
-    type = memoryType(host, needs.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    if (type < 0) return 0;
-    memset(&allocation, 0, sizeof allocation);
-    allocation.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
-    allocation.allocationSize = needs.size;
-    allocation.memoryTypeIndex = (uint32_t)type;
-    if (vkAllocateMemory(host->device, &allocation, NULL, &out->memory) != VK_SUCCESS) return 0;
+    if (!allocate(host, &needs, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, &out->memory)) return 0;
     if (vkBindImageMemory(host->device, out->image, out->memory, 0) != VK_SUCCESS) return 0;
     memset(&viewInfo, 0, sizeof viewInfo);
     viewInfo.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;

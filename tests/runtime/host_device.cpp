@@ -121,4 +121,33 @@ HostDevice::~HostDevice() {
     if (instance != VK_NULL_HANDLE) vkDestroyInstance(instance, nullptr);
 }
 
+MfxRuntimeDesc runtimeDesc(const HostDevice& host, MfxMessageCallback callback, void* user) {
+    MfxRuntimeDesc desc{};
+    desc.structVersion = MFX_RUNTIME_DESC_VERSION;
+    desc.instance = host.instance;
+    desc.physicalDevice = host.physicalDevice;
+    desc.device = host.device;
+    desc.queueFamilyIndex = host.family;
+    desc.queue = host.queue;
+    desc.enabledFeatures = &host.features;
+    desc.enabledExtensionCount = uint32_t(host.extensions.size());
+    desc.enabledExtensionNames = host.extensions.data();
+    desc.messageCallback = callback;
+    desc.messageUser = user;
+    return desc;
+}
+
+gpu::AdoptedDevice adoptedDevice(const HostDevice& host) {
+    gpu::AdoptedDevice adopted;
+    adopted.instance = host.instance;
+    adopted.physicalDevice = host.physicalDevice;
+    adopted.device = host.device;
+    adopted.queueFamily = host.family;
+    adopted.queue = host.queue;
+    adopted.enabledFeatures = &host.features;
+    for (const char* extension : host.extensions)
+        adopted.enabledExtensions.emplace_back(extension);
+    return adopted;
+}
+
 } // namespace mfx::test

@@ -4,6 +4,9 @@
 // extensions the test asks for.
 #pragma once
 
+#include "core/gpu/context.h"
+#include "motionfx/motionfx.h"
+
 #include <atomic>
 #include <memory>
 #include <string>
@@ -60,5 +63,13 @@ private:
     VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
     std::atomic<uint32_t> errors_{0};
 };
+
+// The runtime's description of the host's device (no message callback unless given).
+MfxRuntimeDesc runtimeDesc(const HostDevice& host, MfxMessageCallback callback = nullptr,
+                           void* user = nullptr);
+
+// The host's device as the project's own gpu::Context adopts it (a test's view of the device the
+// runtime runs on).
+gpu::AdoptedDevice adoptedDevice(const HostDevice& host);
 
 } // namespace mfx::test
