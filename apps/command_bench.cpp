@@ -95,6 +95,7 @@ struct SolverChoice {
     fluid::PressureSolver pressure = fluid::PressureSolver::Jacobi;
     fluid::StorePath store = fluid::StorePath::Auto;
     uint32_t coarseGroup = 0;
+    uint32_t brick = 0;
     fluid::ByDevice residualInRestriction = fluid::ByDevice::Auto;
     fluid::ByDevice firstSweepInDivergence = fluid::ByDevice::Auto;
 };
@@ -110,6 +111,7 @@ Result<GridResult> benchGrid(const gpu::Context& ctx, const std::string& scenari
     scenario.options.workgroup = workgroup;
     scenario.options.storePath = choice.store;
     scenario.options.multigrid.coarseGroup = choice.coarseGroup;
+    scenario.options.multigrid.brick = choice.brick;
     scenario.options.multigrid.residualInRestriction = choice.residualInRestriction;
     scenario.options.firstSweepInDivergence = choice.firstSweepInDivergence;
     auto solverResult = fluid::SmokeSolver::create(ctx, scenario.options);
@@ -171,8 +173,9 @@ Result<GridResult> benchGrid(const gpu::Context& ctx, const std::string& scenari
 int runBenchSolver(const cli::ParsedArgs& parsed) {
     const std::string domain = parsed.value("domain", "dense");
     if (domain == "sparse") {
-        for (const char* denseOnly : {"store", "copy-mib", "markdown", "workgroups", "coarse-group",
-                                      "residual-in-restriction", "first-sweep-in-divergence"})
+        for (const char* denseOnly :
+             {"store", "copy-mib", "markdown", "workgroups", "coarse-group", "brick",
+              "residual-in-restriction", "first-sweep-in-divergence"})
             if (parsed.has(denseOnly)) {
                 printError(std::string("--") + denseOnly + " is an option of the dense domain");
                 return kExitUsage;
@@ -196,7 +199,13 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
     auto copyMib = cli::parseUnsigned(parsed.value("copy-mib", "256"), 1, 4096, "--copy-mib");
     auto coarseGroup =
         cli::parseUnsigned(parsed.value("coarse-group", "0"), 0, 1024, "--coarse-group");
-    if (reportFirstError(grids, jacobi, steps, workgroups, copyMib, coarseGroup)) return kExitUsage;
+    auto brick = cli::parseUnsigned(parsed.value("brick", "0"), 0, 4, "--brick");
+    if (reportFirstError(grids, jacobi, steps, workgroups, copyMib, coarseGroup, brick))
+        return kExitUsage;
+    if (brick.value() == 3) {
+        printError("--brick must be 0 (by device), 1, 2 or 4, not 3");
+        return kExitUsage;
+    }
     std::optional<fluid::ByDevice> fused, firstSweep;
     for (auto [option, choice] : {std::pair{"residual-in-restriction", &fused},
                                   std::pair{"first-sweep-in-divergence", &firstSweep}}) {
@@ -245,7 +254,8 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
                 fluid::pressureSolverName(*pressure), jacobi.value(),
                 direct ? "straight into the images" : "into buffers copied into the images",
                 steps.value());
-    const uint32_t coarse = fluid::coarseCycleGroup(coarseGroup.value(), ctx);
+    const uint32_t bricks = fluid::multigridBrick(brick.value(), ctx);
+    const uint32_t coarse = fluid::coarseCycleGroup(coarseGroup.value(), bricks, ctx);
     const bool hierarchy = *pressure == fluid::PressureSolver::Multigrid ||
                            *pressure == fluid::PressureSolver::MultigridPcg;
     fluid::SolverOptions resolved;
@@ -259,19 +269,20 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
         std::printf("the first sweep %s\n\n", firstSweepFused ? "computed by the divergence pass"
                                                               : "computed by the pressure pass");
     if (hierarchy)
-        std::printf("the coarse levels (16³ cells and below) cycled by one workgroup of %u "
-                    "invocations; the residual %s\n\n",
-                    coarse,
+        std::printf("bricks of 4 cells by %u rows by %u layers an invocation; the coarse levels "
+                    "(16³ cells and below) cycled by one workgroup of %u invocations; the residual "
+                    "%s\n\n",
+                    bricks, bricks, coarse,
                     residualFused ? "computed by the restriction"
                                   : "written by a pass before the restriction");
 
     std::vector<GridResult> results;
     for (const auto& cells : grids.value())
         for (const auto& workgroup : workgroups.value()) {
-            auto r = benchGrid(
-                ctx, scenarioName, cells, workgroup,
-                {jacobi.value(), *pressure, *store, coarseGroup.value(), *fused, *firstSweep},
-                steps.value());
+            auto r = benchGrid(ctx, scenarioName, cells, workgroup,
+                               {jacobi.value(), *pressure, *store, coarseGroup.value(),
+                                brick.value(), *fused, *firstSweep},
+                               steps.value());
             if (!r) {
                 printError(r.error().message);
                 return kExitFailure;
@@ -364,7 +375,10 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
             rates.text();
         const std::string title =
             std::string("Solver stages, ") + fluid::pressureSolverName(*pressure) + " pressure, " +
-            (hierarchy ? "coarse group " + std::to_string(coarse) + ", " : std::string()) +
+            (hierarchy ? "bricks of " + std::to_string(bricks) + " rows, coarse group " +
+                             std::to_string(coarse) + ", " +
+                             (residualFused ? "residual in the restriction, " : "")
+                       : std::string()) +
             (*pressure == fluid::PressureSolver::Jacobi && !firstSweepFused
                  ? "first sweep in the solve, "
                  : "") +
@@ -435,6 +449,7 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
                                    {"scenario", scenarioName},
                                    {"store", direct ? "direct" : "buffer"},
                                    {"coarse_group", hierarchy ? coarse : 0u},
+                                   {"brick", hierarchy ? bricks : 0u},
                                    {"residual_in_restriction", residualFused},
                                    {"first_sweep_in_divergence", firstSweepFused},
                                    {"steps", steps.value()},

@@ -24,6 +24,7 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 namespace mfx::app {
 
@@ -55,10 +56,13 @@ struct FrameRun {
 };
 
 FrameRun runFrames(const gpu::Context& ctx, sim::SceneSimulation& sim, uint32_t warmup,
-                   uint32_t samples, const char* label) {
+                   uint32_t samples, render::SmokeMarch march, const char* label) {
     const scene::Scene& s = sim.scene();
     render::ScenePlayer player(ctx, sim, s.output.width, s.output.height,
                                VkSampleCountFlagBits(samples));
+    render::SmokeLook look;
+    look.march = march;
+    player.renderer().setSmokeLook(look);
     FrameRun run;
     run.samples = uint32_t(player.renderer().sceneTarget().samples);
     if (!sim.smokeGrids().empty()) {
@@ -209,6 +213,16 @@ int runBenchFrame(const cli::ParsedArgs& parsed) {
     auto sparseCells = cli::parseUnsigned(parsed.value("sparse", "0"), 0, 2048, "--sparse");
     const Result<uint32_t> samples = parseSamples(parsed);
     if (reportFirstError(timed, warmup, sparseCells, samples)) return kExitUsage;
+    const std::string marchName = parsed.value("smoke-march", "auto");
+    const std::optional<render::SmokeMarch> march =
+        marchName == "auto"       ? std::optional(render::SmokeMarch::Auto)
+        : marchName == "fragment" ? std::optional(render::SmokeMarch::Fragment)
+        : marchName == "compute"  ? std::optional(render::SmokeMarch::Compute)
+                                  : std::nullopt;
+    if (!march) {
+        printError("--smoke-march must be auto, fragment or compute, not \"" + marchName + "\"");
+        return kExitUsage;
+    }
     if (sparseCells.value() % 8 != 0) {
         printError("--sparse: " + std::to_string(sparseCells.value()) +
                    " is not a multiple of 8 (the sparse domain's bricks are 8 cells a side)");
@@ -248,7 +262,8 @@ int runBenchFrame(const cli::ParsedArgs& parsed) {
         sparse = createSceneSimulation(ctx, sparseArgument, exitCode);
         if (!sparse) return exitCode;
     }
-    const FrameRun run = runFrames(ctx, *dense, warmup.value(), samples.value(), "benchmarking");
+    const FrameRun run =
+        runFrames(ctx, *dense, warmup.value(), samples.value(), *march, "benchmarking");
     // The yardstick after the frames (a GPU has left its idle clock by then).
     const gpu::CopyBandwidth copy = gpu::measureCopyBandwidth(
         ctx, std::min<uint64_t>(uint64_t(256) << 20, ctx.limits().maxStorageBufferRange));
@@ -264,7 +279,7 @@ int runBenchFrame(const cli::ParsedArgs& parsed) {
     json["copy_gb_per_s"] = copy.gigabytesPerSecond;
     json["copy_wall_clock"] = copy.fromWallClock;
     if (sparse) {
-        const FrameRun sparseRun = runFrames(ctx, *sparse, warmup.value(), samples.value(),
+        const FrameRun sparseRun = runFrames(ctx, *sparse, warmup.value(), samples.value(), *march,
                                              "benchmarking the sparse domain");
         std::printf("\n");
         printRun(ctx, sparseArgument.scene, sparseRun, timed.value(), warmup.value(), copy,
@@ -293,9 +308,11 @@ int runBenchFrame(const cli::ParsedArgs& parsed) {
     }
     if (jsonFile.is_open()) jsonFile << json.dump(2) << "\n";
     if (parsed.has("markdown")) {
-        const std::string title = "Frame, " + s.file + " at " + std::to_string(s.output.width) +
-                                  "x" + std::to_string(s.output.height) + ", " +
-                                  std::to_string(run.samples) + " samples";
+        const std::string title =
+            "Frame, " + s.file + " at " + std::to_string(s.output.width) + "x" +
+            std::to_string(s.output.height) + ", " + std::to_string(run.samples) + " samples" +
+            (*march == render::SmokeMarch::Auto ? std::string()
+                                                : ", " + marchName + " smoke march");
         if (Status written =
                 writeMarkdownSection(parsed.value("markdown"), title, ctx,
                                      reproduceCommand("bench frame", parsed), table.text());

@@ -129,7 +129,11 @@ CommandLine benchSolverCommandLine() {
                 "into the image, or by the device (default auto: buffer on a CPU device)")
         .option("coarse-group", "N",
                 "multigrid and mgpcg: invocations of the workgroup that cycles the coarse "
-                "levels (default 0: by device, 8 on a CPU device, 64 on a GPU)")
+                "levels (default 0: by device, 8 on a CPU device, on a GPU one per brick of a 16³ "
+                "level)")
+        .option("brick", "N",
+                "multigrid, mgpcg and rbgs: rows and layers (1, 2 or 4) of the brick of cells one "
+                "invocation handles (default 0: by device, 4 on a CPU device, 1 on a GPU)")
         .option("residual-in-restriction", "auto|on|off",
                 "multigrid: the restriction computes the residual instead of a pass before it "
                 "(default auto: on a GPU only)")
@@ -182,6 +186,9 @@ CommandLine benchFrameCommandLine() {
         .option("sparse", "N",
                 "also run the scene with its smoke on a sparse domain of N^3 cells (a multiple "
                 "of 8, same cell size) and compare the smoke's GPU ms a step, same run")
+        .option("smoke-march", "auto|fragment|compute",
+                "the shader that marches the smoke: a fragment pass over the pigment's box or a "
+                "compute pass (default auto: fragment on a CPU device, compute on a GPU)")
         .option("markdown", "FILE",
                 "write the pass table as a Markdown section into FILE (e.g. "
                 "docs/performance.md), replacing the section of the same device and command")
@@ -210,6 +217,9 @@ CommandLine benchAccuracyCommandLine() {
                 "puff,jet,kick)")
         .option("target-grid", "N",
                 "cells per axis of the time-to-1e-3 runs (default 64; 0 skips them)")
+        .option("target-solvers", "LIST",
+                "comma-separated pressure solvers of the time-to-1e-3 runs (default "
+                "jacobi,rbgs,multigrid,mgpcg)")
         .option("budgets", "LIST",
                 "comma-separated GPU ms per step for the best-per-budget table (default "
                 "2,5,10,20,50,100,200)")

@@ -32,20 +32,30 @@ constexpr uint32_t kSlotCheck = 5;            // (r, r) after an update
 constexpr uint32_t kSlotPreconditioned = 6;   // (r, z), sum z, sum r
 
 // The coarse levels' V-cycle (cycle_coarse_levels.comp) runs in one workgroup of
-// coarseGroup() invocations on the levels of at most 64 bricks (16^3 cells). On a CPU driver 8:
-// one SIMD row, where a barrier costs the more, the more invocations wait at it; measured on
-// lavapipe at 64^3, levels 16^3 to 2^3 as separate dispatches cost 2.4 ms per V-cycle, in one
-// dispatch of 256 invocations 2.6 ms, of 8 invocations 0.8 ms. On a GPU 64, one invocation per
-// brick of the first level it takes: there a phase costs its loads' latency, which 8 invocations
-// would pay eight times in a row.
+// coarseGroup() invocations on the levels of 16^3 cells and below. On a CPU driver 8: one SIMD
+// row, where a barrier costs the more, the more invocations wait at it; measured on lavapipe at
+// 64^3, levels 16^3 to 2^3 as separate dispatches cost 2.4 ms per V-cycle, in one dispatch of
+// 256 invocations 2.6 ms, of 8 invocations 0.8 ms. On a GPU one invocation per brick of the first
+// level it takes (64 bricks of 4 rows and layers, 1024 of one): there a phase costs its loads'
+// latency, which fewer invocations would pay several times in a row (on an H200 with bricks of 4,
+// 8 invocations made the 128^3 multigrid solve 5.9 ms against 4.1 ms with 64).
 constexpr uint32_t kCpuCoarseGroup = 8;
-constexpr uint32_t kGpuCoarseGroup = 64;
+constexpr uint32_t kCpuBrick = 4;
+constexpr uint32_t kGpuBrick = 1;
 
 } // namespace
 
-uint32_t coarseCycleGroup(uint32_t requested, const gpu::Context& ctx) {
+uint32_t multigridBrick(uint32_t requested, const gpu::Context& ctx) {
     if (requested != 0) return requested;
-    return ctx.info().isCpu() ? kCpuCoarseGroup : kGpuCoarseGroup;
+    return ctx.info().isCpu() ? kCpuBrick : kGpuBrick;
+}
+
+uint32_t coarseCycleGroup(uint32_t requested, uint32_t brick, const gpu::Context& ctx) {
+    if (requested != 0) return requested;
+    if (ctx.info().isCpu()) return kCpuCoarseGroup;
+    const uint32_t perLevel = 16 / brick * 16 / brick * 4; // bricks of a 16^3 level
+    return std::min({perLevel, ctx.limits().maxComputeWorkGroupInvocations,
+                     ctx.limits().maxComputeWorkGroupSize[0]});
 }
 
 bool residualInRestriction(const SolverOptions& options, const gpu::Context& ctx) {
@@ -92,8 +102,8 @@ gpu::Program& GpuMultigrid::program(Kernel kernel) {
     desc.specialization = {fused ? coarseGroup() : options_.workgroup[0],
                            fused ? 1u : options_.workgroup[1],
                            fused ? 1u : options_.workgroup[2],
-                           kBrickRows,
-                           kBrickLayers,
+                           brick_,
+                           brick_,
                            uint32_t(prolongSlots_),
                            uint32_t(restrictSlotsX_),
                            uint32_t(restrictSlotsYZ_),
@@ -104,7 +114,7 @@ gpu::Program& GpuMultigrid::program(Kernel kernel) {
 }
 
 uint32_t GpuMultigrid::coarseGroup() const {
-    return coarseCycleGroup(options_.multigrid.coarseGroup, ctx_);
+    return coarseCycleGroup(options_.multigrid.coarseGroup, brick_, ctx_);
 }
 
 void GpuMultigrid::barrier(VkCommandBuffer cmd) const {
@@ -120,8 +130,8 @@ void GpuMultigrid::barrier(VkCommandBuffer cmd) const {
 
 glm::uvec3 GpuMultigrid::levelBricks(size_t l) const {
     const Level& level = levels_[l];
-    return {uint32_t(level.rowLength), gpu::groupCount(uint32_t(level.cells.y), kBrickRows),
-            gpu::groupCount(uint32_t(level.cells.z), kBrickLayers)};
+    return {uint32_t(level.rowLength), gpu::groupCount(uint32_t(level.cells.y), brick_),
+            gpu::groupCount(uint32_t(level.cells.z), brick_)};
 }
 
 glm::uvec3 GpuMultigrid::levelGroups(size_t l) const {

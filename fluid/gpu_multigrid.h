@@ -37,8 +37,11 @@ class Context;
 
 namespace mfx::fluid {
 
-// MultigridOptions::coarseGroup on `ctx`'s device: `requested`, or with 0 the device's choice.
-uint32_t coarseCycleGroup(uint32_t requested, const gpu::Context& ctx);
+// MultigridOptions::brick on `ctx`'s device: `requested`, or with 0 the device's choice.
+uint32_t multigridBrick(uint32_t requested, const gpu::Context& ctx);
+// MultigridOptions::coarseGroup on `ctx`'s device for bricks of `brick` rows and layers:
+// `requested`, or with 0 the device's choice.
+uint32_t coarseCycleGroup(uint32_t requested, uint32_t brick, const gpu::Context& ctx);
 // Whether `options`' V-cycle restricts with the residual computed in the restriction
 // (MultigridOptions::residualInRestriction on `ctx`'s device; the multigrid solver only).
 bool residualInRestriction(const SolverOptions& options, const gpu::Context& ctx);
@@ -73,14 +76,13 @@ public:
     // Invocations of the workgroup that cycles the coarse levels (MultigridOptions::coarseGroup,
     // resolved for this device).
     uint32_t coarseGroup() const;
+    // Rows (y) and layers (z) of a brick, the elements one invocation handles
+    // (MultigridOptions::brick resolved for this device; shaders/fluid/pressure_solve_common.glsl,
+    // levelBrick).
+    uint32_t brick() const { return brick_; }
     uint64_t memoryBytes() const;
 
 private:
-    // Rows (y) and layers (z) of a brick, the elements one invocation handles
-    // (shaders/fluid/pressure_solve_common.glsl, levelBrick).
-    static constexpr uint32_t kBrickRows = 4;
-    static constexpr uint32_t kBrickLayers = 4;
-
     enum Kernel {
         LoadPressureSystem,
         StorePressure,
@@ -143,6 +145,7 @@ private:
     const gpu::Context& ctx_;
     SolverOptions options_;
     bool singular_ = false;
+    uint32_t brick_ = 4;
     std::vector<Level> levels_;
     // The first level whose V-cycle runs in one workgroup (cycle_coarse_levels): from it on every
     // level has at most kFusedBricks bricks (gpu_multigrid.cpp).

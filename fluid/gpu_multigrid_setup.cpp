@@ -18,9 +18,9 @@ namespace {
 // names them).
 constexpr uint32_t kSlots = 8;
 
-// The levels of at most this many bricks (16^3 cells) are cycled in one dispatch of one
-// workgroup (cycle_coarse_levels.comp; why: gpu_multigrid.cpp, kCpuCoarseGroup).
-constexpr uint32_t kFusedBricks = 64;
+// The levels of at most this many cells are cycled in one dispatch of one workgroup
+// (cycle_coarse_levels.comp; why: gpu_multigrid.cpp, kCpuCoarseGroup).
+constexpr uint64_t kFusedCells = 16 * 16 * 16;
 
 int vec4Elements(glm::ivec3 cells) {
     return (cells.x + 3) / 4 * cells.y * cells.z;
@@ -71,7 +71,7 @@ Result<std::unique_ptr<GpuMultigrid>> GpuMultigrid::create(const gpu::Context& c
 }
 
 GpuMultigrid::GpuMultigrid(const gpu::Context& ctx, const SolverOptions& options)
-    : ctx_(ctx), options_(options) {
+    : ctx_(ctx), options_(options), brick_(multigridBrick(options.multigrid.brick, ctx)) {
     const glm::ivec3 cells(options.grid.cellsX, options.grid.cellsY, options.grid.cellsZ);
     const PressureGrid finest = PressureGrid::finest(cells, options.boundaries);
     singular_ = finest.singular();
@@ -163,7 +163,7 @@ GpuMultigrid::GpuMultigrid(const gpu::Context& ctx, const SolverOptions& options
             if (coarsest) continue;
             // Prolongation slots: a brick's fine indices interpolate from the coarse indices
             // parent(first) - 1 onwards (prolong_correction.comp).
-            const int brick = a == 0 ? 4 : a == 1 ? int(kBrickRows) : int(kBrickLayers);
+            const int brick = a == 0 ? 4 : int(brick_);
             for (int first = 0; first < n; first += brick) {
                 const int base = hierarchy->interpolation(l, a)[size_t(first)].coarse[0] - 1;
                 for (int i = first; i < std::min(n, first + brick); ++i) {
@@ -197,7 +197,7 @@ GpuMultigrid::GpuMultigrid(const gpu::Context& ctx, const SolverOptions& options
                     const int shift = unwrapped < 0 ? n : unwrapped >= coarseCells[a] ? -n : 0;
                     lists[size_t(in.coarse[1])].emplace_back(i + shift, in.weight[1]);
                 }
-                const int brick = a == 0 ? 4 : a == 1 ? int(kBrickRows) : int(kBrickLayers);
+                const int brick = a == 0 ? 4 : int(brick_);
                 for (size_t c = 0; c < lists.size(); ++c) {
                     auto& list = lists[c];
                     if (list.size() > 4)
@@ -273,7 +273,7 @@ GpuMultigrid::GpuMultigrid(const gpu::Context& ctx, const SolverOptions& options
     fusedLevel_ = levels_.size() - 1;
     for (size_t l = levels_.size(); l-- > 0;) {
         const glm::uvec3 bricks = levelBricks(l);
-        if (bricks.x * bricks.y * bricks.z > kFusedBricks) break;
+        if (uint64_t(bricks.x) * 4 * bricks.y * brick_ * bricks.z * brick_ > kFusedCells) break;
         fusedLevel_ = l;
     }
     argumentsTemplate_ = gpu::createBuffer(ctx, arguments.size() * sizeof(glm::uvec4),

@@ -43,6 +43,10 @@ Status validateOptions(const SolverOptions& o, uint32_t maxDimension, uint32_t m
         return bad("multigrid coarseGroup " + std::to_string(o.multigrid.coarseGroup) +
                    " exceeds the device's " + std::to_string(maxInvocations) +
                    " invocations per workgroup");
+    if (o.multigrid.brick != 0 && o.multigrid.brick != 1 && o.multigrid.brick != 2 &&
+        o.multigrid.brick != 4)
+        return bad("multigrid brick " + std::to_string(o.multigrid.brick) +
+                   " must be 1, 2 or 4 (or 0: by device)");
     if (!finite(o.cgTolerance) || o.cgTolerance < 0.0f)
         return bad("cgTolerance must be a finite number >= 0");
     if (o.cgMaxIterations > 10000) return bad("cgMaxIterations must be at most 10000");

@@ -66,6 +66,13 @@ struct MultigridOptions {
     // at it), 64 on a GPU (one per brick of the finest level it takes: with fewer, each phase's
     // loads are serialised in a handful of threads). The result does not depend on it.
     uint32_t coarseGroup = 0;
+    // Rows (y) and layers (z) of the brick one invocation relaxes, restricts or prolongs (1, 2
+    // or 4; its x extent is one vec4 of cells); 0: by device, 4 on a CPU device (a row loaded
+    // serves several cells, and fewer invocations pay a CPU driver's per-invocation cost), 1 on a
+    // GPU (16 times the invocations: every dispatch of a 64³ level fills the chip). The levels
+    // of 16³ cells and below are cycled in one workgroup either way. The result does not depend
+    // on it.
+    uint32_t brick = 0;
     // The multigrid solver's restriction (R0) computes the residual it restricts, instead of a
     // pass that writes it before: one dispatch and a write and a read of the residual fewer per
     // level, for a stencil whose sums scatter into the coarse brick. Auto: on a GPU only (on

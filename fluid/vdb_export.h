@@ -2,7 +2,7 @@
 // Blender's volume import, Houdini and OpenVDB's own tools. What a file holds:
 //   "density"  float, the pigment's alpha, a fog volume;
 //   "colour"   vec3, the pigment's colour, rgb / alpha as the smoke renderer takes it
-//              (shaders/render/smoke.frag);
+//              (shaders/render/smoke_march.glsl);
 //   "velocity" vec3, the cell-centred velocity (the mean of each cell's two faces per axis), in
 //              world units a second.
 // Voxel (i, j, k) is cell (i, j, k) of the grid; the transform takes it to the cell's centre in

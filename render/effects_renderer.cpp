@@ -45,7 +45,7 @@ uint32_t EffectsRenderer::drawEffects(VkCommandBuffer cmd, RenderTarget& target,
 
 void EffectsRenderer::drawSmoke(VkCommandBuffer cmd, RenderTarget& target,
                                 const sim::SceneSimulation& simulation) {
-    smokePass_.draw(cmd, target, simulation, camera_, shown_);
+    smokePass_.draw(cmd, target, simulation, camera_, shown_, smokeLook_);
 }
 
 } // namespace mfx::render

@@ -43,6 +43,10 @@ public:
     void drawSmoke(VkCommandBuffer cmd, RenderTarget& target,
                    const sim::SceneSimulation& simulation);
 
+    // How the smoke is marched (render/smoke_pass.h; the defaults unless set).
+    void setSmokeLook(const SmokeLook& look) { smokeLook_ = look; }
+    const SmokeLook& smokeLook() const { return smokeLook_; }
+
     // Which of the scene's effects are drawn, by their index in scene.effects (all by default).
     // A smoke grid is drawn while any of its effects is shown.
     void setShown(size_t effect, bool shown);
@@ -60,6 +64,7 @@ public:
 private:
     std::vector<std::unique_ptr<EffectKindPass>> passes_; // in draw order
     SmokePass smokePass_;
+    SmokeLook smokeLook_;
     SceneCamera camera_;
     std::vector<uint8_t> shown_;
     bool fadesAgainstDepth_ = false;

@@ -47,6 +47,7 @@ public:
     // Which of the scene's effects are drawn, by their index in scene.effects (all by default).
     // A smoke grid is drawn while any of its effects is shown.
     void setShown(size_t effect, bool shown) { effects_.setShown(effect, shown); }
+    void setSmokeLook(const SmokeLook& look) { effects_.setSmokeLook(look); }
     bool shown(size_t effect) const { return effects_.shown(effect); }
 
     // After the recording has finished executing: the GPU milliseconds of each drawing pass

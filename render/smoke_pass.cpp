@@ -14,6 +14,9 @@ namespace {
 constexpr uint32_t kBoxVertices = 36; // six faces, two triangles each (shaders/render/smoke.vert)
 constexpr VkFormat kFluidColorFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkFormat kFluidDistanceFormat = VK_FORMAT_R32_SFLOAT;
+// Where either march reads the scene's depth and the light's transmittance.
+constexpr VkPipelineStageFlags2 kMarchStages =
+    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
 
 // The volume's shading for the march: the preset's colour ramp by pigment alpha, its glow and cel
 // bands, and the key light.
@@ -46,16 +49,26 @@ uint32_t divisorOf(SmokeResolution resolution) {
     return resolution == SmokeResolution::Full ? 1u : 2u;
 }
 
-// The march's program (a dense grid's) for a fluid buffer of 1 / divisor of the picture.
-gpu::GraphicsProgramDesc marchDesc(uint32_t divisor) {
+// The march's programs (shaders/render/smoke_march.glsl) for a fluid buffer of 1 / divisor of the
+// picture: the fragment march over the box's faces, and the compute march.
+gpu::GraphicsProgramDesc fragmentMarchDesc(uint32_t divisor, bool sparse) {
     gpu::GraphicsProgramDesc march;
-    march.name = "smoke";
+    march.name = sparse ? "smoke_sparse" : "smoke";
     march.vertex = shaders::smoke_vert;
-    march.fragment = shaders::smoke_frag;
+    march.fragment = sparse ? shaders::smoke_frag_sparse : shaders::smoke_frag;
     march.pushConstantSize = sizeof(shared::SmokeDraw);
     march.specialization = {divisor};
     march.colorFormats = {kFluidColorFormat, kFluidDistanceFormat};
     march.blend = gpu::BlendMode::Opaque;
+    return march;
+}
+
+gpu::ComputeProgramDesc computeMarchDesc(uint32_t divisor, bool sparse) {
+    gpu::ComputeProgramDesc march;
+    march.name = sparse ? "smoke_march_sparse" : "smoke_march";
+    march.spirv = sparse ? shaders::smoke_march_comp_sparse : shaders::smoke_march_comp;
+    march.pushConstantSize = sizeof(shared::SmokeDraw);
+    march.specialization = {divisor};
     return march;
 }
 
@@ -80,16 +93,30 @@ SmokePass::SmokePass(const gpu::Context& ctx) : ctx_(ctx) {
     light.spirv = shaders::light_transmittance_comp;
     light.pushConstantSize = sizeof(shared::SmokeDraw);
     light_ = gpu::createComputeProgram(ctx, light);
-    programsFor(divisorOf(SmokeLook{}.resolution)); // the default's pipelines made up front
+    // The default's pipelines made up front.
+    const uint32_t divisor = divisorOf(SmokeLook{}.resolution);
+    marchProgram(programsFor(divisor), divisor, computeMarch(SmokeLook{}), false);
+}
+
+bool SmokePass::computeMarch(const SmokeLook& look) const {
+    return look.march == SmokeMarch::Compute ||
+           (look.march == SmokeMarch::Auto && !ctx_.info().isCpu());
+}
+
+gpu::Program& SmokePass::marchProgram(Programs& programs, uint32_t divisor, bool compute,
+                                      bool sparse) {
+    std::optional<gpu::Program>& slot = programs.march[compute ? 1 : 0][sparse ? 1 : 0];
+    if (!slot)
+        slot = compute ? gpu::createComputeProgram(ctx_, computeMarchDesc(divisor, sparse))
+                       : gpu::createGraphicsProgram(ctx_, fragmentMarchDesc(divisor, sparse));
+    return *slot;
 }
 
 SmokePass::Programs& SmokePass::programsFor(uint32_t divisor) {
     auto it = programs_.find(divisor);
     if (it != programs_.end()) return it->second;
     Programs programs;
-    const gpu::GraphicsProgramDesc march = marchDesc(divisor);
-    programs.march = gpu::createGraphicsProgram(ctx_, march);
-    gpu::GraphicsProgramDesc composite = march;
+    gpu::GraphicsProgramDesc composite = fragmentMarchDesc(divisor, false);
     composite.name = "smoke_composite";
     composite.fragment = shaders::smoke_composite_frag;
     composite.colorFormats = {kSceneColorFormat};
@@ -105,7 +132,8 @@ void SmokePass::prepareFluidBuffer(const RenderTarget& target, uint32_t divisor)
     gpu::ImageDesc desc;
     desc.extent = {(target.width + divisor - 1) / divisor, (target.height + divisor - 1) / divisor,
                    1};
-    desc.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+    desc.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT |
+                 VK_IMAGE_USAGE_SAMPLED_BIT;
     desc.format = kFluidColorFormat;
     desc.debugName = "smoke fluid buffer colour";
     fluid_.color = gpu::createImage(ctx_, desc);
@@ -203,9 +231,8 @@ void SmokePass::marchLight(VkCommandBuffer cmd, size_t i, const Volume& volume,
     }
     // The previous draw's fetches → this march's stores (what the draw fetches is rewritten: the
     // box's texels and the layer past it).
-    gpu::imageBarrier(cmd, image, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
-                      0, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                      VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    gpu::imageBarrier(cmd, image, VK_IMAGE_LAYOUT_GENERAL, kMarchStages, 0,
+                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     const fluid::PigmentVolume& pigment = volume.pigment;
     gpu::Program* program = &light_;
     std::vector<gpu::DescriptorWrite> writes = {gpu::bindBuffer(2, bounds_[i]),
@@ -224,7 +251,7 @@ void SmokePass::marchLight(VkCommandBuffer cmd, size_t i, const Volume& volume,
     vkCmdDispatch(cmd, gpu::groupCount(extent.width, 4), gpu::groupCount(extent.height, 4),
                   gpu::groupCount(extent.depth, 4));
     gpu::imageBarrier(cmd, image, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                      VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, kMarchStages,
                       VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
 }
 
@@ -256,6 +283,7 @@ void SmokePass::draw(VkCommandBuffer cmd, RenderTarget& target, std::span<const 
                      const SmokeLook& look) {
     if (volumes.empty()) return;
     const uint32_t divisor = divisorOf(look.resolution);
+    const bool compute = computeMarch(look);
     Programs& programs = programsFor(divisor);
     prepareFluidBuffer(target, divisor);
     while (bounds_.size() < volumes.size())
@@ -278,9 +306,8 @@ void SmokePass::draw(VkCommandBuffer cmd, RenderTarget& target, std::span<const 
                           VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                       VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
                           VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
-                      VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+                      kMarchStages, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
 
-    const VkExtent3D fluidSize = fluid_.color.extent;
     const VkImageLayout read = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     const VkSampler nearest = nearestSampler_.get();
     for (size_t i = 0; i < volumes.size(); ++i) {
@@ -295,66 +322,15 @@ void SmokePass::draw(VkCommandBuffer cmd, RenderTarget& target, std::span<const 
         d.light = glm::vec4(-glm::normalize(key.direction), look.densityScale);
         marchLight(cmd, i, v, d, look.maxLightCells);
 
-        // The march into the cleared fluid buffer (after the previous composite's reads).
-        for (gpu::Image* image : {&fluid_.color, &fluid_.distance})
-            gpu::imageBarrier(cmd, *image, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                              VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, 0,
-                              VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                              VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
-        VkRenderingAttachmentInfo attachments[2];
-        for (int a = 0; a < 2; ++a) {
-            attachments[a] = {VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-            attachments[a].imageView = (a == 0 ? fluid_.color : fluid_.distance).view.get();
-            attachments[a].imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-            attachments[a].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-            attachments[a].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-        }
-        attachments[1].clearValue.color.float32[0] = float(MFX_SMOKE_NO_DISTANCE);
-        VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
-        rendering.renderArea = {{0, 0}, {fluidSize.width, fluidSize.height}};
-        rendering.layerCount = 1;
-        rendering.colorAttachmentCount = 2;
-        rendering.pColorAttachments = attachments;
-        vkCmdBeginRendering(cmd, &rendering);
-        // The picture's viewport scaled by 1 / divisor (flipped, +y up, as the target's), so a
-        // fluid texel's centre is the centre of its block of pixels.
-        const float w = float(target.width) / float(divisor);
-        const float h = float(target.height) / float(divisor);
-        const VkViewport viewport{0.0f, h, w, -h, 0.0f, 1.0f};
-        vkCmdSetViewport(cmd, 0, 1, &viewport);
-        const VkRect2D scissor{{0, 0}, {fluidSize.width, fluidSize.height}};
-        vkCmdSetScissor(cmd, 0, 1, &scissor);
-        if (v.pigment.layout == fluid::PigmentLayout::BrickAtlas) {
-            if (!programs.sparseMarch) {
-                gpu::GraphicsProgramDesc desc = marchDesc(divisor);
-                desc.name = "smoke_sparse";
-                desc.fragment = shaders::smoke_frag_sparse;
-                programs.sparseMarch = gpu::createGraphicsProgram(ctx_, desc);
-            }
-            programs.sparseMarch->bind(
-                cmd,
-                {gpu::bindBuffer(0, *v.pigment.atlas),
-                 gpu::bindImage(1, target.depth, read, nearest), gpu::bindBuffer(2, bounds_[i]),
-                 gpu::bindBuffer(3, styles_[i]), gpu::bindBuffer(4, *v.pigment.brickTable),
-                 gpu::bindImage(5, lights_[i], VK_IMAGE_LAYOUT_GENERAL, edgeSampler_.get())});
-            programs.sparseMarch->push(cmd, d);
-        } else {
-            programs.march.bind(
-                cmd,
-                {gpu::bindImage(0, *v.pigment.image, VK_IMAGE_LAYOUT_GENERAL, volumeSampler_.get()),
-                 gpu::bindImage(1, target.depth, read, nearest), gpu::bindBuffer(2, bounds_[i]),
-                 gpu::bindBuffer(3, styles_[i]),
-                 gpu::bindImage(5, lights_[i], VK_IMAGE_LAYOUT_GENERAL, edgeSampler_.get())});
-            programs.march.push(cmd, d);
-        }
-        vkCmdDraw(cmd, kBoxVertices, 1, 0, 0);
-        vkCmdEndRendering(cmd);
+        march(cmd, target, i, v, d, divisor, compute);
 
         // The composite over the picture.
         for (gpu::Image* image : {&fluid_.color, &fluid_.distance})
             gpu::imageBarrier(cmd, *image, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                              VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                              VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
+                              compute ? VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT
+                                      : VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                              compute ? VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT
+                                      : VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
                               VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
                               VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
         beginCompositing(cmd, target);
@@ -366,6 +342,72 @@ void SmokePass::draw(VkCommandBuffer cmd, RenderTarget& target, std::span<const 
         vkCmdDraw(cmd, kBoxVertices, 1, 0, 0);
         vkCmdEndRendering(cmd);
     }
+}
+
+void SmokePass::march(VkCommandBuffer cmd, RenderTarget& target, size_t i, const Volume& volume,
+                      const shared::SmokeDraw& draw, uint32_t divisor, bool compute) {
+    const bool sparse = volume.pigment.layout == fluid::PigmentLayout::BrickAtlas;
+    gpu::Program& program = marchProgram(programsFor(divisor), divisor, compute, sparse);
+    const VkImageLayout read = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    std::vector<gpu::DescriptorWrite> writes = {
+        gpu::bindImage(1, target.depth, read, nearestSampler_.get()),
+        gpu::bindBuffer(2, bounds_[i]), gpu::bindBuffer(3, styles_[i]),
+        gpu::bindImage(5, lights_[i], VK_IMAGE_LAYOUT_GENERAL, edgeSampler_.get())};
+    if (sparse) {
+        writes.push_back(gpu::bindBuffer(0, *volume.pigment.atlas));
+        writes.push_back(gpu::bindBuffer(4, *volume.pigment.brickTable));
+    } else {
+        writes.push_back(gpu::bindImage(0, *volume.pigment.image, VK_IMAGE_LAYOUT_GENERAL,
+                                        volumeSampler_.get()));
+    }
+    const VkExtent3D fluidSize = fluid_.color.extent;
+    // The fluid buffer written after the previous composite's reads: by the compute march every
+    // texel, by the fragment march the texels its box covers, into the cleared buffer.
+    for (gpu::Image* image : {&fluid_.color, &fluid_.distance})
+        gpu::imageBarrier(cmd, *image,
+                          compute ? VK_IMAGE_LAYOUT_GENERAL
+                                  : VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                          VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, 0,
+                          compute ? VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT
+                                  : VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                          compute ? VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT
+                                  : VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+    if (compute) {
+        writes.push_back(gpu::bindImage(6, fluid_.color, VK_IMAGE_LAYOUT_GENERAL));
+        writes.push_back(gpu::bindImage(7, fluid_.distance, VK_IMAGE_LAYOUT_GENERAL));
+        program.bind(cmd, writes);
+        program.push(cmd, draw);
+        vkCmdDispatch(cmd, gpu::groupCount(fluidSize.width, 8),
+                      gpu::groupCount(fluidSize.height, 8), 1);
+        return;
+    }
+    VkRenderingAttachmentInfo attachments[2];
+    for (int a = 0; a < 2; ++a) {
+        attachments[a] = {VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+        attachments[a].imageView = (a == 0 ? fluid_.color : fluid_.distance).view.get();
+        attachments[a].imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+        attachments[a].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+        attachments[a].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    }
+    attachments[1].clearValue.color.float32[0] = float(MFX_SMOKE_NO_DISTANCE);
+    VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    rendering.renderArea = {{0, 0}, {fluidSize.width, fluidSize.height}};
+    rendering.layerCount = 1;
+    rendering.colorAttachmentCount = 2;
+    rendering.pColorAttachments = attachments;
+    vkCmdBeginRendering(cmd, &rendering);
+    // The picture's viewport scaled by 1 / divisor (flipped, +y up, as the target's), so a fluid
+    // texel's centre is the centre of its block of pixels.
+    const float w = float(target.width) / float(divisor);
+    const float h = float(target.height) / float(divisor);
+    const VkViewport viewport{0.0f, h, w, -h, 0.0f, 1.0f};
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    const VkRect2D scissor{{0, 0}, {fluidSize.width, fluidSize.height}};
+    vkCmdSetScissor(cmd, 0, 1, &scissor);
+    program.bind(cmd, writes);
+    program.push(cmd, draw);
+    vkCmdDraw(cmd, kBoxVertices, 1, 0, 0);
+    vkCmdEndRendering(cmd);
 }
 
 } // namespace mfx::render

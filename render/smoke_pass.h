@@ -5,15 +5,17 @@
 //
 // Per grid, all on the GPU (the CPU never waits for it):
 // - pigmentBounds (shaders/render/pigment_bounds.comp) finds the box of cells that hold pigment;
-// the
-//   march and the composite rasterise only that box's faces (shaders/render/smoke.vert), so pixels
-//   whose ray misses the pigment cost nothing and an empty grid draws nothing;
-// - the march (shaders/render/smoke.frag) writes the smoke's premultiplied colour and the scene
-// distance
-//   it marched to into a fluid buffer, at half the picture's width and height by default;
-// - the composite (shaders/render/smoke_composite.frag) lays the fluid buffer over the picture with
-// a
-//   depth-aware upsample, so the smoke keeps the silhouettes of what is in front of it.
+//   the march covers only that box and the composite rasterises only its faces
+//   (shaders/render/smoke.vert), so pixels whose ray misses the pigment cost next to nothing and
+//   an empty grid draws nothing;
+// - the light's transmittance (shaders/render/light_transmittance.comp) is marched once over the
+//   box, for the march to fetch;
+// - the march (shaders/render/smoke_march.glsl: a compute pass on a GPU, a fragment pass over the
+//   box's faces on a CPU device; SmokeMarch) writes the smoke's premultiplied colour and the scene
+//   distance it marched to into a fluid buffer, at half the picture's width and height by
+//   default;
+// - the composite (shaders/render/smoke_composite.frag) lays the fluid buffer over the picture
+//   with a depth-aware upsample, so the smoke keeps the silhouettes of what is in front of it.
 #pragma once
 
 #include "core/gpu/program.h"
@@ -40,6 +42,14 @@ enum class SmokeResolution {
     Half, // one ray per 2x2 pixels, about a quarter of the cost, upsampled by depth
 };
 
+// Which shader marches the rays (shaders/render/smoke_march.glsl).
+enum class SmokeMarch {
+    Auto,     // by device: Fragment on a CPU device, Compute on a GPU
+    Fragment, // smoke.frag over the box's faces: only the texels whose ray meets the box run
+    Compute,  // smoke_march.comp over the whole fluid buffer: on NVIDIA's H200, whose rasteriser
+              // is a small part of the chip, several times faster; on lavapipe slower
+};
+
 struct SmokeLook {
     float densityScale = 8.0f; // optical density per unit of pigment alpha, per world unit
     float fadeDistance = 0.1f; // b, world units
@@ -50,6 +60,7 @@ struct SmokeLook {
     // 8-bit level of opacity (0.2 %) on a ray 2.5 world units long.
     float pigmentThreshold = 1e-4f;
     SmokeResolution resolution = SmokeResolution::Half;
+    SmokeMarch march = SmokeMarch::Auto;
     // The key light's transmittance volume: a texel a cell of the pigment's box, at most this many
     // a side (a wider box shares texels between cells).
     uint32_t maxLightCells = 128;
@@ -74,7 +85,7 @@ public:
     // One pigment volume (fluid/grid_solver.h: a solver's image, or the sparse domain's brick
     // atlas over its virtual domain) of `shape` whose low corner is at `origin`, shaded as
     // `shading` says (its grid's first smoke effect's). Over a brick atlas the bounds search runs
-    // over the active bricks and the march skips the empty ones (shaders/render/smoke.frag).
+    // over the active bricks and the march skips the empty ones (shaders/render/smoke_march.glsl).
     struct Volume {
         fluid::PigmentVolume pigment;
         fluid::GridShape shape;
@@ -85,10 +96,11 @@ public:
               const SceneCamera& camera, const scene::LightSpec& key, const SmokeLook& look = {});
 
 private:
-    // The march and composite programs for one fluid buffer divisor (1 or 2).
+    // The march and composite programs for one fluid buffer divisor (1 or 2), each march made
+    // when first used: [compute][sparse] (SmokeMarch; the sparse atlas's variant).
     struct Programs {
-        gpu::Program march, composite;
-        std::optional<gpu::Program> sparseMarch; // made when a sparse volume is first drawn
+        std::optional<gpu::Program> march[2][2];
+        gpu::Program composite;
     };
     // The smoke's premultiplied colour and the scene distance its march used.
     struct FluidBuffer {
@@ -98,6 +110,11 @@ private:
     };
 
     Programs& programsFor(uint32_t divisor);
+    bool computeMarch(const SmokeLook& look) const;
+    gpu::Program& marchProgram(Programs& programs, uint32_t divisor, bool compute, bool sparse);
+    // Volume i's march into the fluid buffer.
+    void march(VkCommandBuffer cmd, RenderTarget& target, size_t i, const Volume& volume,
+               const shared::SmokeDraw& draw, uint32_t divisor, bool compute);
     void prepareFluidBuffer(const RenderTarget& target, uint32_t divisor);
     void findPigmentBounds(VkCommandBuffer cmd, std::span<const Volume> volumes,
                            const SmokeLook& look);

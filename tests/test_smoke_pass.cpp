@@ -201,6 +201,39 @@ TEST_F(SmokePassTest, MarchingThePigmentBoxOnlyChangesNothing) {
     EXPECT_LE(difference(boxed, whole).largest, 1);
 }
 
+// The compute march (a GPU's) draws what the fragment march (a CPU device's) draws: the same
+// function per texel, over the whole fluid buffer instead of the box's faces. In front of the
+// fighter, across its silhouette and sunk into the floor, at half and full resolution; the linear
+// colours agree to fp16 rounding of the fluid buffer (the two shader stages may contract the
+// march's arithmetic into fused multiply-adds differently).
+TEST_F(SmokePassTest, TheComputeMarchDrawsWhatTheFragmentMarchDraws) {
+    const auto smoke = ball(ctx(), 6.0f);
+    int shots = 0;
+    for (render::SmokeResolution resolution :
+         {render::SmokeResolution::Half, render::SmokeResolution::Full})
+        for (glm::vec3 centre : {glm::vec3(0.0f, 1.1f, 0.7f), glm::vec3(0.3f, 1.1f, -0.3f),
+                                 glm::vec3(-0.5f, 0.2f, 0.5f)}) {
+            render::SmokeLook fragment, compute;
+            fragment.resolution = compute.resolution = resolution;
+            fragment.march = render::SmokeMarch::Fragment;
+            compute.march = render::SmokeMarch::Compute;
+            const std::string name = "march_" + std::to_string(shots++);
+            const Shot a = shoot(ctx(), smoke.get(), centre, fragment, name + "_fragment.png");
+            const Shot b = shoot(ctx(), smoke.get(), centre, compute, name + "_compute.png");
+            float largest = 0.0f;
+            size_t smoky = 0;
+            const Shot plain = shoot(ctx(), nullptr, centre, fragment, "march_plain.png");
+            for (size_t i = 0; i < a.linear.size(); ++i) {
+                largest = std::max(largest, std::abs(a.linear[i] - b.linear[i]));
+                smoky += std::abs(a.linear[i] - plain.linear[i]) > 0.02f ? 1 : 0;
+            }
+            std::printf("%s: %zu channels with smoke, largest difference %.2e\n", name.c_str(),
+                        smoky, double(largest));
+            EXPECT_GT(smoky, 500u) << name << ": the smoke shows";
+            EXPECT_LE(largest, 2e-3f) << name;
+        }
+}
+
 // The half-resolution fluid buffer, upsampled by depth, looks like the full-resolution march: in
 // front of the fighter, behind it (its silhouette cuts the smoke) and sunk into the floor.
 TEST_F(SmokePassTest, HalfResolutionLooksLikeFull) {

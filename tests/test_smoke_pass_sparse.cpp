@@ -1,4 +1,4 @@
-// The smoke pass over a sparse grid (shaders/render/smoke.frag built with MFX_SPARSE_PIGMENT): its
+// The smoke pass over a sparse grid (shaders/render/smoke_march.glsl built with MFX_SPARSE_PIGMENT): its
 // picture is the dense grid's picture of the same pigment, while its march skips the empty bricks.
 #include "core/gpu/commands.h"
 #include "core/scene/scene.h"
@@ -46,7 +46,8 @@ struct Picture {
 
 // The volume alone over a dark background (no scene: the depth is the far plane), from a camera
 // looking along the row of bricks at a slant, so most rays cross empty bricks.
-Picture shoot(gpu::Context& ctx, const render::SmokePass::Volume& volume, const std::string& png) {
+Picture shoot(gpu::Context& ctx, const render::SmokePass::Volume& volume, const std::string& png,
+              const render::SmokeLook& look = {}) {
     scene::CameraSpec cameraSpec;
     cameraSpec.position = glm::vec3(-0.6f, 1.3f, 2.2f);
     cameraSpec.target = glm::vec3(1.2f, 0.6f, 0.6f);
@@ -57,7 +58,7 @@ Picture shoot(gpu::Context& ctx, const render::SmokePass::Volume& volume, const 
     gpu::submitOneShot(ctx, [&](VkCommandBuffer cmd) {
         render::beginRendering(cmd, target, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
         render::endRendering(cmd);
-        smokePass.draw(cmd, target, std::span(&volume, 1), camera, key, {});
+        smokePass.draw(cmd, target, std::span(&volume, 1), camera, key, look);
     });
     Picture picture{render::readColor(ctx, target)};
     const std::string dir = std::string(MFX_TEST_OUTPUT_DIR) + "/smoke_pass_sparse";
@@ -135,6 +136,22 @@ TEST_F(SparseSmokePassTest, TheSparseMarchDrawsWhatTheDenseMarchDrawsOfTheSamePi
     // Skipping is exact: the same atlas values with and without empty bricks give one picture.
     const auto [skipOver, skipLargest] = compare(s, e, 0);
     EXPECT_EQ(skipOver, 0u) << "largest difference " << skipLargest;
+}
+
+// The sparse atlas's compute march (a GPU's) draws what its fragment march draws, skipping the
+// same empty bricks.
+TEST_F(SparseSmokePassTest, TheComputeMarchDrawsWhatTheFragmentMarchDraws) {
+    const auto some = sparseOf(ctx(), twoBalls(), false);
+    ASSERT_TRUE(some);
+    render::SmokeLook fragment, compute;
+    fragment.march = render::SmokeMarch::Fragment;
+    compute.march = render::SmokeMarch::Compute;
+    const render::SmokePass::Volume volume{some->pigmentVolume(), kDomain, glm::vec3(0.0f), {}};
+    const Picture f = shoot(ctx(), volume, "fragment_march.png", fragment);
+    const Picture c = shoot(ctx(), volume, "compute_march.png", compute);
+    EXPECT_GT(smokyPixels(f), 500u);
+    const auto [over, largest] = compare(c, f, 1);
+    EXPECT_EQ(over, 0u) << "largest difference " << largest;
 }
 
 TEST_F(SparseSmokePassTest, ASparseGridWithNoActiveBrickDrawsNothing) {

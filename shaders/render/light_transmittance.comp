@@ -1,5 +1,5 @@
 // The key light's transmittance through the smoke, once per frame and volume, for the march to
-// fetch once per view sample (smoke.frag) instead of marching towards the light from each. The
+// fetch once per view sample (smoke_march.glsl) instead of marching towards the light from each. The
 // volume spans the pigment's box (the box smoke.vert draws: the cells holding pigment, grown by
 // one), one texel a cell of it from the image's low corner (lightTexels(): a box wider than the
 // image shares texels between cells; the image has room for the grid's cells, at most
@@ -61,7 +61,7 @@ void main() {
     vec3 used = lightTexels(high - low, vec3(size));
     // The texels of the box, and the layer beyond its high sides, which repeats the box's last
     // texels: a fetch at the box's high face filters halfway into it, as the image's own edge
-    // clamps. Texels further out are never fetched (smoke.frag clamps its fetches to the box).
+    // clamps. Texels further out are never fetched (smoke_march.glsl clamps its fetches to the box).
     if (any(greaterThan(vec3(t), used))) return;
     vec3 boxLow = draw.gridOrigin.xyz + h * low, boxHigh = draw.gridOrigin.xyz + h * high;
     vec3 p = mix(boxLow, boxHigh, (min(vec3(t), used - 1.0) + 0.5) / used);

@@ -1,13 +1,12 @@
-// The smoke pass's proxy: the faces of the box of cells that hold pigment (found on the GPU by
-// shaders/render/pigment_bounds.comp), grown by one cell as trilinear samples reach that far, so only the
-// pixels whose ray meets pigment run the fragment stage. Only the faces turned away from the eye
+// The smoke pass's proxy: the faces of the box of cells that hold pigment (smoke_box.glsl), so
+// only the pixels whose ray meets pigment run the fragment stage. Only the faces turned away from the eye
 // are drawn: every ray that meets the box leaves it through exactly one of them, also from inside
 // the box, so each such pixel is shaded once. An empty box draws nothing (every vertex at one
-// point). The box goes on to the fragment stage, which marches the ray inside it (smoke.frag) or
-// lays the fluid buffer over the picture (smoke_composite.frag).
+// point). The box goes on to the fragment stage, which lays the fluid buffer over the picture
+// (smoke_composite.frag).
 #version 450
 #extension GL_GOOGLE_include_directive : require
-#include "shared/smoke_draw.h"
+#include "smoke_box.glsl"
 
 layout(push_constant) uniform Draw {
     SmokeDraw draw;
@@ -28,18 +27,14 @@ mat4 viewProjection() {
 }
 
 void main() {
-    vec3 cells = draw.gridSize.xyz;
-    vec3 low = max(vec3(bounds.low.xyz) - 1.0, vec3(0.0));
-    vec3 high = min(vec3(bounds.high.xyz) + 2.0, cells);
-    boxLow = draw.gridOrigin.xyz + draw.gridOrigin.w * low;
-    boxHigh = draw.gridOrigin.xyz + draw.gridOrigin.w * high;
+    bool filled = pigmentBox(draw, bounds, boxLow, boxHigh);
     // Face f (0..5): axis f / 2, its low (even f) or high (odd f) side.
     int face = gl_VertexIndex / 6;
     int axis = face / 2;
     bool highSide = (face & 1) == 1;
     vec3 eye = draw.eye.xyz;
     bool turnedAway = highSide ? eye[axis] <= boxHigh[axis] : eye[axis] >= boxLow[axis];
-    if (bounds.low.x > bounds.high.x || !turnedAway) {
+    if (!filled || !turnedAway) {
         gl_Position = vec4(2.0, 2.0, 2.0, 1.0); // degenerate: nothing rasterised
         return;
     }

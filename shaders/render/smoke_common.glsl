@@ -1,10 +1,11 @@
-// What the smoke pass's march (smoke.frag) and composite (smoke_composite.frag) share: the draw's
-// push constants, the mapping between pixels, clip space and the world, and the ray's stretch in
-// a box. The including shader declares `sceneDepth`, the full-resolution scene depth.
+// What the smoke pass's march (smoke_march.comp) and composite (smoke_composite.frag), and the
+// box's vertices (smoke.vert), share: the draw's push constants, the pigment's box, the mapping
+// between pixels, clip space and the world, and the ray's stretch in a box. The including shader
+// declares `sceneDepth`, the full-resolution scene depth.
 #ifndef MFX_SMOKE_COMMON_GLSL
 #define MFX_SMOKE_COMMON_GLSL
 
-#include "shared/smoke_draw.h"
+#include "smoke_box.glsl"
 
 layout(push_constant) uniform Draw {
     SmokeDraw draw;
@@ -13,9 +14,14 @@ layout(push_constant) uniform Draw {
 // The fluid buffer has 1 / kDivisor of the picture's width and height (SmokeResolution).
 layout(constant_id = 0) const int kDivisor = 2;
 
-// The pigment's box in world units (shaders/render/smoke.vert).
+// The pigment's box in world units, from the vertex stage (shaders/render/smoke.vert) or, in the
+// compute march, set by its main (smoke_box.glsl).
+#ifdef MFX_SMOKE_COMPUTE
+vec3 boxLow, boxHigh;
+#else
 layout(location = 0) flat in vec3 boxLow;
 layout(location = 1) flat in vec3 boxHigh;
+#endif
 
 // A point of the full-resolution picture (pixels, top row first) in clip space. The target's
 // viewport is flipped (+y up), so clip y runs against the rows.

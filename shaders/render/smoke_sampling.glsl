@@ -1,4 +1,4 @@
-// How the smoke pass reads a pigment volume at a world position (the march, smoke.frag, and the
+// How the smoke pass reads a pigment volume at a world position (the march, smoke_march.glsl, and the
 // light's transmittance, light_transmittance.comp): trilinear between cell centres, 0 outside the
 // grid. A dense grid's pigment is a sampler3D; with MFX_SPARSE_PIGMENT a sparse grid's atlas and
 // brick table (fluid/sparse_smoke_solver.h), sampled by hand from the eight cells, 0 where no

@@ -1,6 +1,6 @@
 // Structures of the smoke pass (render/smoke_pass.h): the pigment bounds found on the GPU
 // (shaders/render/pigment_bounds.comp) and the push constants of the march and the composite
-// (shaders/render/smoke.vert, smoke.frag, smoke_composite.frag).
+// (shaders/render/smoke.vert, smoke_march.glsl, smoke_composite.frag).
 #ifndef MFX_SHARED_SMOKE_DRAW_H
 #define MFX_SHARED_SMOKE_DRAW_H
 
@@ -47,7 +47,7 @@ struct SmokeDraw {
 #define MFX_SMOKE_PRESET_FIRE 1.0
 #define MFX_SMOKE_PRESET_ENERGY 2.0
 
-// How the march shades one volume (uniform buffer, std140, binding 3 of smoke.frag).
+// How the march shades one volume (uniform buffer, std140, binding 3 of smoke_march.glsl).
 struct SmokeStyle {
     vec4 ramp[4]; // rgb: the colour at pigment alpha w (rising); used by fire and energy
     vec4 params;  // x: glow (emitted light at full density); y: cel bands (0: smooth); z: key

@@ -15,7 +15,7 @@ namespace mfx::scene {
 
 enum class Emission { Vertices, Surface };
 
-// How the smoke is shaded (render/smoke_pass.h, shaders/render/smoke.frag). Presets:
+// How the smoke is shaded (render/smoke_pass.h, shaders/render/smoke_march.glsl). Presets:
 // smoke: the pigment's colour, lit by the key light with self-shadowing, no light of its own;
 // fire: a colour ramp by density (dark red where thin to yellow-white where dense) that glows,
 //   hotter where denser; energy: a cyan-to-white ramp that glows.
