@@ -16,6 +16,9 @@ bool finite(float x) {
 bool finite(const glm::vec4& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && std::isfinite(v.w);
 }
+bool finite(const glm::vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
 const char* kFaceNames[6] = {"-x", "+x", "-y", "+y", "-z", "+z"};
 
@@ -163,6 +166,19 @@ Status validateEmitters(std::span<const shared::FluidEmitter> emitters) {
         if (e.velocityStrength.w < 0.0f) return Error{where + "strength must be >= 0"};
         if (e.pigment.x < 0.0f || e.pigment.y < 0.0f || e.pigment.z < 0.0f || e.pigment.w < 0.0f)
             return Error{where + "pigment components must be >= 0"};
+    }
+    return Ok{};
+}
+
+Status validateSolids(std::span<const shared::FluidSolid> solids) {
+    for (size_t i = 0; i < solids.size(); ++i) {
+        const shared::FluidSolid& s = solids[i];
+        const std::string where = "solid " + std::to_string(i) + ": ";
+        if (!finite(s.endA) || !finite(glm::vec3(s.endB)))
+            return Error{where + "an end or the radius is not finite"};
+        if (!finite(glm::vec3(s.velocityA)) || !finite(glm::vec3(s.velocityB)))
+            return Error{where + "a velocity is not finite"};
+        if (s.endA.w <= 0.0f) return Error{where + "radius must be > 0"};
     }
     return Ok{};
 }

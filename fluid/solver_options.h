@@ -154,6 +154,8 @@ Status validateSparseOptions(const SolverOptions& options, uint32_t maxDimension
 // Refuses emitters with NaN/Inf, a radius <= 0, a negative strength or negative pigment; the
 // error names the emitter index and the field.
 Status validateEmitters(std::span<const shared::FluidEmitter> emitters);
+// Every solid's ends, radius and velocities finite, its radius > 0; the error names the solid.
+Status validateSolids(std::span<const shared::FluidSolid> solids);
 
 // The uniform block of one sub-step.
 shared::FluidParameters makeParameters(const SolverOptions& options, uint32_t emitterCount);

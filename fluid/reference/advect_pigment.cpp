@@ -14,6 +14,8 @@ void ReferenceSolver::advectPigment() {
     const double fade = std::exp(-double(options_.fade) * dt());
     for (double& value : advected)
         value = flushTiny(value * fade);
+    for (size_t cell = 0; cell < solidCells_.size(); ++cell) // none inside a solid
+        if (solidCells_[cell] != 0) advected.segment(Eigen::Index(cell * 4), 4) = 0.0;
     pigment_ = std::move(advected);
 }
 

@@ -31,6 +31,7 @@ void ReferenceSolver::advectVelocity() {
                     }
         }
     }
+    keepSolidFaces(advected); // solid faces move with the solid, not with the air
     velocity_ = std::move(advected);
 }
 

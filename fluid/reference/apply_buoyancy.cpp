@@ -11,7 +11,7 @@ void ReferenceSolver::applyBuoyancy() {
         for (int j = 0; j < n.y; ++j)
             for (int i = 0; i < n.x; ++i) {
                 const glm::ivec3 q(i, j, k);
-                if (wallNormalFace(1, q)) continue;
+                if (wallNormalFace(1, q) || solidFace(1, q)) continue;
                 const double density = 0.5 * (fetchCell(pigment_, q - glm::ivec3(0, 1, 0), 4, 3) +
                                               fetchCell(pigment_, q, 4, 3));
                 velocity_[1][Eigen::Index(faceIndex(1, q))] +=

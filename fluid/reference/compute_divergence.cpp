@@ -16,7 +16,8 @@ void ReferenceSolver::computeDivergence() {
                     sum += velocity_[c][Eigen::Index(faceIndex(c, hi))] -
                            velocity_[c][Eigen::Index(faceIndex(c, q))];
                 }
-                divergence_[Eigen::Index(cellIndex(q))] = sum / h_;
+                // A solid cell has no pressure unknown, and so no divergence to remove.
+                divergence_[Eigen::Index(cellIndex(q))] = solidCell(q) ? 0.0 : sum / h_;
             }
 }
 

@@ -26,6 +26,10 @@ void ReferenceSolver::diffuseViscosity() {
                             next[index] = 0.0;
                             continue;
                         }
+                        if (solidFace(c, q)) { // the solid's velocity, a fixed boundary value
+                            next[index] = source[index];
+                            continue;
+                        }
                         double sum = 0.0;
                         for (const glm::ivec3& s : steps)
                             sum += fetchFace(c, x, q + s);

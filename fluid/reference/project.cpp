@@ -16,7 +16,7 @@ void ReferenceSolver::project() {
         return 0.0;
     };
     forEachFace([&](int c, glm::ivec3 q) {
-        if (wallNormalFace(c, q)) return;
+        if (wallNormalFace(c, q) || solidFace(c, q)) return; // u·n = u_solid·n kept
         glm::ivec3 below = q;
         below[c] -= 1;
         velocity_[c][Eigen::Index(faceIndex(c, q))] -=

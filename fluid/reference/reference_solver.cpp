@@ -59,9 +59,11 @@ void ReferenceSolver::runStage(Stage stage, std::span<const shared::FluidEmitter
 }
 
 void ReferenceSolver::step(std::span<const shared::FluidEmitter> emitters) {
-    for (uint32_t substep = 0; substep < options_.substeps; ++substep)
+    for (uint32_t substep = 0; substep < options_.substeps; ++substep) {
+        if (!solids_.empty()) markSolids();
         for (Stage stage : stepOrder())
             runStage(stage, emitters);
+    }
 }
 
 Diagnostics computeDiagnostics(const SolverOptions& options, const FieldState& state) {

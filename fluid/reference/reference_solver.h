@@ -19,6 +19,7 @@
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace mfx::fluid {
@@ -81,6 +82,26 @@ public:
     // Whether cell q (inside the grid) is active, and whether face q of component c is stored.
     bool cellActive(glm::ivec3 q) const;
     bool faceStored(int c, glm::ivec3 q) const;
+
+    // --- Solids (mark_solids.cpp; docs/fluid.md, "Solids") ------------------------------------
+    // The moving solids of the steps from now on (each a capsule where the steps end, with its
+    // ends' velocities; empty: none, the solver exactly as without). Marked at once and again at
+    // the start of every sub-step of step(). std::invalid_argument when validateSolids refuses
+    // them, on the sparse domain, and with a pressure solver other than Jacobi (not yet).
+    void setSolids(std::span<const shared::FluidSolid> solids);
+    // The solid cells and faces of the current solids; solid faces set to the solids' velocity
+    // and solid cells' pigment to 0.
+    void markSolids();
+    bool hasSolids() const { return !solidCells_.empty(); }
+    // Whether cell q (inside the grid) is solid, and whether face q of component c is (a cell
+    // beside it is solid; never a wall-normal face).
+    bool solidCell(glm::ivec3 q) const;
+    bool solidFace(int c, glm::ivec3 q) const;
+    // The trilinear sample of a cell field at x from the fluid cells alone: the weights of solid
+    // cells dropped and the rest renormalised, 0 when all eight are solid; the plain sample where
+    // none is.
+    double sampleCellOutsideSolids(const Eigen::ArrayXd& field, glm::dvec3 x, int channels = 1,
+                                   int channel = 0) const;
 
     // --- Measuring the pressure solve ---------------------------------------------------------
     // The relative residual ||b - A p|| / ||b|| of the pressure equation A p = b for the current
@@ -185,6 +206,11 @@ private:
     void roundStoredFields();
     // The sparse domain: every value outside the active cells becomes 0 (sparse_domain.cpp).
     void clearInactive();
+    // Solid faces of `velocity` set back to the solids' velocity (mark_solids.cpp).
+    void keepSolidFaces(std::array<Eigen::ArrayXd, 3>& velocity) const;
+    // Pressure neighbours of cell q as the Jacobi sweep counts them (solve_pressure.cpp): the sum
+    // of the counted neighbours' pressure in `p` and their count.
+    std::pair<double, int> countedNeighbours(const Eigen::ArrayXd& p, glm::ivec3 q) const;
 
     SolverOptions options_;
     glm::ivec3 cells_;
@@ -194,6 +220,9 @@ private:
     Eigen::ArrayXd divergence_;
     Eigen::ArrayXd pigment_;           // RGBA interleaved
     std::vector<uint8_t> activeCells_; // empty: dense
+    std::vector<shared::FluidSolid> solids_;
+    std::vector<uint8_t> solidCells_;             // per cell; empty without solids
+    std::array<Eigen::ArrayXd, 3> solidVelocity_; // per face, read on solid faces only
     bool recordHistory_ = false;
     std::vector<double> residualHistory_;
     uint32_t pressureIterations_ = 0;

@@ -56,7 +56,7 @@ Eigen::ArrayXd ReferenceSolver::semiLagrangian(int field, const Eigen::ArrayXd& 
         forEachPoint(cells_, [&](size_t point, glm::ivec3) {
             for (int channel = 0; channel < 4; ++channel)
                 result[Eigen::Index(point * 4 + size_t(channel))] =
-                    sampleCell(source, departures[point], 4, channel);
+                    sampleCellOutsideSolids(source, departures[point], 4, channel);
         });
     } else {
         forEachPoint(faceCount(field), [&](size_t point, glm::ivec3 q) {

@@ -12,6 +12,7 @@
 
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCore>
+#include <cmath>
 #include <vector>
 
 namespace mfx::fluid {
@@ -39,6 +40,31 @@ void ReferenceSolver::solvePressure() {
 }
 
 double ReferenceSolver::pressureResidual() const {
+    if (hasSolids()) {
+        // The equation over the fluid cells (solid neighbours not counted), as the Jacobi sweep
+        // has it; without an open face b is made mean-free over the fluid cells.
+        std::vector<glm::ivec3> fluidCells;
+        bool anyOpen = false;
+        for (int a = 0; a < 6; ++a)
+            anyOpen = anyOpen || options_.boundaries[a].kind == Boundary::Open;
+        for (int k = 0; k < cells_.z; ++k)
+            for (int j = 0; j < cells_.y; ++j)
+                for (int i = 0; i < cells_.x; ++i)
+                    if (!solidCell({i, j, k})) fluidCells.emplace_back(i, j, k);
+        Eigen::ArrayXd b(Eigen::Index(fluidCells.size()));
+        for (size_t n = 0; n < fluidCells.size(); ++n)
+            b[Eigen::Index(n)] = -(h_ * h_) * divergence_[Eigen::Index(cellIndex(fluidCells[n]))];
+        if (!anyOpen && b.size() > 0) b -= b.mean();
+        const double norm = b.matrix().norm();
+        if (norm == 0.0) return 0.0;
+        double squares = 0.0;
+        for (size_t n = 0; n < fluidCells.size(); ++n) {
+            const auto [sum, count] = countedNeighbours(pressure_, fluidCells[n]);
+            const double ap = count * pressure_[Eigen::Index(cellIndex(fluidCells[n]))] - sum;
+            squares += (b[Eigen::Index(n)] - ap) * (b[Eigen::Index(n)] - ap);
+        }
+        return std::sqrt(squares) / norm;
+    }
     const PressureGrid grid = PressureGrid::finest(cells_, options_.boundaries);
     const Eigen::ArrayXd b = consistentRightHandSide(grid, -(h_ * h_) * divergence_);
     const double norm = b.matrix().norm();
@@ -51,6 +77,29 @@ void ReferenceSolver::recordResidual() {
     if (recordHistory_) residualHistory_.push_back(pressureResidual());
 }
 
+std::pair<double, int> ReferenceSolver::countedNeighbours(const Eigen::ArrayXd& p,
+                                                          glm::ivec3 q) const {
+    double sum = 0.0;
+    int count = 0;
+    for (int s = 0; s < 6; ++s) {
+        const int axis = s / 2;
+        glm::ivec3 neighbour = q + kSteps[s];
+        if (neighbour[axis] >= 0 && neighbour[axis] < cells_[axis]) {
+            if (solidCell(neighbour)) continue; // zero normal gradient, as at a wall
+            sum += p[Eigen::Index(cellIndex(neighbour))];
+            ++count;
+        } else if (boundary(axis, s % 2 == 1) == Boundary::Periodic) {
+            neighbour[axis] = (neighbour[axis] + cells_[axis]) % cells_[axis];
+            if (solidCell(neighbour)) continue;
+            sum += p[Eigen::Index(cellIndex(neighbour))];
+            ++count;
+        } else if (boundary(axis, s % 2 == 1) == Boundary::Open) {
+            ++count; // ghost pressure 0
+        }
+    }
+    return {sum, count};
+}
+
 void ReferenceSolver::solvePressureJacobi() {
     if (!options_.warmStart) pressure_.setZero();
     recordResidual();
@@ -61,26 +110,11 @@ void ReferenceSolver::solvePressureJacobi() {
             for (int j = 0; j < cells_.y; ++j)
                 for (int i = 0; i < cells_.x; ++i) {
                     const glm::ivec3 q(i, j, k);
-                    if (!cellActive(q)) { // the sparse domain: open air, p = 0
+                    if (!cellActive(q) || solidCell(q)) { // open air (sparse), or no unknown
                         next[Eigen::Index(cellIndex(q))] = 0.0;
                         continue;
                     }
-                    double sum = 0.0;
-                    int count = 0;
-                    for (int s = 0; s < 6; ++s) {
-                        const int axis = s / 2;
-                        glm::ivec3 neighbour = q + kSteps[s];
-                        if (neighbour[axis] >= 0 && neighbour[axis] < cells_[axis]) {
-                            sum += pressure_[Eigen::Index(cellIndex(neighbour))];
-                            ++count;
-                        } else if (boundary(axis, s % 2 == 1) == Boundary::Periodic) {
-                            neighbour[axis] = (neighbour[axis] + cells_[axis]) % cells_[axis];
-                            sum += pressure_[Eigen::Index(cellIndex(neighbour))];
-                            ++count;
-                        } else if (boundary(axis, s % 2 == 1) == Boundary::Open) {
-                            ++count; // ghost pressure 0
-                        }
-                    }
+                    const auto [sum, count] = countedNeighbours(pressure_, q);
                     const Eigen::Index index = Eigen::Index(cellIndex(q));
                     next[index] = count > 0 ? (sum - h2 * divergence_[index]) / count : 0.0;
                 }
@@ -101,6 +135,11 @@ void ReferenceSolver::solvePressureExact() {
             for (int i = 0; i < cells_.x; ++i) {
                 const glm::ivec3 q(i, j, k);
                 const Eigen::Index row = Eigen::Index(cellIndex(q));
+                if (solidCell(q)) { // no unknown inside a solid: p = 0
+                    entries.emplace_back(row, row, 1.0);
+                    rhs[row] = 0.0;
+                    continue;
+                }
                 double diagonal = 0.0;
                 for (int s = 0; s < 6; ++s) {
                     const int axis = s / 2;
@@ -109,6 +148,7 @@ void ReferenceSolver::solvePressureExact() {
                     const Boundary b = boundary(axis, s % 2 == 1);
                     if (inside || b == Boundary::Periodic) {
                         neighbour[axis] = (neighbour[axis] + cells_[axis]) % cells_[axis];
+                        if (solidCell(neighbour)) continue; // zero normal gradient
                         const Eigen::Index column = Eigen::Index(cellIndex(neighbour));
                         diagonal += 1.0;
                         entries.emplace_back(row, column, -1.0);
@@ -125,7 +165,21 @@ void ReferenceSolver::solvePressureExact() {
     matrix.setFromTriplets(entries.begin(), entries.end()); // duplicates (self-neighbours) sum
     // Without an open face the matrix is singular (constants are in its null space); the system
     // is consistent once the right-hand side has zero mean, which CG then solves.
-    if (!anyOpen) rhs.array() -= rhs.mean();
+    if (!anyOpen) {
+        if (hasSolids()) { // mean-free over the fluid cells; the solid rows stay p = 0
+            double sum = 0.0;
+            Eigen::Index fluid = 0;
+            for (Eigen::Index row = 0; row < n; ++row)
+                if (solidCells_[size_t(row)] == 0) {
+                    sum += rhs[row];
+                    ++fluid;
+                }
+            for (Eigen::Index row = 0; row < n && fluid > 0; ++row)
+                if (solidCells_[size_t(row)] == 0) rhs[row] -= sum / double(fluid);
+        } else {
+            rhs.array() -= rhs.mean();
+        }
+    }
 
     Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper> cg;
     cg.setTolerance(1e-12);

@@ -22,7 +22,7 @@ double emitterWeight(const shared::FluidEmitter& e, glm::dvec3 x, double dt) {
 void ReferenceSolver::splatImpulses(std::span<const shared::FluidEmitter> emitters) {
     if (emitters.empty()) return;
     forEachFace([&](int c, glm::ivec3 q) {
-        if (wallNormalFace(c, q)) return;
+        if (wallNormalFace(c, q) || solidFace(c, q)) return; // solid faces keep the solid's
         double& value = velocity_[c][Eigen::Index(faceIndex(c, q))];
         const glm::dvec3 x = facePosition(c, q);
         for (const shared::FluidEmitter& e : emitters) {
@@ -34,6 +34,7 @@ void ReferenceSolver::splatImpulses(std::span<const shared::FluidEmitter> emitte
         for (int j = 0; j < cells_.y; ++j)
             for (int i = 0; i < cells_.x; ++i) {
                 const glm::ivec3 q(i, j, k);
+                if (solidCell(q)) continue; // no pigment inside a solid
                 const glm::dvec3 x = cellCentre(q);
                 for (const shared::FluidEmitter& e : emitters) {
                     const double a = emitterWeight(e, x, dt());

@@ -60,7 +60,7 @@ void ReferenceSolver::vorticityConfinement() {
 
     // applyVorticityForce
     forEachFace([&](int c, glm::ivec3 q) {
-        if (wallNormalFace(c, q)) return;
+        if (wallNormalFace(c, q) || solidFace(c, q)) return;
         glm::ivec3 below = q;
         below[c] -= 1;
         // Cells outside the grid are clamped or wrapped, as fetchCell does.

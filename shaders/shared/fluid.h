@@ -64,6 +64,16 @@ struct FluidEmitter {
     vec4 pigment;          // RGBA, each >= 0
 };
 
+// One moving solid: a capsule (a sphere when both ends are one point) where the step ends, and the
+// velocity of each end over the step (docs/fluid.md, "Solids"). A point's velocity is its ends'
+// blended by where it projects onto the axis.
+struct FluidSolid {
+    vec4 endA;      // xyz: first end of the axis in grid world units; w: radius (> 0)
+    vec4 endB;      // xyz: second end; w: unused
+    vec4 velocityA; // xyz: velocity of end A; w: unused
+    vec4 velocityB; // xyz: velocity of end B; w: unused
+};
+
 // Push constants of every stage.
 struct FluidDispatch {
     uint target;  // unused: the target is a specialization constant (kTarget)
@@ -98,6 +108,10 @@ MFX_CHECK_LAYOUT(FluidParameters, wallVelocity, 80);
 MFX_CHECK_SIZE(FluidEmitter, 48);
 MFX_CHECK_LAYOUT(FluidEmitter, velocityStrength, 16);
 MFX_CHECK_LAYOUT(FluidEmitter, pigment, 32);
+MFX_CHECK_SIZE(FluidSolid, 64);
+MFX_CHECK_LAYOUT(FluidSolid, endB, 16);
+MFX_CHECK_LAYOUT(FluidSolid, velocityA, 32);
+MFX_CHECK_LAYOUT(FluidSolid, velocityB, 48);
 MFX_CHECK_SIZE(FluidDispatch, 16);
 MFX_CHECK_SIZE(SplatRegion, 32);
 MFX_CHECK_LAYOUT(SplatRegion, originX, 16);

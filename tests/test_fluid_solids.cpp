@@ -1,0 +1,265 @@
+// Moving solids in the smoke (docs/fluid.md, "Solids"), on the CPU reference: a still sphere in a
+// uniform stream lets nothing through its faces and the exact pressure leaves the air as
+// divergence-free as without it; a sphere moving through still air carries its faces, pushes the
+// air ahead aside and leaves a wake; pigment never enters a solid; no solids is the solver as
+// before; bad solids are refused in one line.
+#include "fluid/reference/reference_solver.h"
+#include "tests/fluid_test_util.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+namespace mfx::test {
+namespace {
+
+using fluid::ReferenceSolver;
+
+constexpr fluid::GridShape kGrid{32, 16, 16, 1.0f / 16.0f}; // 2 x 1 x 1 world units
+
+shared::FluidSolid sphere(glm::vec3 centre, float radius, glm::vec3 velocity = glm::vec3(0.0f)) {
+    return {glm::vec4(centre, radius), glm::vec4(centre, 0.0f), glm::vec4(velocity, 0.0f),
+            glm::vec4(velocity, 0.0f)};
+}
+
+// Open along x (a stream may pass), free-slip walls across it.
+SolverOptions streamOptions() {
+    SolverOptions o;
+    o.grid = kGrid;
+    o.dt = 1.0f / 60.0f;
+    o.jacobiIterations = 60;
+    o.boundaries[fluid::FaceLowX].kind = fluid::Boundary::Open;
+    o.boundaries[fluid::FaceHighX].kind = fluid::Boundary::Open;
+    return o;
+}
+
+// The largest |divergence| over the fluid cells of the solver's current velocity.
+double fluidDivergence(ReferenceSolver& s) {
+    s.computeDivergence();
+    const fluid::FieldState state = s.state();
+    double largest = 0.0;
+    for (int k = 0; k < int(kGrid.cellsZ); ++k)
+        for (int j = 0; j < int(kGrid.cellsY); ++j)
+            for (int i = 0; i < int(kGrid.cellsX); ++i)
+                if (!s.solidCell({i, j, k}))
+                    largest =
+                        std::max(largest, std::abs(double(state.divergence[kGrid.index(i, j, k)])));
+    return largest;
+}
+
+// The largest |u_solid - u| over the solid faces (each component's against `velocity`).
+double solidFaceError(const ReferenceSolver& s, glm::dvec3 velocity) {
+    const fluid::FieldState state = s.state();
+    double largest = 0.0;
+    s.forEachFace([&](int c, glm::ivec3 q) {
+        if (!s.solidFace(c, q)) return;
+        const double u = component(state, c)[s.faceIndex(c, q)];
+        largest = std::max(largest, std::abs(u - velocity[c]));
+    });
+    return largest;
+}
+
+TEST(FluidSolids, AStillSphereInAUniformStreamLetsNothingThroughAndLeavesNoDivergence) {
+    const SolverOptions options = streamOptions();
+    fluid::FieldState stream = fluid::FieldState::zero(kGrid);
+    for (float& u : stream.velocityX)
+        u = 1.0f;
+    ReferenceSolver with(options), without(options);
+    with.setState(stream);
+    without.setState(stream);
+    const shared::FluidSolid ball = sphere({1.0f, 0.5f, 0.5f}, 0.2f);
+    with.setSolids(std::span(&ball, 1));
+    ASSERT_TRUE(with.hasSolids());
+    // The exact pressure of the sphere's divergence, then the projection, as a step ends.
+    for (ReferenceSolver* s : {&with, &without}) {
+        s->computeDivergence();
+        s->solvePressureExact();
+        s->project();
+    }
+    EXPECT_EQ(solidFaceError(with, glm::dvec3(0.0)), 0.0) << "flux through the solid's faces";
+    const double withDiv = fluidDivergence(with), withoutDiv = fluidDivergence(without);
+    std::printf("largest |div| over the fluid cells: %.2e with the sphere, %.2e without\n", withDiv,
+                withoutDiv);
+    EXPECT_LE(withDiv, 1e-9); // the stream's own scale: 1 / h = 16 per second
+    EXPECT_LE(withoutDiv, 1e-9);
+    // The stream goes round: faster beside the sphere than far from it.
+    const fluid::FieldState state = with.state();
+    const double beside = state.velocityX[with.faceIndex(0, {16, 8, 3})];
+    EXPECT_GT(beside, 1.05) << "the air beside the sphere speeds up";
+
+    // A whole step (advection, Jacobi sweeps) keeps the faces shut and the divergence down.
+    with.setState(stream);
+    with.step({});
+    EXPECT_EQ(solidFaceError(with, glm::dvec3(0.0)), 0.0);
+    EXPECT_LT(with.pressureResidual(), 0.5);
+}
+
+TEST(FluidSolids, AMovingSphereCarriesItsFacesPushesTheAirAsideAndLeavesAWake) {
+    SolverOptions options = streamOptions();
+    options.jacobiIterations = 80;
+    options.integrator = fluid::Integrator::RK2;
+    ReferenceSolver s(options);
+    s.setState(fluid::FieldState::zero(kGrid));
+    const glm::vec3 velocity(2.0f, 0.0f, 0.0f);
+    const float radius = 0.15f;
+    glm::vec3 centre(0.4f, 0.5f, 0.5f);
+    for (int step = 0; step < 24; ++step) {
+        centre += velocity * options.dt;
+        const shared::FluidSolid ball = sphere(centre, radius, velocity);
+        s.setSolids(std::span(&ball, 1));
+        s.step({});
+        ASSERT_EQ(solidFaceError(s, glm::dvec3(velocity)), 0.0) << "step " << step;
+    }
+    const fluid::FieldState state = s.state();
+    const double h = kGrid.cellSize;
+    // Mean x velocity of the fluid cells in a box [x0, x1] x (centre +- half) along y and z, and
+    // the mean magnitude of the curl of the cell-centred velocity there.
+    auto cellVelocity = [&](glm::ivec3 q) {
+        glm::dvec3 u;
+        for (int c = 0; c < 3; ++c) {
+            glm::ivec3 hi = q;
+            hi[c] += 1;
+            u[c] = 0.5 * (double(component(state, c)[s.faceIndex(c, q)]) +
+                          double(component(state, c)[s.faceIndex(c, hi)]));
+        }
+        return u;
+    };
+    const glm::dvec3 at(centre);
+    const double r = radius;
+    struct Region {
+        double meanU = 0.0, meanCurl = 0.0;
+    };
+    auto region = [&](double x0, double x1, double half) {
+        Region result;
+        int n = 0;
+        for (int k = 1; k < int(kGrid.cellsZ) - 1; ++k)
+            for (int j = 1; j < int(kGrid.cellsY) - 1; ++j)
+                for (int i = 1; i < int(kGrid.cellsX) - 1; ++i) {
+                    const glm::dvec3 x = (glm::dvec3(i, j, k) + 0.5) * h;
+                    if (x.x < x0 || x.x > x1 || std::abs(x.y - at.y) > half ||
+                        std::abs(x.z - at.z) > half || s.solidCell({i, j, k}))
+                        continue;
+                    auto d = [&](int axis, int c) { // central difference of U_c along axis
+                        glm::ivec3 a(i, j, k), b(i, j, k);
+                        a[axis] -= 1;
+                        b[axis] += 1;
+                        return (cellVelocity(b)[c] - cellVelocity(a)[c]) / (2.0 * h);
+                    };
+                    const glm::dvec3 curl(d(1, 2) - d(2, 1), d(2, 0) - d(0, 2), d(0, 1) - d(1, 0));
+                    result.meanU += cellVelocity({i, j, k}).x;
+                    result.meanCurl += glm::length(curl);
+                    ++n;
+                }
+        if (n > 0) {
+            result.meanU /= n;
+            result.meanCurl /= n;
+        }
+        return result;
+    };
+    const Region ahead = region(at.x + r, at.x + r + 4 * h, r);
+    const Region behind = region(at.x - r - 6 * h, at.x - r, r);
+    std::printf("ahead of the sphere: mean u_x %.3f m/s, mean |curl| %.2f /s; behind: %.3f, "
+                "%.2f\n",
+                ahead.meanU, ahead.meanCurl, behind.meanU, behind.meanCurl);
+    EXPECT_GT(ahead.meanU, 0.2 * double(velocity.x)) << "the air ahead is pushed";
+    EXPECT_GT(behind.meanCurl, ahead.meanCurl) << "a wake behind";
+}
+
+TEST(FluidSolids, PigmentNeverEntersASolid) {
+    SolverOptions options = streamOptions();
+    options.fade = 0.0f;
+    ReferenceSolver s(options);
+    fluid::FieldState cloud = fluid::FieldState::zero(kGrid);
+    for (size_t cell = 0; cell < cloud.pigment.size() / 4; ++cell)
+        for (int channel = 0; channel < 4; ++channel)
+            cloud.pigment[cell * 4 + size_t(channel)] = 0.8f;
+    s.setState(cloud);
+    glm::vec3 centre(0.3f, 0.5f, 0.5f);
+    const glm::vec3 velocity(3.0f, 0.5f, 0.0f);
+    for (int step = 0; step < 12; ++step) {
+        centre += velocity * options.dt;
+        const shared::FluidSolid ball = sphere(centre, 0.18f, velocity);
+        s.setSolids(std::span(&ball, 1));
+        s.step({});
+        const fluid::FieldState state = s.state();
+        double inside = 0.0, largest = 0.0;
+        for (int k = 0; k < int(kGrid.cellsZ); ++k)
+            for (int j = 0; j < int(kGrid.cellsY); ++j)
+                for (int i = 0; i < int(kGrid.cellsX); ++i)
+                    for (int channel = 0; channel < 4; ++channel) {
+                        const double p = state.pigment[kGrid.index(i, j, k) * 4 + size_t(channel)];
+                        largest = std::max(largest, p);
+                        if (s.solidCell({i, j, k})) inside += std::abs(p);
+                    }
+        EXPECT_EQ(inside, 0.0) << "step " << step;
+        EXPECT_LE(largest, 0.8 + 1e-6) << "no pigment made, step " << step;
+    }
+}
+
+TEST(FluidSolids, NoSolidsIsTheSolverAsBefore) {
+    const SolverOptions options = mixedBoundaryOptions();
+    const fluid::FieldState input = randomState(options.grid, 5);
+    const auto emitters = twoEmitters(options.grid);
+    ReferenceSolver plain(options), empty(options);
+    plain.setState(input);
+    empty.setState(input);
+    empty.setSolids({});
+    EXPECT_FALSE(empty.hasSolids());
+    for (int step = 0; step < 3; ++step) {
+        plain.step(emitters);
+        empty.step(emitters);
+    }
+    const fluid::FieldState a = plain.state(), b = empty.state();
+    EXPECT_EQ(a.velocityX, b.velocityX);
+    EXPECT_EQ(a.velocityY, b.velocityY);
+    EXPECT_EQ(a.velocityZ, b.velocityZ);
+    EXPECT_EQ(a.pressure, b.pressure);
+    EXPECT_EQ(a.pigment, b.pigment);
+}
+
+TEST(FluidSolids, ASolidTouchingTheDomainsEdgeKeepsTheWall) {
+    SolverOptions options = closedBoxOptions();
+    ReferenceSolver s(options);
+    s.setState(randomState(options.grid, 9));
+    // Centred on the -x wall, moving into it and along it.
+    const shared::FluidSolid ball = sphere({0.0f, 0.7f, 0.4f}, 0.3f, {-1.0f, 0.5f, 0.0f});
+    s.setSolids(std::span(&ball, 1));
+    for (int step = 0; step < 5; ++step)
+        s.step({});
+    const fluid::FieldState state = s.state();
+    for (int k = 0; k < int(options.grid.cellsZ); ++k)
+        for (int j = 0; j < int(options.grid.cellsY); ++j)
+            EXPECT_EQ(state.velocityX[s.faceIndex(0, {0, j, k})], 0.0f) << "the wall stays shut";
+    EXPECT_EQ(fluid::computeDiagnostics(options, state).nonFinite, 0u);
+    EXPECT_EQ(solidFaceError(s, glm::dvec3(-1.0, 0.5, 0.0)), 0.0);
+}
+
+TEST(FluidSolids, BadSolidsAreRefusedNamingTheSolid) {
+    ReferenceSolver s(streamOptions());
+    auto refused = [&](const std::vector<shared::FluidSolid>& solids) {
+        try {
+            s.setSolids(solids);
+        } catch (const std::invalid_argument& e) {
+            return std::string(e.what());
+        }
+        return std::string("accepted");
+    };
+    shared::FluidSolid bad = sphere({1, 0.5f, 0.5f}, 0.1f);
+    bad.endB.y = std::nanf("");
+    EXPECT_EQ(refused({sphere({1, 0.5f, 0.5f}, 0.1f), bad}),
+              "solid 1: an end or the radius is not finite");
+    EXPECT_EQ(refused({sphere({1, 0.5f, 0.5f}, 0.0f)}), "solid 0: radius must be > 0");
+    shared::FluidSolid fast = sphere({1, 0.5f, 0.5f}, 0.1f);
+    fast.velocityB.x = INFINITY;
+    EXPECT_EQ(refused({fast}), "solid 0: a velocity is not finite");
+    SolverOptions multigrid = streamOptions();
+    multigrid.pressureSolver = fluid::PressureSolver::Multigrid;
+    ReferenceSolver m(multigrid);
+    const shared::FluidSolid ball = sphere({1, 0.5f, 0.5f}, 0.1f);
+    EXPECT_THROW(m.setSolids(std::span(&ball, 1)), std::invalid_argument);
+}
+
+} // namespace
+} // namespace mfx::test
