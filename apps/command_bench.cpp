@@ -96,6 +96,7 @@ struct SolverChoice {
     fluid::StorePath store = fluid::StorePath::Auto;
     uint32_t coarseGroup = 0;
     uint32_t brick = 0;
+    uint32_t coarseCells = 0;
     fluid::ByDevice residualInRestriction = fluid::ByDevice::Auto;
     fluid::ByDevice firstSweepInDivergence = fluid::ByDevice::Auto;
 };
@@ -112,6 +113,7 @@ Result<GridResult> benchGrid(const gpu::Context& ctx, const std::string& scenari
     scenario.options.storePath = choice.store;
     scenario.options.multigrid.coarseGroup = choice.coarseGroup;
     scenario.options.multigrid.brick = choice.brick;
+    scenario.options.multigrid.coarseCells = choice.coarseCells;
     scenario.options.multigrid.residualInRestriction = choice.residualInRestriction;
     scenario.options.firstSweepInDivergence = choice.firstSweepInDivergence;
     auto solverResult = fluid::SmokeSolver::create(ctx, scenario.options);
@@ -175,7 +177,7 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
     if (domain == "sparse") {
         for (const char* denseOnly :
              {"store", "copy-mib", "markdown", "workgroups", "coarse-group", "brick",
-              "residual-in-restriction", "first-sweep-in-divergence"})
+              "coarse-cells", "residual-in-restriction", "first-sweep-in-divergence"})
             if (parsed.has(denseOnly)) {
                 printError(std::string("--") + denseOnly + " is an option of the dense domain");
                 return kExitUsage;
@@ -200,7 +202,10 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
     auto coarseGroup =
         cli::parseUnsigned(parsed.value("coarse-group", "0"), 0, 1024, "--coarse-group");
     auto brick = cli::parseUnsigned(parsed.value("brick", "0"), 0, 4, "--brick");
-    if (reportFirstError(grids, jacobi, steps, workgroups, copyMib, coarseGroup, brick))
+    auto coarseCells =
+        cli::parseUnsigned(parsed.value("coarse-cells", "0"), 0, 4096, "--coarse-cells");
+    if (reportFirstError(grids, jacobi, steps, workgroups, copyMib, coarseGroup, brick,
+                         coarseCells))
         return kExitUsage;
     if (brick.value() == 3) {
         printError("--brick must be 0 (by device), 1, 2 or 4, not 3");
@@ -255,7 +260,9 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
                 direct ? "straight into the images" : "into buffers copied into the images",
                 steps.value());
     const uint32_t bricks = fluid::multigridBrick(brick.value(), ctx);
-    const uint32_t coarse = fluid::coarseCycleGroup(coarseGroup.value(), bricks, ctx);
+    const uint32_t fusedCells = fluid::coarseCycleCells(coarseCells.value());
+    const uint32_t coarse =
+        fluid::coarseCycleGroup(coarseGroup.value(), bricks, coarseCells.value(), ctx);
     const bool hierarchy = *pressure == fluid::PressureSolver::Multigrid ||
                            *pressure == fluid::PressureSolver::MultigridPcg;
     fluid::SolverOptions resolved;
@@ -270,9 +277,9 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
                                                               : "computed by the pressure pass");
     if (hierarchy)
         std::printf("bricks of 4 cells by %u rows by %u layers an invocation; the coarse levels "
-                    "(16³ cells and below) cycled by one workgroup of %u invocations; the residual "
+                    "(%u cells and below) cycled by one workgroup of %u invocations; the residual "
                     "%s\n\n",
-                    bricks, bricks, coarse,
+                    bricks, bricks, fusedCells, coarse,
                     residualFused ? "computed by the restriction"
                                   : "written by a pass before the restriction");
 
@@ -281,7 +288,7 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
         for (const auto& workgroup : workgroups.value()) {
             auto r = benchGrid(ctx, scenarioName, cells, workgroup,
                                {jacobi.value(), *pressure, *store, coarseGroup.value(),
-                                brick.value(), *fused, *firstSweep},
+                                brick.value(), coarseCells.value(), *fused, *firstSweep},
                                steps.value());
             if (!r) {
                 printError(r.error().message);
@@ -376,8 +383,10 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
         const std::string title =
             std::string("Solver stages, ") + fluid::pressureSolverName(*pressure) + " pressure, " +
             (hierarchy ? "bricks of " + std::to_string(bricks) + " rows, coarse group " +
-                             std::to_string(coarse) + ", " +
-                             (residualFused ? "residual in the restriction, " : "")
+                             std::to_string(coarse) +
+                             (fusedCells != 4096 ? " from " + std::to_string(fusedCells) + " cells"
+                                                 : std::string()) +
+                             ", " + (residualFused ? "residual in the restriction, " : "")
                        : std::string()) +
             (*pressure == fluid::PressureSolver::Jacobi && !firstSweepFused
                  ? "first sweep in the solve, "
@@ -450,6 +459,7 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
                                    {"store", direct ? "direct" : "buffer"},
                                    {"coarse_group", hierarchy ? coarse : 0u},
                                    {"brick", hierarchy ? bricks : 0u},
+                                   {"coarse_cells", hierarchy ? fusedCells : 0u},
                                    {"residual_in_restriction", residualFused},
                                    {"first_sweep_in_divergence", firstSweepFused},
                                    {"steps", steps.value()},

@@ -131,6 +131,9 @@ CommandLine benchSolverCommandLine() {
                 "multigrid and mgpcg: invocations of the workgroup that cycles the coarse "
                 "levels (default 0: by device, 8 on a CPU device, on a GPU one per brick of a 16³ "
                 "level)")
+        .option("coarse-cells", "N",
+                "multigrid and mgpcg: the largest level, in cells, cycled in that one workgroup "
+                "(default 0: 4096, 16³; at most 4096)")
         .option("brick", "N",
                 "multigrid, mgpcg and rbgs: rows and layers (1, 2 or 4) of the brick of cells one "
                 "invocation handles (default 0: by device, 4 on a CPU device, 1 on a GPU)")

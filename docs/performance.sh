@@ -31,6 +31,11 @@ gpu)
         --residual-in-restriction off --markdown "$out"
     "$MOTIONFX" bench solver --grids 256,128,64 --steps 10 --pressure multigrid --coarse-group 256 \
         --markdown "$out"
+    # The one-workgroup coarse cycle from lower levels (512 and 64 cells instead of 4,096).
+    for cells in 512 64; do
+        "$MOTIONFX" bench solver --grids 256,128,64 --steps 10 --pressure multigrid \
+            --coarse-cells "$cells" --markdown "$out"
+    done
     "$MOTIONFX" bench solver --grids 256,128,64 --steps 10 --pressure mgpcg --markdown "$out"
     # Time to a divergence 1e-3 of the start at 128^3 (printed; not a Markdown section yet).
     "$MOTIONFX" bench accuracy --grid 16 --steps 4 --scenarios puff --target-grid 128 \

@@ -50,11 +50,17 @@ uint32_t multigridBrick(uint32_t requested, const gpu::Context& ctx) {
     return ctx.info().isCpu() ? kCpuBrick : kGpuBrick;
 }
 
-uint32_t coarseCycleGroup(uint32_t requested, uint32_t brick, const gpu::Context& ctx) {
+uint32_t coarseCycleCells(uint32_t requested) {
+    return requested != 0 ? requested : 16 * 16 * 16;
+}
+
+uint32_t coarseCycleGroup(uint32_t requested, uint32_t brick, uint32_t coarseCells,
+                          const gpu::Context& ctx) {
     if (requested != 0) return requested;
     if (ctx.info().isCpu()) return kCpuCoarseGroup;
-    const uint32_t perLevel = 16 / brick * 16 / brick * 4; // bricks of a 16^3 level
-    return std::min({perLevel, ctx.limits().maxComputeWorkGroupInvocations,
+    // One invocation per brick (4 cells by brick rows by brick layers) of the largest fused level.
+    const uint32_t bricks = std::max(coarseCycleCells(coarseCells) / (4 * brick * brick), 1u);
+    return std::min({bricks, ctx.limits().maxComputeWorkGroupInvocations,
                      ctx.limits().maxComputeWorkGroupSize[0]});
 }
 
@@ -114,7 +120,8 @@ gpu::Program& GpuMultigrid::program(Kernel kernel) {
 }
 
 uint32_t GpuMultigrid::coarseGroup() const {
-    return coarseCycleGroup(options_.multigrid.coarseGroup, brick_, ctx_);
+    return coarseCycleGroup(options_.multigrid.coarseGroup, brick_, options_.multigrid.coarseCells,
+                            ctx_);
 }
 
 void GpuMultigrid::barrier(VkCommandBuffer cmd) const {

@@ -39,9 +39,12 @@ namespace mfx::fluid {
 
 // MultigridOptions::brick on `ctx`'s device: `requested`, or with 0 the device's choice.
 uint32_t multigridBrick(uint32_t requested, const gpu::Context& ctx);
-// MultigridOptions::coarseGroup on `ctx`'s device for bricks of `brick` rows and layers:
-// `requested`, or with 0 the device's choice.
-uint32_t coarseCycleGroup(uint32_t requested, uint32_t brick, const gpu::Context& ctx);
+// MultigridOptions::coarseCells resolved: `requested`, or with 0 the default, 4,096 (16³).
+uint32_t coarseCycleCells(uint32_t requested);
+// MultigridOptions::coarseGroup on `ctx`'s device for bricks of `brick` rows and layers and a
+// fused part of levels of at most `coarseCells` cells: `requested`, or with 0 the device's choice.
+uint32_t coarseCycleGroup(uint32_t requested, uint32_t brick, uint32_t coarseCells,
+                          const gpu::Context& ctx);
 // Whether `options`' V-cycle restricts with the residual computed in the restriction
 // (MultigridOptions::residualInRestriction on `ctx`'s device; the multigrid solver only).
 bool residualInRestriction(const SolverOptions& options, const gpu::Context& ctx);

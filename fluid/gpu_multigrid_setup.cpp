@@ -18,10 +18,6 @@ namespace {
 // names them).
 constexpr uint32_t kSlots = 8;
 
-// The levels of at most this many cells are cycled in one dispatch of one workgroup
-// (cycle_coarse_levels.comp; why: gpu_multigrid.cpp, kCpuCoarseGroup).
-constexpr uint64_t kFusedCells = 16 * 16 * 16;
-
 int vec4Elements(glm::ivec3 cells) {
     return (cells.x + 3) / 4 * cells.y * cells.z;
 }
@@ -269,11 +265,13 @@ GpuMultigrid::GpuMultigrid(const gpu::Context& ctx, const SolverOptions& options
     for (size_t l = 0; l < levels_.size(); ++l)
         arguments.emplace_back(levelGroups(l), 0u);
     arguments.emplace_back(1u, 1u, 1u, 0u);
-    // The coarse levels cycle in one dispatch.
+    // The coarse levels (of at most MultigridOptions::coarseCells cells; why: gpu_multigrid.cpp,
+    // kCpuCoarseGroup) cycle in one dispatch of one workgroup (cycle_coarse_levels.comp).
+    const uint64_t fusedCells = coarseCycleCells(options_.multigrid.coarseCells);
     fusedLevel_ = levels_.size() - 1;
     for (size_t l = levels_.size(); l-- > 0;) {
         const glm::uvec3 bricks = levelBricks(l);
-        if (uint64_t(bricks.x) * 4 * bricks.y * brick_ * bricks.z * brick_ > kFusedCells) break;
+        if (uint64_t(bricks.x) * 4 * bricks.y * brick_ * bricks.z * brick_ > fusedCells) break;
         fusedLevel_ = l;
     }
     argumentsTemplate_ = gpu::createBuffer(ctx, arguments.size() * sizeof(glm::uvec4),

@@ -46,6 +46,9 @@ Status validateOptions(const SolverOptions& o, uint32_t maxDimension, uint32_t m
         return bad("multigrid coarseGroup " + std::to_string(o.multigrid.coarseGroup) +
                    " exceeds the device's " + std::to_string(maxInvocations) +
                    " invocations per workgroup");
+    if (o.multigrid.coarseCells > 4096)
+        return bad("multigrid coarseCells " + std::to_string(o.multigrid.coarseCells) +
+                   " must be at most 4096 (16³), or 0 for that");
     if (o.multigrid.brick != 0 && o.multigrid.brick != 1 && o.multigrid.brick != 2 &&
         o.multigrid.brick != 4)
         return bad("multigrid brick " + std::to_string(o.multigrid.brick) +

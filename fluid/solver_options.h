@@ -73,6 +73,11 @@ struct MultigridOptions {
     // of 16³ cells and below are cycled in one workgroup either way. The result does not depend
     // on it.
     uint32_t brick = 0;
+    // The largest level, in cells, whose V-cycle runs in the one workgroup of
+    // cycle_coarse_levels.comp (it and every coarser level; the levels above are dispatched one
+    // operation at a time); 0: 4,096 (16³). At most 4,096: lavapipe ends an invocation's loops
+    // after 65,535 iterations in all. The result does not depend on it.
+    uint32_t coarseCells = 0;
     // The multigrid solver's restriction (R0) computes the residual it restricts, instead of a
     // pass that writes it before: one dispatch and a write and a read of the residual fewer per
     // level, for a stencil whose sums scatter into the coarse brick. Auto: on a GPU only (on

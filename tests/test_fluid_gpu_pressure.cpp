@@ -446,6 +446,59 @@ TEST_F(GpuPressureTest, BrickSizeDoesNotChangeTheSolution) {
     }
 }
 
+// Where the one-workgroup coarse cycle starts (MultigridOptions::coarseCells) moves levels between
+// that cycle and separate dispatches, which run the same functions: the same bits whichever
+// (the even grid's 24x20x16 hierarchy: levels of 960, 120 and fewer cells).
+TEST_F(GpuPressureTest, WhereTheCoarseCycleStartsDoesNotChangeTheSolution) {
+    for (PressureSolver solver : {PressureSolver::Multigrid, PressureSolver::MultigridPcg}) {
+        SolverOptions options = pressureOptions(kEvenGrid, Boundaries::Mixed, solver);
+        options.cgTolerance = 0.0f;
+        options.cgMaxIterations = 2;
+        const FieldState input = randomState(kEvenGrid, 77);
+        std::vector<float> first;
+        for (uint32_t cells : {4096u, 512u, 8u}) {
+            options.multigrid.coarseCells = cells;
+            FieldState gpu;
+            const double d = solveBoth(options, input, nullptr, nullptr, &gpu);
+            const std::string name =
+                std::string(fluid::pressureSolverName(solver)) + " from " + std::to_string(cells);
+            EXPECT_LE(d, 1e-5) << name;
+            if (first.empty()) {
+                first = gpu.pressure;
+                continue;
+            }
+            size_t differing = 0;
+            for (size_t i = 0; i < first.size(); ++i)
+                differing += first[i] != gpu.pressure[i] ? 1 : 0;
+            EXPECT_EQ(differing, 0u) << name;
+        }
+    }
+    // And it does move them: a step's pressure dispatches grow as the cycle starts lower.
+    uint32_t previous = 0;
+    for (uint32_t cells : {4096u, 512u, 8u}) {
+        SolverOptions options =
+            pressureOptions(kEvenGrid, Boundaries::Mixed, PressureSolver::Multigrid);
+        options.multigrid.coarseCells = cells;
+        auto solver = fluid::SmokeSolver::create(ctx(), options);
+        ASSERT_TRUE(solver.ok()) << solver.error().message;
+        solver.value()->setState(randomState(kEvenGrid, 78));
+        solver.value()->step();
+        uint32_t dispatches = 0;
+        for (const auto& [stage, count] : solver.value()->lastStepDispatches())
+            if (stage == "solve_pressure") dispatches = count;
+        EXPECT_GT(dispatches, previous) << "from " << cells << " cells";
+        previous = dispatches;
+    }
+    SolverOptions tooMany =
+        pressureOptions(kEvenGrid, Boundaries::Mixed, PressureSolver::Multigrid);
+    tooMany.multigrid.coarseCells = 8192;
+    auto created = fluid::SmokeSolver::create(ctx(), tooMany);
+    ASSERT_FALSE(created.ok());
+    EXPECT_NE(created.error().message.find("coarseCells 8192 must be at most 4096"),
+              std::string::npos)
+        << created.error().message;
+}
+
 TEST_F(GpuPressureTest, ABrickOtherThanOneTwoOrFourIsRefused) {
     SolverOptions options = pressureOptions(kOddGrid, Boundaries::Walls, PressureSolver::Multigrid);
     options.multigrid.brick = 3;
