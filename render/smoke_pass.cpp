@@ -322,7 +322,7 @@ void SmokePass::draw(VkCommandBuffer cmd, RenderTarget& target, std::span<const 
         d.light = glm::vec4(-glm::normalize(key.direction), look.densityScale);
         marchLight(cmd, i, v, d, look.maxLightCells);
 
-        march(cmd, target, i, v, d, divisor, compute);
+        march(cmd, target, i, v, d, programs, divisor, compute);
 
         // The composite over the picture.
         for (gpu::Image* image : {&fluid_.color, &fluid_.distance})
@@ -345,9 +345,10 @@ void SmokePass::draw(VkCommandBuffer cmd, RenderTarget& target, std::span<const 
 }
 
 void SmokePass::march(VkCommandBuffer cmd, RenderTarget& target, size_t i, const Volume& volume,
-                      const shared::SmokeDraw& draw, uint32_t divisor, bool compute) {
+                      const shared::SmokeDraw& draw, Programs& programs, uint32_t divisor,
+                      bool compute) {
     const bool sparse = volume.pigment.layout == fluid::PigmentLayout::BrickAtlas;
-    gpu::Program& program = marchProgram(programsFor(divisor), divisor, compute, sparse);
+    gpu::Program& program = marchProgram(programs, divisor, compute, sparse);
     const VkImageLayout read = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     std::vector<gpu::DescriptorWrite> writes = {
         gpu::bindImage(1, target.depth, read, nearestSampler_.get()),

@@ -112,9 +112,9 @@ private:
     Programs& programsFor(uint32_t divisor);
     bool computeMarch(const SmokeLook& look) const;
     gpu::Program& marchProgram(Programs& programs, uint32_t divisor, bool compute, bool sparse);
-    // Volume i's march into the fluid buffer.
+    // Volume i's march into the fluid buffer, by `programs` (those of `divisor`).
     void march(VkCommandBuffer cmd, RenderTarget& target, size_t i, const Volume& volume,
-               const shared::SmokeDraw& draw, uint32_t divisor, bool compute);
+               const shared::SmokeDraw& draw, Programs& programs, uint32_t divisor, bool compute);
     void prepareFluidBuffer(const RenderTarget& target, uint32_t divisor);
     void findPigmentBounds(VkCommandBuffer cmd, std::span<const Volume> volumes,
                            const SmokeLook& look);

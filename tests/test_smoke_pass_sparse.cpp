@@ -1,5 +1,6 @@
-// The smoke pass over a sparse grid (shaders/render/smoke_march.glsl built with MFX_SPARSE_PIGMENT): its
-// picture is the dense grid's picture of the same pigment, while its march skips the empty bricks.
+// The smoke pass over a sparse grid (shaders/render/smoke_march.glsl built with
+// MFX_SPARSE_PIGMENT): its picture is the dense grid's picture of the same pigment, while its march
+// skips the empty bricks.
 #include "core/gpu/commands.h"
 #include "core/scene/scene.h"
 #include "fluid/smoke_solver.h"

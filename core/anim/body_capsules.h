@@ -40,7 +40,7 @@ struct PosedCapsule {
 // vertices to its node. The axis is the principal axis of the node's vertices (their covariance's
 // largest eigenvector), the radius the `radiusQuantile` quantile of their distances from it (1:
 // the farthest; below 1 leaves the outliers a neighbouring capsule usually covers), and the ends
-// the extreme projections pulled in by the radius (the round caps reach the extremes). Unskinned
+// those of the shortest axis whose round caps still hold every point within the radius. Unskinned
 // geometry on no node is static and left out.
 std::vector<BodyCapsule> fitBodyCapsules(const Character& character, float radiusQuantile = 0.95f);
 

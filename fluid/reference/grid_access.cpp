@@ -55,13 +55,17 @@ double ReferenceSolver::fetchFace(int c, const Eigen::ArrayXd& field, glm::ivec3
     return value;
 }
 
-double ReferenceSolver::fetchCell(const Eigen::ArrayXd& field, glm::ivec3 index, int channels,
-                                  int channel) const {
+glm::ivec3 ReferenceSolver::resolveCell(glm::ivec3 index) const {
     for (int a = 0; a < 3; ++a)
         index[a] = boundary(a, false) == Boundary::Periodic
                        ? wrap(index[a], cells_[a])
                        : std::clamp(index[a], 0, cells_[a] - 1);
-    return field[Eigen::Index(cellIndex(index) * channels + channel)];
+    return index;
+}
+
+double ReferenceSolver::fetchCell(const Eigen::ArrayXd& field, glm::ivec3 index, int channels,
+                                  int channel) const {
+    return field[Eigen::Index(cellIndex(resolveCell(index)) * size_t(channels) + size_t(channel))];
 }
 
 double ReferenceSolver::sampleFace(int c, const Eigen::ArrayXd& field, glm::dvec3 x) const {

@@ -132,11 +132,7 @@ double ReferenceSolver::sampleCellOutsideSolids(const Eigen::ArrayXd& field, glm
     for (int dz = 0; dz < 2; ++dz)
         for (int dy = 0; dy < 2; ++dy)
             for (int dx = 0; dx < 2; ++dx) {
-                glm::ivec3 cell = i0 + glm::ivec3(dx, dy, dz);
-                for (int a = 0; a < 3; ++a) // as fetchCell resolves it
-                    cell[a] = boundary(a, false) == Boundary::Periodic
-                                  ? ((cell[a] % cells_[a]) + cells_[a]) % cells_[a]
-                                  : std::clamp(cell[a], 0, cells_[a] - 1);
+                const glm::ivec3 cell = resolveCell(i0 + glm::ivec3(dx, dy, dz));
                 if (solidCells_[cellIndex(cell)] != 0) {
                     anySolid = true;
                     continue;

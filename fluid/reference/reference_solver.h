@@ -131,6 +131,9 @@ public:
     // array: periodic axes wrap, others clamp, and a no-slip wall mirrors tangential components
     // about its wall velocity.
     double fetchFace(int c, const Eigen::ArrayXd& field, glm::ivec3 index) const;
+    // A possibly out-of-range cell brought into the grid: wrapped on periodic axes, clamped on
+    // others (what fetchCell reads).
+    glm::ivec3 resolveCell(glm::ivec3 index) const;
     // Cell-centred field value at a possibly out-of-range cell: wrap or clamp.
     double fetchCell(const Eigen::ArrayXd& field, glm::ivec3 index, int channels = 1,
                      int channel = 0) const;

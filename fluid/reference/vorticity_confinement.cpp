@@ -64,14 +64,7 @@ void ReferenceSolver::vorticityConfinement() {
         glm::ivec3 below = q;
         below[c] -= 1;
         // Cells outside the grid are clamped or wrapped, as fetchCell does.
-        auto resolve = [&](glm::ivec3 cell) {
-            for (int a = 0; a < 3; ++a)
-                cell[a] = boundary(a, false) == Boundary::Periodic
-                              ? ((cell[a] % cells_[a]) + cells_[a]) % cells_[a]
-                              : std::clamp(cell[a], 0, cells_[a] - 1);
-            return cell;
-        };
-        const double f = 0.5 * (force(resolve(below))[c] + force(resolve(q))[c]);
+        const double f = 0.5 * (force(resolveCell(below))[c] + force(resolveCell(q))[c]);
         velocity_[c][Eigen::Index(faceIndex(c, q))] += dt() * f;
     });
 }
