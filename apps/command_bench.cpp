@@ -9,10 +9,13 @@
 #include "apps/commands.h"
 #include "apps/svg_plot.h"
 
+#include "core/anim/fighter.h"
+#include "core/anim/sampling.h"
 #include "core/gpu/bandwidth.h"
 #include "core/gpu/commands.h"
 #include "core/gpu/context.h"
 #include "core/gpu/timer.h"
+#include "fluid/body_solids.h"
 #include "fluid/gpu_multigrid.h"
 #include "fluid/scenarios.h"
 #include "fluid/smoke_solver.h"
@@ -99,7 +102,29 @@ struct SolverChoice {
     uint32_t coarseCells = 0;
     fluid::ByDevice residualInRestriction = fluid::ByDevice::Auto;
     fluid::ByDevice firstSweepInDivergence = fluid::ByDevice::Auto;
+    bool bodySolids = false; // --solids body
 };
+
+// The solids of --solids body: the built-in fighter's capsules (core/anim/body_capsules.h) in the
+// roundhouse kick at 0.4 s, the leg out, moving as over the next `dt`; scaled by half (0.9 m tall)
+// and stood in the middle of the grid's floor, in a box `box` world units across.
+std::vector<shared::FluidSolid> benchBodySolids(glm::vec3 box, float dt) {
+    const anim::Character fighter = anim::makeFighter();
+    const anim::Clip* kick = fighter.findClip("roundhouse_kick");
+    const std::vector<anim::BodyCapsule> capsules = anim::fitBodyCapsules(fighter);
+    const float t = 0.4f, scale = 0.5f;
+    std::vector<shared::FluidSolid> solids =
+        fluid::bodySolids(capsules, anim::samplePose(fighter, kick, t),
+                          anim::samplePose(fighter, kick, t + dt), dt, glm::vec3(0.0f));
+    const glm::vec3 offset(0.5f * box.x, 0.02f * box.y, 0.5f * box.z);
+    for (shared::FluidSolid& s : solids) {
+        s.endA = glm::vec4(glm::vec3(s.endA) * scale + offset, s.endA.w * scale);
+        s.endB = glm::vec4(glm::vec3(s.endB) * scale + offset, 0.0f);
+        s.velocityA *= scale;
+        s.velocityB *= scale;
+    }
+    return solids;
+}
 
 // Times one grid with one workgroup shape: the median of `steps` steps after 3 warm-up steps.
 Result<GridResult> benchGrid(const gpu::Context& ctx, const std::string& scenarioName,
@@ -120,6 +145,13 @@ Result<GridResult> benchGrid(const gpu::Context& ctx, const std::string& scenari
     if (!solverResult) return solverResult.error();
     fluid::SmokeSolver& solver = *solverResult.value();
     solver.setState(scenario.initial);
+    std::vector<shared::FluidSolid> solids;
+    if (choice.bodySolids) {
+        const fluid::GridShape& g = scenario.options.grid;
+        solids = benchBodySolids(glm::vec3(g.cellsX, g.cellsY, g.cellsZ) * g.cellSize,
+                                 scenario.options.substepDt());
+        if (Status ok = solver.setSolids(solids); !ok) return ok.error();
+    }
     gpu::GpuTimer timer(ctx, solver.passesPerStep());
     std::vector<double> stepTimes, wallTimes;
     std::map<std::string, std::vector<double>> stageTimes;
@@ -155,7 +187,7 @@ Result<GridResult> benchGrid(const gpu::Context& ctx, const std::string& scenari
     for (const auto& [name, times] : stageTimes)
         r.stageMs[name] = median(times);
     const fluid::StageWork work{splatCells(scenario.options, scenario.emitters(0)),
-                                solver.lastPressureIterations()};
+                                solver.lastPressureIterations(), uint32_t(solids.size())};
     for (fluid::Stage stage : fluid::stepOrder()) {
         const fluid::StageBytes b = fluid::stageEntry(stage).bytes(scenario.options, work);
         fluid::StageBytes& sum = r.stageBytes[fluid::stageName(stage)];
@@ -177,7 +209,7 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
     if (domain == "sparse") {
         for (const char* denseOnly :
              {"store", "copy-mib", "markdown", "workgroups", "coarse-group", "brick",
-              "coarse-cells", "residual-in-restriction", "first-sweep-in-divergence"})
+              "coarse-cells", "residual-in-restriction", "first-sweep-in-divergence", "solids"})
             if (parsed.has(denseOnly)) {
                 printError(std::string("--") + denseOnly + " is an option of the dense domain");
                 return kExitUsage;
@@ -233,6 +265,17 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
                    "\"; paths are auto, buffer, direct");
         return kExitUsage;
     }
+    const std::string solidsName = parsed.value("solids", "none");
+    if (solidsName != "none" && solidsName != "body") {
+        printError("--solids must be none or body, not \"" + solidsName + "\"");
+        return kExitUsage;
+    }
+    const bool bodySolids = solidsName == "body";
+    if (bodySolids && *pressure != fluid::PressureSolver::Jacobi) {
+        printError(std::string("--solids body: the pressure solver \"") +
+                   fluid::pressureSolverName(*pressure) + "\" does not take solids yet");
+        return kExitUsage;
+    }
     const std::string scenarioName = parsed.value("scenario", "puff");
     if (!fluid::makeScenario(scenarioName, {2, 2, 2})) {
         printError(fluid::makeScenario(scenarioName, {2, 2, 2}).error().message);
@@ -272,6 +315,9 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
     resolved.jacobiIterations = jacobi.value();
     resolved.firstSweepInDivergence = *firstSweep;
     const bool firstSweepFused = resolved.firstSweepFused();
+    if (bodySolids)
+        std::printf("solids: the fighter's body, %zu capsules mid-kick (--solids body)\n\n",
+                    benchBodySolids(glm::vec3(1.0f), 1.0f / 60.0f).size());
     if (*pressure == fluid::PressureSolver::Jacobi)
         std::printf("the first sweep %s\n\n", firstSweepFused ? "computed by the divergence pass"
                                                               : "computed by the pressure pass");
@@ -286,10 +332,11 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
     std::vector<GridResult> results;
     for (const auto& cells : grids.value())
         for (const auto& workgroup : workgroups.value()) {
-            auto r = benchGrid(ctx, scenarioName, cells, workgroup,
-                               {jacobi.value(), *pressure, *store, coarseGroup.value(),
-                                brick.value(), coarseCells.value(), *fused, *firstSweep},
-                               steps.value());
+            auto r =
+                benchGrid(ctx, scenarioName, cells, workgroup,
+                          {jacobi.value(), *pressure, *store, coarseGroup.value(), brick.value(),
+                           coarseCells.value(), *fused, *firstSweep, bodySolids},
+                          steps.value());
             if (!r) {
                 printError(r.error().message);
                 return kExitFailure;
@@ -391,7 +438,8 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
             (*pressure == fluid::PressureSolver::Jacobi && !firstSweepFused
                  ? "first sweep in the solve, "
                  : "") +
-            (direct ? "direct" : "buffer") + " store (" + scenarioName + ")";
+            (direct ? "direct" : "buffer") + " store (" + scenarioName +
+            (bodySolids ? ", the fighter's body as solids" : "") + ")";
         if (Status written = writeMarkdownSection(parsed.value("markdown"), title, ctx,
                                                   reproduceCommand("bench solver", parsed), body);
             !written) {
@@ -460,6 +508,7 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
                                    {"coarse_group", hierarchy ? coarse : 0u},
                                    {"brick", hierarchy ? bricks : 0u},
                                    {"coarse_cells", hierarchy ? fusedCells : 0u},
+                                   {"solids", solidsName},
                                    {"residual_in_restriction", residualFused},
                                    {"first_sweep_in_divergence", firstSweepFused},
                                    {"steps", steps.value()},

@@ -140,6 +140,9 @@ CommandLine benchSolverCommandLine() {
         .option("residual-in-restriction", "auto|on|off",
                 "multigrid: the restriction computes the residual instead of a pass before it "
                 "(default auto: on a GPU only)")
+        .option("solids", "none|body",
+                "dense, jacobi: moving solids in the grid, none (default) or the built-in "
+                "fighter's body capsules mid-kick, half size, standing in the box")
         .option("first-sweep-in-divergence", "auto|on|off",
                 "jacobi: the divergence pass computes the cold solve's first sweep (default "
                 "auto: on every device)")

@@ -22,6 +22,10 @@ nlohmann::json statsJson(const sim::SimulationFrameStats& s) {
             grid["active_bricks"] = g.activeBricks;
             grid["refused_bricks"] = g.refusedBricks;
         }
+        if (g.solids > 0) {
+            grid["solids"] = g.solids;
+            grid["solid_cells"] = g.solidCells;
+        }
         if (g.measured) {
             grid["largest_alpha"] = g.largestAlpha;
             grid["largest_speed"] = g.largestSpeed;

@@ -1,6 +1,7 @@
 #include "apps/commands.h"
 
 #include "core/scene/scene_fit.h"
+#include "fluid/body_solids.h"
 #include "render/image_output.h"
 
 #include <algorithm>
@@ -198,9 +199,13 @@ Status writeFrameVdbs(sim::SceneSimulation& sim, uint32_t frame, VdbOutput& out)
         const fluid::FieldState state = g.grid.state();
         const std::vector<uint8_t> stored =
             g.grid.sparse() ? g.grid.storedCells() : std::vector<uint8_t>{};
+        const std::vector<uint8_t> solid = g.lastSolids.empty()
+                                               ? std::vector<uint8_t>{}
+                                               : fluid::solidCellMask(state.grid, g.lastSolids);
         fluid::VdbFrame vdb;
         vdb.state = &state;
         vdb.storedCells = stored.empty() ? nullptr : &stored;
+        vdb.solidCells = solid.empty() ? nullptr : &solid;
         vdb.origin = g.grid.origin();
         vdb.up = out.up;
         char file[32];

@@ -11,6 +11,7 @@
 
 #include <glm/glm.hpp>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -62,6 +63,9 @@ public:
     virtual const SolverOptions& options() const = 0;
     // The first `count` records of `buffer` (written on the GPU) are the next step's emitters.
     virtual void setEmitterBuffer(const gpu::Buffer& buffer, uint32_t count) = 0;
+    // The moving solids of the steps recorded from now on (docs/fluid.md, "Solids"); an error
+    // naming why where the solver cannot take them (an empty list it always takes).
+    virtual Status setSolids(std::span<const shared::FluidSolid> solids) = 0;
     // One step as a scene runs it (the sparse domain first rebuilds its bricks by the rules).
     // The timer's passes are the stages' names (and "rebuild_bricks").
     virtual void recordSceneStep(VkCommandBuffer cmd, const SettleRules& rules,

@@ -71,6 +71,11 @@ public:
     // One step over the first `emitters` records of emitters(). The timer's passes are prefixed
     // with the grid's name.
     void recordStep(VkCommandBuffer cmd, uint32_t emitters, gpu::GpuTimer* timer);
+    // The moving solids of the steps recorded from now on, in the grid's coordinates (origin()
+    // at 0): GridSolver::setSolids.
+    Status setSolids(std::span<const shared::FluidSolid> solids) {
+        return solver_->setSolids(solids);
+    }
     // Awake with no effect live this frame: measures the largest pigment alpha and speed.
     // Returns the dispatches it recorded (timed as "<name>/measure_activity"; 0 where the
     // solver's step measures).

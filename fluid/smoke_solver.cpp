@@ -75,6 +75,9 @@ SmokeSolver::SmokeSolver(const gpu::Context& ctx, const SolverOptions& options)
                                      "fluid emitters");
     emitterBuffer_ = ownEmitters_.get();
     emitterBufferSize_ = ownEmitters_.size;
+    // Bound by every stage that reads the solids (binding 15) until solids come.
+    noSolidCells_ = gpu::createBuffer(ctx, 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                      gpu::MemoryUsage::DeviceLocal, "fluid no solid cells");
     splatRegions_ =
         gpu::createBuffer(ctx, 4 * sizeof(shared::SplatRegion),
                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
@@ -107,6 +110,35 @@ void SmokeSolver::setEmitterBuffer(const gpu::Buffer& buffer, uint32_t count) {
     emitterBuffer_ = buffer.get();
     emitterBufferSize_ = buffer.size;
     emitterCount_ = std::min<uint32_t>(count, uint32_t(buffer.size / sizeof(shared::FluidEmitter)));
+}
+
+Status SmokeSolver::setSolids(std::span<const shared::FluidSolid> solids) {
+    if (Status valid = validateSolids(solids); !valid) return valid;
+    if (!solids.empty() && options_.pressureSolver != PressureSolver::Jacobi)
+        return Error{std::string("solids: the pressure solver \"") +
+                     pressureSolverName(options_.pressureSolver) +
+                     "\" does not take solids yet (use \"jacobi\")"};
+    if (solids.size() > kMaxSolids)
+        return Error{"solids: " + std::to_string(solids.size()) + " solids, at most " +
+                     std::to_string(kMaxSolids) + " a step"};
+    // Made once, at their largest, and never replaced: a recording in flight (several steps
+    // recorded together, solids set between them) may name them.
+    if (!solids.empty() && solidsBuffer_.get() == VK_NULL_HANDLE) {
+        solidsBuffer_ =
+            gpu::createBuffer(ctx_, kMaxSolids * sizeof(shared::FluidSolid),
+                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                              gpu::MemoryUsage::DeviceLocal, "fluid solids");
+        solidCells_ = gpu::createBuffer(ctx_, options_.grid.cellCount() * 2 * sizeof(uint32_t),
+                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                        gpu::MemoryUsage::DeviceLocal, "fluid solid cells");
+    }
+    solids_.assign(solids.begin(), solids.end());
+    programs_.setSolids(!solids_.empty());
+    return Ok{};
+}
+
+gpu::DescriptorWrite SmokeSolver::solidCellsWrite() const {
+    return gpu::bindBuffer(15, solidCells_.get() != VK_NULL_HANDLE ? solidCells_ : noSolidCells_);
 }
 
 void SmokeSolver::writeParameters() {
@@ -178,6 +210,32 @@ SmokeSolver::Writes SmokeSolver::withVelocity(int set) const {
 
 // --- Stages -------------------------------------------------------------------------------------
 
+void SmokeSolver::markSolids(VkCommandBuffer cmd) {
+    if (solids_.empty()) return;
+    // The solids go into the command buffer itself: steps recorded one after another into one
+    // command buffer (a frame's steps) each mark their own.
+    const VkDeviceSize bytes = solids_.size() * sizeof(shared::FluidSolid);
+    vkCmdUpdateBuffer(cmd, solidsBuffer_.get(), 0, bytes, solids_.data());
+    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    SmokeFields& f = fields_;
+    const auto& v = f.velocity[size_t(f.currentVelocity)];
+    const gpu::DescriptorWrite writes[] = {
+        gpu::bindBuffer(0, parameters_),
+        gpu::bindBuffer(1, solidsBuffer_, 0, bytes),
+        storage(2, v[0]),
+        storage(3, v[1]),
+        storage(4, v[2]),
+        storage(5, f.pigment[size_t(f.currentPigment)]),
+        solidCellsWrite(),
+    };
+    // The cells, then the faces and the neighbour bits, which read every cell's mark.
+    dispatch(cmd, programs_.get("mark_solids", 0, 0), writes, f.cells);
+    fieldBarrier(cmd);
+    dispatch(cmd, programs_.get("mark_solids", 0, 1), writes, f.cells + glm::uvec3(1));
+    fieldBarrier(cmd);
+}
+
 void SmokeSolver::splatImpulses(VkCommandBuffer cmd) {
     if (emitterCount_ == 0) return;
     SmokeFields& f = fields_;
@@ -203,6 +261,7 @@ void SmokeSolver::splatImpulses(VkCommandBuffer cmd) {
         storage(4, v[2]),
         storage(5, f.pigment[size_t(f.currentPigment)]),
         gpu::bindBuffer(6, splatRegions_),
+        solidCellsWrite(),
     };
     for (uint32_t target = 0; target < 4; ++target) {
         gpu::Program& prog = programs_.get("splat_impulses", target);
@@ -243,6 +302,7 @@ void SmokeSolver::advectVelocity(VkCommandBuffer cmd) {
             w.push_back(gpu::bindBuffer(4, f.scratch[c]));
             w.push_back(storage(5, out[c]));
             w.push_back(storage(6, out[c]));
+            w.push_back(solidCellsWrite());
             dispatch(cmd, programs_.get("advect_velocity", c, pass, direct), w,
                      faceExtent(options_.grid, int(c)));
         }
@@ -263,6 +323,7 @@ void SmokeSolver::advectPigment(VkCommandBuffer cmd) {
         w.push_back(gpu::bindBuffer(5, f.scratch[0]));
         w.push_back(storage(6, f.pigment[size_t(to)]));
         w.push_back(storage(7, f.pigment[size_t(to)]));
+        w.push_back(solidCellsWrite());
         dispatch(cmd, programs_.get("advect_pigment", MFX_TARGET_PIGMENT, pass, direct), w,
                  f.cells);
         storeFields(cmd, direct, {{&f.scratch[0], &f.pigment[size_t(to)]}});
@@ -274,9 +335,12 @@ void SmokeSolver::applyBuoyancy(VkCommandBuffer cmd) {
     if (options_.buoyancy == 0.0f) return;
     SmokeFields& f = fields_;
     gpu::Image& velocityY = f.velocity[size_t(f.currentVelocity)][1];
-    const gpu::DescriptorWrite writes[] = {gpu::bindBuffer(0, parameters_), storage(1, velocityY),
+    const gpu::DescriptorWrite writes[] = {gpu::bindBuffer(0, parameters_),
+                                           storage(1, velocityY),
                                            storage(2, f.pigment[size_t(f.currentPigment)]),
-                                           gpu::bindBuffer(3, f.scratch[1]), storage(4, velocityY)};
+                                           gpu::bindBuffer(3, f.scratch[1]),
+                                           storage(4, velocityY),
+                                           solidCellsWrite()};
     dispatch(cmd, programs_.get("apply_buoyancy", MFX_TARGET_VELOCITY_Y, 0, direct_), writes,
              faceExtent(options_.grid, 1));
     storeFields(cmd, direct_, {{&f.scratch[1], &velocityY}});
@@ -318,6 +382,7 @@ void SmokeSolver::applyVorticityForce(VkCommandBuffer cmd) {
         apply.push_back(gpu::bindBuffer(5 + c, f.scratch[c]));
     for (uint32_t c = 0; c < 3; ++c)
         apply.push_back(storage(8 + c, v[c]));
+    apply.push_back(solidCellsWrite());
     dispatch(cmd, programs_.get("apply_vorticity_force", 0, 0, direct_), apply,
              f.cells + glm::uvec3(1));
     storeFields(cmd, direct_,
@@ -338,6 +403,7 @@ void SmokeSolver::diffuseViscosity(VkCommandBuffer cmd) {
             w.push_back(storage(4 + c, f.velocity[size_t(in)][c]));
         for (uint32_t c = 0; c < 3; ++c)
             w.push_back(storage(7 + c, f.velocity[size_t(out)][c]));
+        w.push_back(solidCellsWrite());
         for (uint32_t c = 0; c < 3; ++c)
             dispatch(cmd, programs_.get("diffuse_viscosity", c), w,
                      faceExtent(options_.grid, int(c)));
@@ -371,6 +437,7 @@ void SmokeSolver::computeDivergence(VkCommandBuffer cmd) {
     w.push_back(gpu::bindBuffer(6, f.packedDivergence));
     w.push_back(gpu::bindBuffer(7, f.packedPressure[1]));
     w.push_back(storage(8, f.pressure[size_t(1 - f.currentPressure)]));
+    w.push_back(solidCellsWrite());
     dispatch(cmd, programs_.get("compute_divergence", 0, firstSweep, direct_), w, f.cells);
     // Either path's barriers (the copy's carry a global memory barrier) cover the sweep's output.
     storeFields(cmd, direct_, {{&f.scratch[0], &f.divergence}});
@@ -422,6 +489,7 @@ void SmokeSolver::solvePressure(VkCommandBuffer cmd) {
             gpu::bindBuffer(5, f.packedPressure[packedIn]),
             gpu::bindBuffer(6, f.packedPressure[packedOut]),
             gpu::bindBuffer(7, f.packedPressure[packedIn]),
+            solidCellsWrite(),
         };
         dispatch(cmd, programs_.get("solve_pressure", 0, mode), writes, bricks);
         fieldBarrier(cmd);
@@ -436,9 +504,12 @@ void SmokeSolver::project(VkCommandBuffer cmd) {
     SmokeFields& f = fields_;
     auto& v = f.velocity[size_t(f.currentVelocity)];
     for (uint32_t c = 0; c < 3; ++c) {
-        const gpu::DescriptorWrite w[] = {gpu::bindBuffer(0, parameters_), storage(1, v[c]),
+        const gpu::DescriptorWrite w[] = {gpu::bindBuffer(0, parameters_),
+                                          storage(1, v[c]),
                                           storage(4, f.pressure[size_t(f.currentPressure)]),
-                                          gpu::bindBuffer(5, f.scratch[c]), storage(6, v[c])};
+                                          gpu::bindBuffer(5, f.scratch[c]),
+                                          storage(6, v[c]),
+                                          solidCellsWrite()};
         dispatch(cmd, programs_.get("project", c, 0, direct_), w,
                  faceExtent(options_.grid, int(c)));
     }
@@ -485,7 +556,8 @@ void SmokeSolver::recordStep(VkCommandBuffer cmd, gpu::GpuTimer* timer) {
 }
 
 uint64_t SmokeSolver::memoryBytes() const {
-    uint64_t bytes = fields_.memoryBytes() + parameters_.size + ownEmitters_.size;
+    uint64_t bytes = fields_.memoryBytes() + parameters_.size + ownEmitters_.size +
+                     solidsBuffer_.size + solidCells_.size + noSolidCells_.size;
     if (multigrid_) bytes += multigrid_->memoryBytes();
     return bytes;
 }

@@ -74,6 +74,17 @@ public:
     // records with a non-finite position, radius or strength.
     void setEmitterBuffer(const gpu::Buffer& buffer, uint32_t count) override;
 
+    // The moving solids of the sub-steps from now on (capsules where the step ends, with their
+    // ends' velocities; docs/fluid.md, "Solids"), copied into the solver's own buffer after
+    // validation; an empty list removes them. Each sub-step's mark_solids stage puts them into
+    // the grid (so the fields show them after the next step, or runStage(Stage::MarkSolids)); the
+    // solids are copied into each recording, so steps recorded one after another may each have
+    // their own. The Jacobi pressure solver only, for now (others refused naming why).
+    Status setSolids(std::span<const shared::FluidSolid> solids) override;
+    bool hasSolids() const { return !solids_.empty(); }
+    // The most solids a step takes (they travel in the command buffer: vkCmdUpdateBuffer's 64 KiB).
+    static constexpr size_t kMaxSolids = 65536 / sizeof(shared::FluidSolid);
+
     // Records one whole step (all sub-steps) into `cmd`. With a timer, each stage is a pass
     // named after it (stageName()), once per sub-step. The parameters uniform is written now,
     // so the previous recording must have finished executing.
@@ -139,6 +150,10 @@ private:
     // at bindings 1-3 (the layout of most stages).
     Writes withVelocity(int set) const;
 
+    // The solid cells (binding 15 of the stages that read them: shaders/fluid/fluid_solids.glsl).
+    gpu::DescriptorWrite solidCellsWrite() const;
+
+    void markSolids(VkCommandBuffer cmd);
     void splatImpulses(VkCommandBuffer cmd);
     std::vector<uint32_t> advectionPasses() const;
     void advectVelocity(VkCommandBuffer cmd);
@@ -171,7 +186,11 @@ private:
     VkBuffer emitterBuffer_ = VK_NULL_HANDLE;
     VkDeviceSize emitterBufferSize_ = 0;
     uint32_t emitterCount_ = 0;
-    gpu::Buffer splatRegions_; // SplatRegion per target, written by emitter_bounds
+    gpu::Buffer splatRegions_;               // SplatRegion per target, written by emitter_bounds
+    std::vector<shared::FluidSolid> solids_; // what markSolids records
+    gpu::Buffer solidsBuffer_;               // where it records them (kMaxSolids; once solids come)
+    gpu::Buffer solidCells_;                 // uvec2 per cell (fluid_solids.glsl; likewise)
+    gpu::Buffer noSolidCells_;               // bound in its place before any solid
 
     mutable uint32_t dispatches_ = 0; // vkCmdDispatch calls recorded so far
     StageDispatches lastStepDispatches_;

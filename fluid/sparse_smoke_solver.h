@@ -98,6 +98,11 @@ public:
     // e.g. by SegmentEmitters) are the next rebuild's and step's emitters. The buffer must outlive
     // their recording.
     void setEmitterBuffer(const gpu::Buffer& buffer, uint32_t count) override;
+    // Solids are not on the sparse domain yet: refused unless the list is empty.
+    Status setSolids(std::span<const shared::FluidSolid> solids) override {
+        if (solids.empty()) return Ok{};
+        return Error{"solids: not yet on the sparse domain"};
+    }
     // The stages of the last recordStep with their dispatch counts, in order (as SmokeSolver's).
     const StageDispatches& lastStepDispatches() const { return lastStepDispatches_; }
     // For drawing the smoke (render/smoke_pass.h): the live pigment atlas (vec4 per cell, slot s

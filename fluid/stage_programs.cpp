@@ -33,6 +33,7 @@ struct Kernel {
 const Kernel* findKernel(std::string_view name) {
     using namespace mfx::shaders;
     static const Kernel kernels[] = {
+        {"mark_solids", mark_solids_comp, mark_solids_comp_half, Extra::Variant},
         {"emitter_bounds", emitter_bounds_comp, {}},
         {"splat_impulses", splat_impulses_comp, splat_impulses_comp_half},
         {"advect_velocity", advect_velocity_comp, advect_velocity_comp_half, Extra::Variant},
@@ -68,7 +69,7 @@ gpu::Program& StagePrograms::get(std::string_view name, uint32_t target, uint32_
     if (kernel == nullptr)
         throw std::logic_error("the smoke solver has no kernel " + std::string(name));
     if (kernel->extra == Extra::None) variant = 0;
-    gpu::Program& slot = programs_[{kernel->name, target, variant, direct}];
+    gpu::Program& slot = programs_[{kernel->name, target, variant, direct, solids_}];
     if (slot.pipeline() != VK_NULL_HANDLE) return slot;
 
     gpu::ComputeProgramDesc desc;
@@ -90,6 +91,7 @@ gpu::Program& StagePrograms::get(std::string_view name, uint32_t target, uint32_
                                    {variant, kPressureLayers, kPressureRows});
     desc.specialization.resize(14, 0u); // ids 11-13 a kernel does not take are ignored
     desc.specialization.push_back(direct ? 1u : 0u);
+    desc.specialization.push_back(solids_ ? 1u : 0u); // id 15, kSolids
     slot = gpu::createComputeProgram(ctx_, desc);
     return slot;
 }

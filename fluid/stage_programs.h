@@ -31,11 +31,17 @@ public:
     // throws std::logic_error.
     gpu::Program& get(std::string_view name, uint32_t target = 0, uint32_t variant = 0,
                       bool direct = false);
+    // Whether the programs get() returns from now on take the sub-step's solids into account
+    // (constant id 15, kSolids: shaders/fluid/fluid_solids.glsl); without, a stage compiles as if
+    // solids did not exist.
+    void setSolids(bool solids) { solids_ = solids; }
+    bool solids() const { return solids_; }
 
 private:
     const gpu::Context& ctx_;
     SolverOptions options_;
-    std::map<std::tuple<std::string_view, uint32_t, uint32_t, bool>, gpu::Program> programs_;
+    bool solids_ = false;
+    std::map<std::tuple<std::string_view, uint32_t, uint32_t, bool, bool>, gpu::Program> programs_;
 };
 
 } // namespace mfx::fluid

@@ -53,6 +53,14 @@ double advectionPasses(const SolverOptions& o) {
     return 1.0;
 }
 
+StageBytes markSolidsBytes(const SolverOptions& o, const StageWork& w) {
+    // The mark, two 32-bit words a cell whatever the storage, written once and read back once by
+    // the faces' and neighbours' pass (the few solid faces and cells it also writes not counted).
+    if (w.solids == 0) return {};
+    const double cells = double(o.grid.cellCount());
+    return {4.0 * cells, 8.0 * cells};
+}
+
 StageBytes splatBytes(const SolverOptions& o, const StageWork& w) {
     // Velocity (three faces a cell, near enough) and pigment of the emitters' boxes, read and
     // written.
@@ -190,6 +198,9 @@ void referenceSplat(ReferenceSolver& solver, Emitters emitters) {
 // A friend of the three solvers: the table names their private stage functions.
 std::span<const StageEntry> stageTable() {
     static const StageEntry table[] = {
+        {Stage::MarkSolids, "mark_solids", "mark_solids", "", &SmokeSolver::markSolids, nullptr,
+         referenceStage<&ReferenceSolver::markSolids>, markSolidsBytes,
+         "the solid mark (two words a cell) written, and read once for faces and neighbours", true},
         {Stage::SplatImpulses, "splat_impulses", "emitter_bounds splat_impulses",
          "sparse_splat_impulses", &SmokeSolver::splatImpulses, &SparseSmokeSolver::splatImpulses,
          referenceSplat, splatBytes,

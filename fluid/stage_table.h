@@ -37,6 +37,7 @@ struct SolverOptions;
 // The table's keys, in the order the table lists them (stage_table.cpp asserts one entry per
 // value; tests/test_stage_table.cpp checks the order).
 enum class Stage {
+    MarkSolids,
     SplatImpulses,
     AdvectVelocity,
     AdvectPigment,
@@ -48,7 +49,7 @@ enum class Stage {
     SolvePressure,
     Project,
 };
-inline constexpr size_t kStageCount = 10;
+inline constexpr size_t kStageCount = 11;
 
 // Bytes a stage must move in one sub-step: every field it reads read once and every field it
 // writes written once (what a kernel that fuses the stage's passes and keeps neighbours in caches
@@ -65,6 +66,8 @@ struct StageWork {
     uint64_t splatCells = 0;
     // The iterations the pressure solve ran (MGPCG stops on its tolerance); 0: the options' most.
     uint32_t pressureIterations = 0;
+    // The solids a sub-step marks (0: markSolids records nothing).
+    uint32_t solids = 0;
 };
 
 using Emitters = std::span<const shared::FluidEmitter>;

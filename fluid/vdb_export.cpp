@@ -75,6 +75,18 @@ Status writeVdb(const std::string& path, const VdbFrame& frame) {
             }
     density->setName("density");
     density->setGridClass(openvdb::GRID_FOG_VOLUME);
+    openvdb::FloatGrid::Ptr solid;
+    if (frame.solidCells && frame.solidCells->size() == g.cellCount()) {
+        solid = openvdb::FloatGrid::create(0.0f);
+        auto solidAccess = solid->getAccessor();
+        for (uint32_t k = 0; k < g.cellsZ; ++k)
+            for (uint32_t j = 0; j < g.cellsY; ++j)
+                for (uint32_t i = 0; i < g.cellsX; ++i)
+                    if ((*frame.solidCells)[g.index(i, j, k)])
+                        solidAccess.setValue(openvdb::Coord{int(i), int(j), int(k)}, 1.0f);
+        solid->setName("solid");
+        solid->setGridClass(openvdb::GRID_FOG_VOLUME);
+    }
     colour->setName("colour");
     velocity->setName("velocity");
     velocity->setVectorType(openvdb::VEC_CONTRAVARIANT_RELATIVE);
@@ -85,6 +97,11 @@ Status writeVdb(const std::string& path, const VdbFrame& frame) {
         grid->setTransform(transform->copy());
         grid->setSaveFloatAsHalf(false);
         grids.push_back(grid);
+    }
+    if (solid) {
+        solid->setTransform(transform->copy());
+        solid->setSaveFloatAsHalf(false);
+        grids.push_back(solid);
     }
     try {
         openvdb::io::File file(path);

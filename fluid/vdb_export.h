@@ -4,7 +4,10 @@
 //   "colour"   vec3, the pigment's colour, rgb / alpha as the smoke renderer takes it
 //              (shaders/render/smoke_march.glsl);
 //   "velocity" vec3, the cell-centred velocity (the mean of each cell's two faces per axis), in
-//              world units a second.
+//              world units a second;
+//   "solid"    float, 1 in the cells a moving solid fills (a scene's "collide": the character's
+//              body), a fog volume Blender and Houdini take as a collider; only when the frame
+//              has solids.
 // Voxel (i, j, k) is cell (i, j, k) of the grid; the transform takes it to the cell's centre in
 // world units (the scene's metres): a scale by the cell size, then the grid's low corner plus half
 // a cell, and with VdbUp::Z the turn from the scene's y-up axes to z-up ones (x, y, z) ->
@@ -30,6 +33,8 @@ struct VdbFrame {
     glm::vec3 origin{0.0f}; // the world position of the grid's low corner
     // One flag per cell (x fastest) of a sparse domain's stored cells; empty: every cell.
     const std::vector<uint8_t>* storedCells = nullptr;
+    // One flag per cell (x fastest): the solid cells; null or empty: no "solid" grid.
+    const std::vector<uint8_t>* solidCells = nullptr;
     VdbUp up = VdbUp::Y;
 };
 

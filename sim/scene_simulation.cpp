@@ -3,11 +3,13 @@
 #include "core/scene/effect_source.h"
 #include "core/scene/scene_fit.h"
 
+#include "core/anim/bone_groups.h"
 #include "core/anim/sampling.h"
 #include "core/gpu/commands.h"
 #include "core/gpu/context.h"
 #include "core/trajectory/build_segment.h"
 #include "core/trajectory/surface_source.h"
+#include "fluid/body_solids.h"
 
 #include <algorithm>
 #include <cmath>
@@ -73,6 +75,27 @@ fluid::SmokeGridSettings gridSettings(std::span<const scene::SmokeSpec* const> e
         face.kind = fluid::Boundary::Open;
     options.boundaries[fluid::FaceLowY].kind = fluid::Boundary::WallFreeSlip; // the stage floor
     return settings;
+}
+
+// The body capsules of "collide_bones" (entries as an effect's "bones"; none: every capsule).
+Result<std::vector<anim::BodyCapsule>> collisionCapsules(const anim::Character& character,
+                                                         const std::vector<std::string>& bones) {
+    std::vector<anim::BodyCapsule> all = anim::fitBodyCapsules(character);
+    if (bones.empty()) return all;
+    std::vector<std::string> names;
+    for (const std::string& entry : bones) {
+        auto resolved = anim::resolveBoneEntry(character, entry);
+        if (!resolved) return Error{"collide_bones: " + resolved.error().message};
+        names.insert(names.end(), resolved.value().begin(), resolved.value().end());
+    }
+    std::vector<anim::BodyCapsule> chosen;
+    for (const anim::BodyCapsule& capsule : all)
+        if (std::find(names.begin(), names.end(), character.nodes[size_t(capsule.node)].name) !=
+            names.end())
+            chosen.push_back(capsule);
+    if (chosen.empty())
+        return Error{"collide_bones: none of the bones named carries vertices of the body"};
+    return chosen;
 }
 
 } // namespace
@@ -158,6 +181,14 @@ Result<std::unique_ptr<SceneSimulation>> SceneSimulation::create(const gpu::Cont
         if (!grid) return Error{sim->scene_.file + ": " + name + ": " + grid.error().message};
         sim->grids_.emplace_back(std::move(grid).value());
         sim->grids_.back().effects = effects;
+        const scene::SmokeGridSpec& spec = specs.front()->grid;
+        if (spec.collide) {
+            auto capsules = collisionCapsules(character, spec.collideBones);
+            if (!capsules)
+                return Error{sim->scene_.file + ": " + name + ": " + capsules.error().message};
+            sim->grids_.back().capsules = std::move(capsules).value();
+            sim->grids_.back().collideThickness = spec.collideThickness;
+        }
         sim->placeGrid(sim->grids_.back());
     }
     if (!sim->grids_.empty()) sim->coupling_ = std::make_unique<fluid::SegmentEmitters>(ctx);
@@ -303,6 +334,17 @@ void SceneSimulation::recordSmoke(VkCommandBuffer cmd, SmokeGrid& grid, uint32_t
             addPass(name, 1);
         }
         anyLiveThisFrame = anyLiveThisFrame || anyLive;
+        if (!grid.capsules.empty()) {
+            // The body where the step ends, moving as it did since the last step.
+            const anim::Pose& before = grid.lastStepPose.world.empty() ? pose : grid.lastStepPose;
+            const std::vector<shared::FluidSolid> solids =
+                fluid::bodySolids(grid.capsules, before, pose, 1.0f / rate, g.origin(),
+                                  grid.collideThickness, placement());
+            // A pose that is not finite (a host's) has no solids this step.
+            grid.lastSolids = g.setSolids(solids) ? solids : std::vector<shared::FluidSolid>{};
+            if (grid.lastSolids.empty()) (void)g.setSolids({});
+            grid.lastStepPose = pose;
+        }
         if (anyLive) g.wake();
         if (!g.awake()) continue;
         uint32_t emitters = 0;
@@ -408,6 +450,8 @@ SimulationFrameStats SceneSimulation::finishFrame() {
         state.activeBricks = activity.activeBricks;
         state.refusedBricks = activity.refusedBricks;
         state.budgetLine = activity.budgetLine;
+        state.solids = uint32_t(grid.lastSolids.size());
+        state.solidCells = fluid::countSolidCells(grid.grid.options().grid, grid.lastSolids);
         stats.grids.push_back(state);
     }
     stats.fluidBytes = fluidBytes();

@@ -21,6 +21,7 @@
 // fluid memory.
 #pragma once
 
+#include "core/anim/body_capsules.h"
 #include "core/gpu/resources.h"
 #include "core/gpu/timer.h"
 #include "core/scene/kinds/smoke_effect.h"
@@ -50,6 +51,9 @@ struct GridFrameState {
     bool measured = false;     // measured its activity (no effect live)
     float largestAlpha = 0.0f; // when measured
     float largestSpeed = 0.0f; // when measured, world units per second (dense grids)
+    // "collide": the solids (body capsules) of the frame's last step and the cells they fill.
+    uint32_t solids = 0;
+    uint64_t solidCells = 0;
     // A sparse grid: its active and refused bricks after the frame's last rebuild, and, on the
     // first frame that wanted more bricks than its budget, the line that says so.
     bool sparse = false;
@@ -98,6 +102,12 @@ public:
         // of each slot.
         gpu::Buffer captured;
         std::vector<std::pair<uint64_t, uint32_t>> capturedSteps;
+        // "collide": the body's capsules the smoke flows around (empty: none), the smallest
+        // thickness, and the pose of the last step (the solids' velocities are their motion since).
+        std::vector<anim::BodyCapsule> capsules;
+        float collideThickness = 0.0f;
+        anim::Pose lastStepPose;
+        std::vector<shared::FluidSolid> lastSolids; // the last step's, in the grid's coordinates
     };
 
     static Result<std::unique_ptr<SceneSimulation>>

@@ -6,7 +6,7 @@
 #include "core/anim/fighter.h"
 #include "fluid/body_solids.h"
 #include "fluid/reference/reference_solver.h"
-#include "tests/fluid_test_util.h"
+#include "tests/fluid_solids_util.h"
 
 #include <gtest/gtest.h>
 
@@ -19,22 +19,10 @@ namespace {
 
 using fluid::ReferenceSolver;
 
-constexpr fluid::GridShape kGrid{32, 16, 16, 1.0f / 16.0f}; // 2 x 1 x 1 world units
+constexpr fluid::GridShape kGrid = kStreamGrid;
 
 shared::FluidSolid sphere(glm::vec3 centre, float radius, glm::vec3 velocity = glm::vec3(0.0f)) {
-    return {glm::vec4(centre, radius), glm::vec4(centre, 0.0f), glm::vec4(velocity, 0.0f),
-            glm::vec4(velocity, 0.0f)};
-}
-
-// Open along x (a stream may pass), free-slip walls across it.
-SolverOptions streamOptions() {
-    SolverOptions o;
-    o.grid = kGrid;
-    o.dt = 1.0f / 60.0f;
-    o.jacobiIterations = 60;
-    o.boundaries[fluid::FaceLowX].kind = fluid::Boundary::Open;
-    o.boundaries[fluid::FaceHighX].kind = fluid::Boundary::Open;
-    return o;
+    return solidSphere(centre, radius, velocity);
 }
 
 // The largest |divergence| over the fluid cells of the solver's current velocity.
@@ -53,14 +41,7 @@ double fluidDivergence(ReferenceSolver& s) {
 
 // The largest |u_solid - u| over the solid faces (each component's against `velocity`).
 double solidFaceError(const ReferenceSolver& s, glm::dvec3 velocity) {
-    const fluid::FieldState state = s.state();
-    double largest = 0.0;
-    s.forEachFace([&](int c, glm::ivec3 q) {
-        if (!s.solidFace(c, q)) return;
-        const double u = component(state, c)[s.faceIndex(c, q)];
-        largest = std::max(largest, std::abs(u - velocity[c]));
-    });
-    return largest;
+    return test::solidFaceError(s, s.state(), velocity);
 }
 
 TEST(FluidSolids, AStillSphereInAUniformStreamLetsNothingThroughAndLeavesNoDivergence) {
@@ -115,53 +96,10 @@ TEST(FluidSolids, AMovingSphereCarriesItsFacesPushesTheAirAsideAndLeavesAWake) {
         ASSERT_EQ(solidFaceError(s, glm::dvec3(velocity)), 0.0) << "step " << step;
     }
     const fluid::FieldState state = s.state();
-    const double h = kGrid.cellSize;
-    // Mean x velocity of the fluid cells in a box [x0, x1] x (centre +- half) along y and z, and
-    // the mean magnitude of the curl of the cell-centred velocity there.
-    auto cellVelocity = [&](glm::ivec3 q) {
-        glm::dvec3 u;
-        for (int c = 0; c < 3; ++c) {
-            glm::ivec3 hi = q;
-            hi[c] += 1;
-            u[c] = 0.5 * (double(component(state, c)[s.faceIndex(c, q)]) +
-                          double(component(state, c)[s.faceIndex(c, hi)]));
-        }
-        return u;
-    };
+    const double h = kGrid.cellSize, r = radius;
     const glm::dvec3 at(centre);
-    const double r = radius;
-    struct Region {
-        double meanU = 0.0, meanCurl = 0.0;
-    };
-    auto region = [&](double x0, double x1, double half) {
-        Region result;
-        int n = 0;
-        for (int k = 1; k < int(kGrid.cellsZ) - 1; ++k)
-            for (int j = 1; j < int(kGrid.cellsY) - 1; ++j)
-                for (int i = 1; i < int(kGrid.cellsX) - 1; ++i) {
-                    const glm::dvec3 x = (glm::dvec3(i, j, k) + 0.5) * h;
-                    if (x.x < x0 || x.x > x1 || std::abs(x.y - at.y) > half ||
-                        std::abs(x.z - at.z) > half || s.solidCell({i, j, k}))
-                        continue;
-                    auto d = [&](int axis, int c) { // central difference of U_c along axis
-                        glm::ivec3 a(i, j, k), b(i, j, k);
-                        a[axis] -= 1;
-                        b[axis] += 1;
-                        return (cellVelocity(b)[c] - cellVelocity(a)[c]) / (2.0 * h);
-                    };
-                    const glm::dvec3 curl(d(1, 2) - d(2, 1), d(2, 0) - d(0, 2), d(0, 1) - d(1, 0));
-                    result.meanU += cellVelocity({i, j, k}).x;
-                    result.meanCurl += glm::length(curl);
-                    ++n;
-                }
-        if (n > 0) {
-            result.meanU /= n;
-            result.meanCurl /= n;
-        }
-        return result;
-    };
-    const Region ahead = region(at.x + r, at.x + r + 4 * h, r);
-    const Region behind = region(at.x - r - 6 * h, at.x - r, r);
+    const FlowRegion ahead = flowRegion(state, s, at, at.x + r, at.x + r + 4 * h, r);
+    const FlowRegion behind = flowRegion(state, s, at, at.x - r - 6 * h, at.x - r, r);
     std::printf("ahead of the sphere: mean u_x %.3f m/s, mean |curl| %.2f /s; behind: %.3f, "
                 "%.2f\n",
                 ahead.meanU, ahead.meanCurl, behind.meanU, behind.meanCurl);

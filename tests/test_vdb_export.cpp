@@ -5,6 +5,7 @@
 #include "apps/commands.h"
 #include "core/anim/fighter.h"
 #include "core/scene/scene.h"
+#include "fluid/body_solids.h"
 #include "fluid/vdb_export.h"
 #include "tests/cli_run.h"
 #include "tests/fluid_test_util.h"
@@ -171,6 +172,45 @@ TEST(VdbExport, ASparseDomainWritesOnlyItsStoredCells) {
     expectFileHolds(
         path, s, glm::vec3(0.0f), [](glm::vec3 p) { return p; },
         [](glm::uvec3 q) { return q.x < 8; });
+}
+
+// A frame with solids (a scene's "collide") gains a "solid" fog volume: 1 in the solid cells, a
+// sphere's here, and none elsewhere; without solids the file has no such grid.
+TEST(VdbExport, SolidsBecomeASolidGrid) {
+    const GridShape g{16, 8, 8, 0.05f};
+    const FieldState s = halfPigmented(g);
+    const shared::FluidSolid ball{glm::vec4(0.4f, 0.2f, 0.2f, 0.12f),
+                                  glm::vec4(0.4f, 0.2f, 0.2f, 0), glm::vec4(0.0f), glm::vec4(0.0f)};
+    const std::vector<uint8_t> solid = fluid::solidCellMask(g, std::span(&ball, 1));
+    const uint64_t cells = fluid::countSolidCells(g, std::span(&ball, 1));
+    EXPECT_GT(cells, 20u); // about 4/3 pi (0.12 / 0.05)^3 = 58 cells
+    EXPECT_LT(cells, 100u);
+    fluid::VdbFrame frame;
+    frame.state = &s;
+    frame.solidCells = &solid;
+    const std::string path = outputPath("solid.vdb");
+    ASSERT_TRUE(fluid::writeVdb(path, frame).ok());
+    const auto grids = readAll(path);
+    const openvdb::FloatGrid::Ptr read = named<openvdb::FloatGrid>(grids, "solid");
+    ASSERT_TRUE(read);
+    EXPECT_EQ(read->getGridClass(), openvdb::GRID_FOG_VOLUME);
+    EXPECT_EQ(read->activeVoxelCount(), cells);
+    const auto access = read->getConstAccessor();
+    for (uint32_t k = 0; k < g.cellsZ; ++k)
+        for (uint32_t j = 0; j < g.cellsY; ++j)
+            for (uint32_t i = 0; i < g.cellsX; ++i) {
+                const glm::vec3 centre = (glm::vec3(i, j, k) + 0.5f) * g.cellSize;
+                const bool inside = glm::distance(centre, glm::vec3(ball.endA)) < ball.endA.w;
+                EXPECT_EQ(access.getValue(openvdb::Coord{int(i), int(j), int(k)}),
+                          inside ? 1.0f : 0.0f)
+                    << i << " " << j << " " << k;
+            }
+
+    fluid::VdbFrame plain;
+    plain.state = &s;
+    const std::string plainPath = outputPath("no_solid.vdb");
+    ASSERT_TRUE(fluid::writeVdb(plainPath, plain).ok());
+    EXPECT_FALSE(named<openvdb::FloatGrid>(readAll(plainPath), "solid"));
 }
 
 TEST(VdbExport, AFileThatCannotBeWrittenIsOneErrorNamingIt) {

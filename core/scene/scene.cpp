@@ -395,6 +395,12 @@ Status checkNames(const Scene& scene, const anim::Character& character) {
             if (auto bones = anim::resolveBoneEntry(character, e.bones[b]); !bones)
                 return Error{scene.file + ": " + path + ".bones[" + std::to_string(b) +
                              "]: " + bones.error().message};
+        if (const SmokeSpec* smoke = e.as<SmokeSpec>())
+            for (size_t b = 0; b < smoke->grid.collideBones.size(); ++b)
+                if (auto bones = anim::resolveBoneEntry(character, smoke->grid.collideBones[b]);
+                    !bones)
+                    return Error{scene.file + ": " + path + ".collide_bones[" + std::to_string(b) +
+                                 "]: " + bones.error().message};
         for (size_t m = 0; m < e.meshes.size(); ++m)
             if (!character.findMesh(e.meshes[m])) {
                 std::vector<std::string> meshes;

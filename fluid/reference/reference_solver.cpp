@@ -60,8 +60,7 @@ void ReferenceSolver::runStage(Stage stage, std::span<const shared::FluidEmitter
 
 void ReferenceSolver::step(std::span<const shared::FluidEmitter> emitters) {
     for (uint32_t substep = 0; substep < options_.substeps; ++substep) {
-        if (!solids_.empty()) markSolids();
-        for (Stage stage : stepOrder())
+        for (Stage stage : stepOrder()) // markSolids first
             runStage(stage, emitters);
     }
 }

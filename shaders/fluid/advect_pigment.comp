@@ -7,6 +7,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "fluid_common.glsl"
+#include "fluid_solids.glsl"
 
 layout(binding = 1, MFX_VELOCITY_FORMAT) uniform readonly image3D velocityX;
 layout(binding = 2, MFX_VELOCITY_FORMAT) uniform readonly image3D velocityY;
@@ -36,6 +37,30 @@ vec4 fetchPigment(int field, ivec3 index) {
     return field == kWorkPigment ? imageLoad(work, cell) : imageLoad(pigmentIn, cell);
 }
 
+// With solids near x: the trilinear sample from the fluid cells alone, the weights of solid cells
+// dropped and the rest renormalised (0 when all eight are solid), in the reference's order
+// (fluid/reference/mark_solids.cpp, sampleCellOutsideSolids). `plain` when none of the eight is
+// solid.
+vec4 sampleOutsideSolids(int field, ivec3 i0, vec3 f, vec4 plain) {
+    bool anySolid = false;
+    vec4 sum = vec4(0.0);
+    float weight = 0.0;
+    for (int corner = 0; corner < 8; ++corner) {
+        ivec3 d = ivec3(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
+        ivec3 cell = resolveCell(i0 + d);
+        if (solidCell(cell)) {
+            anySolid = true;
+            continue;
+        }
+        float w = (d.x != 0 ? f.x : 1.0 - f.x) * (d.y != 0 ? f.y : 1.0 - f.y) *
+                  (d.z != 0 ? f.z : 1.0 - f.z);
+        sum += w * fetchPigment(field, cell);
+        weight += w;
+    }
+    if (!anySolid) return plain;
+    return weight > 0.0 ? sum / weight : vec4(0.0);
+}
+
 vec4 samplePigment(int field, vec3 x) {
     vec3 g = gridCoordinate(x, vec3(0.5));
     vec3 base = floor(g);
@@ -49,7 +74,8 @@ vec4 samplePigment(int field, vec3 x) {
                          fetchPigment(field, i0 + ivec3(1, 0, 1)), f.x);
     vec4 c11 = lerpValue(fetchPigment(field, i0 + ivec3(0, 1, 1)),
                          fetchPigment(field, i0 + ivec3(1, 1, 1)), f.x);
-    return lerpValue(lerpValue(c00, c10, f.y), lerpValue(c01, c11, f.y), f.z);
+    vec4 plain = lerpValue(lerpValue(c00, c10, f.y), lerpValue(c01, c11, f.y), f.z);
+    return kSolids ? sampleOutsideSolids(field, i0, f, plain) : plain;
 }
 
 // Per channel, the smallest and largest of the eight source values samplePigment interpolates.
@@ -88,6 +114,8 @@ void main() {
             value = clamp(value, low, high);
         }
         if (kPass != MFX_ADVECT_PREDICT) value = flushTiny(value * exp(-params.rates.x * timeStep()));
+        // None inside a solid (docs/fluid.md, "Solids"): the last pass writes 0 there.
+        if (kPass != MFX_ADVECT_PREDICT && solidCell(q)) value = vec4(0.0);
     }
     if (kDirectStore)
         imageStore(pigmentOutImage, q, MFX_STORED4(value));

@@ -9,6 +9,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "fluid_common.glsl"
+#include "fluid_solids.glsl"
 
 layout(binding = 1, MFX_VELOCITY_FORMAT) uniform readonly image3D velocityX;
 layout(binding = 2, MFX_VELOCITY_FORMAT) uniform readonly image3D velocityY;
@@ -65,8 +66,11 @@ void main() {
         }
         if (kPass != MFX_ADVECT_PREDICT) value *= exp(-params.cell.w * timeStep());
     }
-    value = kPass == MFX_ADVECT_PREDICT || kPass == MFX_ADVECT_BFECC_COMPENSATE ? value
-                                                                               : flushTiny(value);
+    bool lastPass = kPass != MFX_ADVECT_PREDICT && kPass != MFX_ADVECT_BFECC_COMPENSATE;
+    value = lastPass ? flushTiny(value) : value;
+    // Solid faces move with the solid, not with the air: the last pass keeps the solid's velocity
+    // they hold (docs/fluid.md, "Solids"); the passes before it advect them as any face.
+    if (lastPass && solidFace(c, at)) value = loadFaceField(kVelocityField, c, at);
     if (kDirectStore)
         imageStore(outField, q, vec4(MFX_STORED(value)));
     else

@@ -5,6 +5,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "fluid_common.glsl"
+#include "fluid_solids.glsl"
 
 layout(binding = 1, MFX_VELOCITY_FORMAT) uniform readonly image3D velocityY;
 layout(binding = 2, MFX_PIGMENT_FORMAT) uniform readonly image3D pigment;
@@ -17,7 +18,7 @@ void main() {
     ivec3 q = ivec3(gl_GlobalInvocationID);
     if (any(greaterThanEqual(q, faceCount(1)))) return;
     float v = imageLoad(velocityY, q).r;
-    if (!wallNormalFace(1, q)) {
+    if (!wallNormalFace(1, q) && !solidFace(1, q)) { // solid faces keep the solid's velocity
         float density = 0.5 * (imageLoad(pigment, resolveCell(q - ivec3(0, 1, 0))).a +
                                imageLoad(pigment, resolveCell(q)).a);
         v += timeStep() * params.rates.y * density;

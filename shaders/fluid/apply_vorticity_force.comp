@@ -8,6 +8,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "fluid_common.glsl"
+#include "fluid_solids.glsl"
 
 layout(binding = 1, MFX_VELOCITY_FORMAT) uniform readonly image3D velocityX;
 layout(binding = 2, MFX_VELOCITY_FORMAT) uniform readonly image3D velocityY;
@@ -37,7 +38,8 @@ float velocity(int c, ivec3 q) {
 // (cell q - e_c), both already resolved.
 float forcedFace(int c, ivec3 q, vec4 here, vec4 below) {
     float value = velocity(c, q);
-    if (!wallNormalFace(c, q)) value += timeStep() * (0.5 * (below[c] + here[c]));
+    // Solid faces keep the solid's velocity.
+    if (!wallNormalFace(c, q) && !solidFace(c, q)) value += timeStep() * (0.5 * (below[c] + here[c]));
     return value;
 }
 

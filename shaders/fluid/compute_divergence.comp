@@ -13,6 +13,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "fluid_common.glsl"
+#include "fluid_solids.glsl"
 #include "jacobi_neighbours.glsl"
 
 layout(binding = 1, MFX_VELOCITY_FORMAT) uniform readonly image3D velocityX;
@@ -41,7 +42,10 @@ void main() {
     float sum = (imageLoad(velocityX, q + ivec3(1, 0, 0)).r - imageLoad(velocityX, q).r) +
                 (imageLoad(velocityY, q + ivec3(0, 1, 0)).r - imageLoad(velocityY, q).r) +
                 (imageLoad(velocityZ, q + ivec3(0, 0, 1)).r - imageLoad(velocityZ, q).r);
-    float div = sum / cellSize();
+    // A solid cell has no pressure unknown, and so no divergence to remove (docs/fluid.md,
+    // "Solids").
+    bool solid = solidCell(q);
+    float div = solid ? 0.0 : sum / cellSize();
     if (kDirectStore)
         imageStore(divergenceImage, q, vec4(div));
     else
@@ -51,8 +55,8 @@ void main() {
     // As solve_pressure.comp computes a cold first sweep, operation for operation.
     float h = cellSize();
     float h2 = h * h;
-    int count = jacobiNeighbourCount(q);
-    float p = count == 0 ? 0.0 : (0.0 - h2 * div) / float(count);
+    int count = jacobiNeighbourCount(q) - bitCount(solidNeighbours(q));
+    float p = count == 0 || solid ? 0.0 : (0.0 - h2 * div) / float(count);
     if (kFirstSweep == 1u) {
         int element = 4 * packedIndex(0, q.y, q.z);
         packedDivergence[element + q.x] = div;

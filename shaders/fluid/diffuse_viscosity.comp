@@ -4,6 +4,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "fluid_common.glsl"
+#include "fluid_solids.glsl"
 
 layout(binding = 1, MFX_VELOCITY_FORMAT) uniform readonly image3D sourceX;
 layout(binding = 2, MFX_VELOCITY_FORMAT) uniform readonly image3D sourceY;
@@ -27,7 +28,10 @@ void main() {
     ivec3 q = ivec3(gl_GlobalInvocationID);
     if (any(greaterThanEqual(q, faceCount(c)))) return;
     float value = 0.0;
-    if (!wallNormalFace(c, q)) {
+    if (solidFace(c, q)) { // the solid's velocity, a fixed boundary value
+        value = c == 0 ? imageLoad(sourceX, q).r
+                       : (c == 1 ? imageLoad(sourceY, q).r : imageLoad(sourceZ, q).r);
+    } else if (!wallNormalFace(c, q)) {
         float alpha = params.rates.w;
         float source = c == 0 ? imageLoad(sourceX, q).r
                               : (c == 1 ? imageLoad(sourceY, q).r : imageLoad(sourceZ, q).r);

@@ -5,6 +5,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "fluid_common.glsl"
+#include "fluid_solids.glsl"
 
 // The component kTarget alone: the three dispatches then touch disjoint images, so they need no
 // barrier between them on either store path.
@@ -31,7 +32,7 @@ void main() {
     ivec3 q = ivec3(gl_GlobalInvocationID);
     if (any(greaterThanEqual(q, faceCount(c)))) return;
     float value = imageLoad(velocity, q).r;
-    if (!wallNormalFace(c, q)) {
+    if (!wallNormalFace(c, q) && !solidFace(c, q)) { // u·n = u_solid·n kept on solid faces
         ivec3 below = q;
         below[c] -= 1;
         float gradient = (pressureAt(q, c) - pressureAt(below, c)) * inverseCellSize();

@@ -18,6 +18,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "fluid_common.glsl"
+#include "fluid_solids.glsl"
 #include "jacobi_neighbours.glsl"
 
 layout(binding = 1, r32f) uniform readonly image3D divergence;
@@ -139,17 +140,36 @@ void main() {
                 if (kPackedOut) packedDivergence[packedIndex(texel, rowY, z)] = divergenceRow;
             }
 
-            vec4 sum = vec4(0.0);
-            sum += vec4(refLeft.value ? minusX.x : 0.0, minusX.yzw);
-            sum += mix(vec4(0.0), plusX, plusValue);
-            sum += selectRow(refDown.value, centre[r]);
-            sum += selectRow(refUp.value, centre[r + 2]);
-            sum += selectRow(refBelow.value, below[r]);
-            sum += selectRow(refAbove.value, above[r + 1]);
+            // The six sides' terms, in the reference's order.
+            vec4 side[6];
+            side[0] = vec4(refLeft.value ? minusX.x : 0.0, minusX.yzw);
+            side[1] = mix(vec4(0.0), plusX, plusValue);
+            side[2] = selectRow(refDown.value, centre[r]);
+            side[3] = selectRow(refUp.value, centre[r + 2]);
+            side[4] = selectRow(refBelow.value, below[r]);
+            side[5] = selectRow(refAbove.value, above[r + 1]);
             ivec4 count = countX + (refDown.counted ? 1 : 0) + (refUp.counted ? 1 : 0) +
                           (refBelow.counted ? 1 : 0) + (refAbove.counted ? 1 : 0);
+            // Solids (docs/fluid.md, "Solids"): a solid neighbour is neither summed nor counted
+            // (zero normal gradient, as across a wall), and a solid cell holds p = 0.
+            bvec4 solid = bvec4(false);
+            if (kSolids) {
+                uvec4 bits;
+                for (int c = 0; c < 4; ++c) {
+                    uvec2 cell = solidCells[cellElement(ivec3(columns[c], rowY, z))];
+                    bits[c] = cell.y;
+                    solid[c] = cell.x != 0u;
+                }
+                for (int s = 0; s < 6; ++s)
+                    side[s] = mix(side[s], vec4(0.0), notEqual(bits & (1u << uint(s)), uvec4(0u)));
+                count -= bitCount(bits);
+            }
+            vec4 sum = vec4(0.0);
+            for (int s = 0; s < 6; ++s)
+                sum += side[s];
             vec4 p = (sum - h2 * divergenceRow) / vec4(count);
             p = mix(p, vec4(0.0), equal(count, ivec4(0)));
+            p = mix(p, vec4(0.0), solid);
 
             if (y < n.y) {
                 if (kPackedOut) {

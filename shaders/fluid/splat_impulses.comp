@@ -6,6 +6,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "fluid_common.glsl"
+#include "fluid_solids.glsl"
 
 layout(std430, binding = 1) readonly buffer Emitters {
     FluidEmitter emitters[];
@@ -75,9 +76,11 @@ void main() {
     ivec3 q = ivec3(gl_GlobalInvocationID) + origin;
     int c = int(target);
     bool pigmentTarget = target == MFX_TARGET_PIGMENT;
+    // Solid cells hold no pigment and solid faces keep the solid's velocity (docs/fluid.md,
+    // "Solids").
     if (pigmentTarget) {
-        if (any(greaterThanEqual(q, cellCount()))) return;
-    } else if (any(greaterThanEqual(q, faceCount(c))) || wallNormalFace(c, q)) {
+        if (any(greaterThanEqual(q, cellCount())) || solidCell(q)) return;
+    } else if (any(greaterThanEqual(q, faceCount(c))) || wallNormalFace(c, q) || solidFace(c, q)) {
         return;
     }
     vec3 x = pigmentTarget ? cellCentre(q) : facePosition(c, q);

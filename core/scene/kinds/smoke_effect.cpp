@@ -9,15 +9,16 @@ namespace mfx::scene {
 using detail::Object;
 
 std::vector<std::string> SmokeSpec::keys() {
-    return trailKeys({"grid",         "cell_size",    "jacobi",
-                      "fade",         "drag",         "steps_per_second",
-                      "buoyancy",     "vorticity",    "impulse_k",
-                      "radius",       "strength",     "emission",
-                      "surface_step", "max_emitters", "sleep_threshold",
-                      "follow",       "look",         "glow",
-                      "cel_bands",    "anisotropy",   "pressure",
-                      "advection",    "storage",      "domain",
-                      "max_bricks",   "live_speed",   "origin"});
+    return trailKeys({"grid",         "cell_size",     "jacobi",
+                      "fade",         "drag",          "steps_per_second",
+                      "buoyancy",     "vorticity",     "impulse_k",
+                      "radius",       "strength",      "emission",
+                      "surface_step", "max_emitters",  "sleep_threshold",
+                      "follow",       "look",          "glow",
+                      "cel_bands",    "anisotropy",    "pressure",
+                      "advection",    "storage",       "domain",
+                      "max_bricks",   "live_speed",    "origin",
+                      "collide",      "collide_bones", "collide_thickness"});
 }
 
 const std::vector<std::string>& smokePressureSolvers() {
@@ -55,7 +56,8 @@ std::unique_ptr<EffectKindSpec> SmokeSpec::parse(const Object& o) {
     // validateSparseOptions): given, they make the grid dense; with "domain": "sparse" they are
     // refused, and a sparse grid does not read them.
     const char* denseKey = nullptr;
-    for (const char* key : {"pressure", "advection", "storage", "vorticity", "follow"})
+    for (const char* key : {"pressure", "advection", "storage", "vorticity", "follow", "collide",
+                            "collide_bones", "collide_thickness"})
         if (!denseKey && o.given(key)) denseKey = key;
     g.domain = o.choice("domain", g.domain,
                         denseKey && !o.given("domain") ? std::vector<std::string>{"dense"}
@@ -64,7 +66,7 @@ std::unique_ptr<EffectKindSpec> SmokeSpec::parse(const Object& o) {
     if (sparse && denseKey)
         detail::fail(o.at(denseKey), "only for \"domain\": \"dense\" (the sparse domain solves "
                                      "with jacobi and semi-lagrangian advection in fp32, without "
-                                     "vorticity confinement, and stands still)");
+                                     "vorticity confinement or solids, and stands still)");
     if (sparse) g.cells = {256, 256, 256};
     if (o.has("grid")) {
         // The dense grid's cells are all stored; the sparse domain's only where there is smoke,
@@ -89,6 +91,16 @@ std::unique_ptr<EffectKindSpec> SmokeSpec::parse(const Object& o) {
     g.drag = float(o.number("drag", g.drag, 0.0, 100.0));
     g.stepsPerSecond = float(o.number("steps_per_second", g.stepsPerSecond, 1.0, 1000.0));
     if (!sparse) g.follow = o.boolean("follow", g.follow);
+    if (!sparse) {
+        g.collide = o.boolean("collide", g.collide);
+        if (g.collide && g.pressure != "jacobi")
+            detail::fail(o.at("collide"), "only with \"pressure\": \"jacobi\" (the other pressure "
+                                          "solvers do not take solids yet)");
+        g.collideBones = o.strings("collide_bones");
+        g.collideThickness = float(o.number("collide_thickness", g.collideThickness, 0.0, 10.0));
+        for (const char* key : {"collide_bones", "collide_thickness"})
+            if (o.given(key) && !g.collide) detail::fail(o.at(key), "only with \"collide\": true");
+    }
     g.buoyancy = float(o.number("buoyancy", g.buoyancy, -100.0, 100.0));
     if (!sparse) g.vorticity = float(o.number("vorticity", g.vorticity, 0.0, 100.0));
     if (sparse) {

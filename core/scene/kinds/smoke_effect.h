@@ -56,6 +56,13 @@ struct SmokeGridSpec {
     // Sparse: the world position of the domain's low corner, so its box is origin + cells x
     // cell size; absent, the domain is centred on its effects' paths, standing on the floor.
     std::optional<glm::vec3> origin;
+    // The character as a moving solid the smoke flows around (docs/fluid.md, "Solids"): its body
+    // capsules (core/anim/body_capsules.h), those of `collideBones` (entries as an effect's
+    // "bones"; empty: every one), each at least `collideThickness` across. Dense grids with the
+    // jacobi pressure solver.
+    bool collide = false;
+    std::vector<std::string> collideBones;
+    float collideThickness = 0.0f;
     bool sparse() const { return domain == "sparse"; }
     bool operator==(const SmokeGridSpec&) const = default;
 };

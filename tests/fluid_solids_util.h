@@ -1,0 +1,98 @@
+// Solids for the solids tests on the reference and on the GPU (test_fluid_solids.cpp,
+// test_fluid_gpu_solids.cpp): spheres and capsules, the stream the still sphere stands in, the
+// solid faces' error, and the flow's means over a box of fluid cells (the wake measure).
+#pragma once
+
+#include "fluid/reference/reference_solver.h"
+#include "tests/fluid_test_util.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace mfx::test {
+
+inline shared::FluidSolid solidCapsule(glm::vec3 a, glm::vec3 b, float radius, glm::vec3 velocityA,
+                                       glm::vec3 velocityB) {
+    return {glm::vec4(a, radius), glm::vec4(b, 0.0f), glm::vec4(velocityA, 0.0f),
+            glm::vec4(velocityB, 0.0f)};
+}
+
+inline shared::FluidSolid solidSphere(glm::vec3 centre, float radius,
+                                      glm::vec3 velocity = glm::vec3(0.0f)) {
+    return solidCapsule(centre, centre, radius, velocity, velocity);
+}
+
+inline constexpr fluid::GridShape kStreamGrid{32, 16, 16, 1.0f / 16.0f}; // 2 x 1 x 1 world units
+
+// Open along x (a stream may pass), free-slip walls across it.
+inline fluid::SolverOptions streamOptions() {
+    fluid::SolverOptions o;
+    o.grid = kStreamGrid;
+    o.dt = 1.0f / 60.0f;
+    o.jacobiIterations = 60;
+    o.boundaries[fluid::FaceLowX].kind = fluid::Boundary::Open;
+    o.boundaries[fluid::FaceHighX].kind = fluid::Boundary::Open;
+    return o;
+}
+
+// The largest |u - velocity_c| over the faces `marks` (a reference with the solids set) calls
+// solid, of `state`'s velocity.
+inline double solidFaceError(const fluid::ReferenceSolver& marks, const fluid::FieldState& state,
+                             glm::dvec3 velocity) {
+    double largest = 0.0;
+    marks.forEachFace([&](int c, glm::ivec3 q) {
+        if (!marks.solidFace(c, q)) return;
+        const double u = component(state, c)[marks.faceIndex(c, q)];
+        largest = std::max(largest, std::abs(u - velocity[c]));
+    });
+    return largest;
+}
+
+// The mean x velocity and the mean magnitude of the curl of the cell-centred velocity over the
+// fluid cells (as `marks` has them; the grid's outer layer left out) whose centres lie in
+// [x0, x1] along x and within `half` of `centre` along y and z.
+struct FlowRegion {
+    double meanU = 0.0, meanCurl = 0.0;
+};
+inline FlowRegion flowRegion(const fluid::FieldState& state, const fluid::ReferenceSolver& marks,
+                             glm::dvec3 centre, double x0, double x1, double half) {
+    const fluid::GridShape& g = state.grid;
+    const double h = g.cellSize;
+    auto cellVelocity = [&](glm::ivec3 q) {
+        glm::dvec3 u;
+        for (int c = 0; c < 3; ++c) {
+            glm::ivec3 hi = q;
+            hi[c] += 1;
+            u[c] = 0.5 * (double(component(state, c)[marks.faceIndex(c, q)]) +
+                          double(component(state, c)[marks.faceIndex(c, hi)]));
+        }
+        return u;
+    };
+    FlowRegion result;
+    int n = 0;
+    for (int k = 1; k < int(g.cellsZ) - 1; ++k)
+        for (int j = 1; j < int(g.cellsY) - 1; ++j)
+            for (int i = 1; i < int(g.cellsX) - 1; ++i) {
+                const glm::dvec3 x = (glm::dvec3(i, j, k) + 0.5) * h;
+                if (x.x < x0 || x.x > x1 || std::abs(x.y - centre.y) > half ||
+                    std::abs(x.z - centre.z) > half || marks.solidCell({i, j, k}))
+                    continue;
+                auto d = [&](int axis, int c) { // central difference of U_c along axis
+                    glm::ivec3 a(i, j, k), b(i, j, k);
+                    a[axis] -= 1;
+                    b[axis] += 1;
+                    return (cellVelocity(b)[c] - cellVelocity(a)[c]) / (2.0 * h);
+                };
+                const glm::dvec3 curl(d(1, 2) - d(2, 1), d(2, 0) - d(0, 2), d(0, 1) - d(1, 0));
+                result.meanU += cellVelocity({i, j, k}).x;
+                result.meanCurl += glm::length(curl);
+                ++n;
+            }
+    if (n > 0) {
+        result.meanU /= n;
+        result.meanCurl /= n;
+    }
+    return result;
+}
+
+} // namespace mfx::test

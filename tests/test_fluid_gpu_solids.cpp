@@ -1,0 +1,453 @@
+// Moving solids in the GPU smoke solver (docs/fluid.md, "Solids"; shaders/fluid/mark_solids.comp
+// and fluid_solids.glsl) against the CPU reference's (tests/test_fluid_solids.cpp): every stage
+// alone with a moving sphere and capsule in the grid, fp32 and fp16, each advection scheme; 100
+// steps with a capsule swept through a puff; a still sphere in a stream that lets nothing through;
+// a moving sphere that pushes the air and leaves a wake; both store paths the same bits; no solids
+// the solver as before; bad solids and solvers that do not take them refused in one line.
+#include "core/anim/fighter.h"
+#include "core/anim/sampling.h"
+#include "fluid/body_solids.h"
+#include "fluid/field_compare.h"
+#include "fluid/reference/reference_solver.h"
+#include "fluid/scenarios.h"
+#include "fluid/smoke_solver.h"
+#include "tests/fluid_side_by_side.h"
+#include "tests/fluid_solids_util.h"
+#include "tests/gpu_test.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <limits>
+#include <vector>
+
+namespace mfx::test {
+namespace {
+
+using fluid::AdvectionScheme;
+using fluid::FieldState;
+using fluid::ReferenceSolver;
+using fluid::SmokeSolver;
+using fluid::SolverOptions;
+using fluid::Stage;
+using fluid::Storage;
+
+shared::FluidSolid capsule(glm::vec3 a, glm::vec3 b, float radius, glm::vec3 velocityA,
+                           glm::vec3 velocityB) {
+    return solidCapsule(a, b, radius, velocityA, velocityB);
+}
+
+shared::FluidSolid sphere(glm::vec3 centre, float radius, glm::vec3 velocity = glm::vec3(0.0f)) {
+    return solidSphere(centre, radius, velocity);
+}
+
+// A moving sphere and a moving, turning capsule inside `g`'s box.
+std::vector<shared::FluidSolid> twoSolids(const fluid::GridShape& g) {
+    const glm::vec3 size = glm::vec3(g.cellsX, g.cellsY, g.cellsZ) * g.cellSize;
+    const float across = std::min(size.x, std::min(size.y, size.z));
+    return {sphere(size * glm::vec3(0.32f, 0.41f, 0.47f), 0.23f * across, {1.2f, 0.4f, -0.3f}),
+            capsule(size * glm::vec3(0.61f, 0.31f, 0.33f), size * glm::vec3(0.79f, 0.74f, 0.61f),
+                    0.13f * across, {0.8f, -0.3f, 0.2f}, {-0.4f, 0.6f, 0.1f})};
+}
+
+// How far the nearest cell centre lies from any solid's surface, relative to its radius: the GPU
+// decides inside or outside in fp32, the reference in fp64, so a comparison needs every centre
+// clearly on one side (fp32 distances here are good to ~1e-7 of the unit box; 1e-5 of a radius of
+// 0.1 is 1e-6).
+double surfaceMargin(const fluid::GridShape& g, std::span<const shared::FluidSolid> solids) {
+    double margin = std::numeric_limits<double>::infinity();
+    for (uint32_t k = 0; k < g.cellsZ; ++k)
+        for (uint32_t j = 0; j < g.cellsY; ++j)
+            for (uint32_t i = 0; i < g.cellsX; ++i) {
+                const glm::dvec3 x = (glm::dvec3(i, j, k) + 0.5) * double(g.cellSize);
+                for (const shared::FluidSolid& s : solids) {
+                    const glm::dvec3 a(s.endA), ab = glm::dvec3(s.endB) - a;
+                    const double l2 = glm::dot(ab, ab);
+                    const double t =
+                        l2 > 0.0 ? std::clamp(glm::dot(x - a, ab) / l2, 0.0, 1.0) : 0.0;
+                    const double r = s.endA.w;
+                    margin = std::min(margin, std::abs(glm::length(x - (a + t * ab)) - r) / r);
+                }
+            }
+    return margin;
+}
+
+struct SolidStageCase {
+    Stage stage;
+    bool mixedBoundaries;
+    Storage storage;
+    AdvectionScheme scheme;
+};
+
+std::string caseName(const ::testing::TestParamInfo<SolidStageCase>& info) {
+    const SolidStageCase& c = info.param;
+    std::string name =
+        std::string(fluid::stageName(c.stage)) + (c.mixedBoundaries ? "_mixed" : "_closed");
+    if (c.storage == Storage::Float16) name += "_fp16";
+    if (c.scheme != AdvectionScheme::SemiLagrangian)
+        name += std::string("_") + fluid::advectionName(c.scheme);
+    return name;
+}
+
+class GpuSolidsStageTest : public GpuTest, public ::testing::WithParamInterface<SolidStageCase> {};
+
+// From random fields with the solids marked, each stage on the GPU against the reference: 1e-5
+// relative L2 in fp32 (the stages' bound, tests/test_fluid_stages.cpp), one binary16 step in fp16
+// (tests/test_fluid_gpu_half.cpp). The solids must matter to the stage on this input: the
+// reference without them gives another result.
+TEST_P(GpuSolidsStageTest, GpuMatchesReference) {
+    const SolidStageCase c = GetParam();
+    SolverOptions options = c.mixedBoundaries ? mixedBoundaryOptions() : closedBoxOptions();
+    options.storage = c.storage;
+    options.advection = c.scheme;
+    const FieldState input = randomState(options.grid, 2718);
+    const auto emitters = twoEmitters(options.grid);
+    const auto solids = twoSolids(options.grid);
+    ASSERT_GT(surfaceMargin(options.grid, solids), 1e-5);
+
+    ReferenceSolver cpu(options);
+    cpu.setState(input);
+    cpu.setSolids(solids);
+    // Marked as the GPU marks them: the stage (setSolids marks too, but stores no fp16 rounding).
+    cpu.runStage(Stage::MarkSolids, {});
+    const FieldState marked = cpu.state();
+    cpu.runStage(c.stage, emitters);
+
+    auto created = SmokeSolver::create(ctx(), options);
+    ASSERT_TRUE(created.ok()) << created.error().message;
+    SmokeSolver& gpu = *created.value();
+    gpu.setState(input);
+    ASSERT_TRUE(gpu.setEmitters(emitters).ok());
+    ASSERT_TRUE(gpu.setSolids(solids).ok());
+    ASSERT_TRUE(gpu.hasSolids());
+    gpu.runStage(Stage::MarkSolids);
+    if (c.stage != Stage::MarkSolids) gpu.runStage(c.stage);
+
+    const fluid::StateDifference d = fluid::difference(gpu.state(), cpu.state());
+    printDifference(fluid::stageName(c.stage), d);
+    const double bound = c.storage == Storage::Float16 ? 1.0 / 2048.0 : 1e-5;
+    EXPECT_LE(d.velocity.relL2, bound) << "velocity (max abs " << d.velocity.maxAbs << ")";
+    EXPECT_LE(d.pressure.relL2, bound) << "pressure (max abs " << d.pressure.maxAbs << ")";
+    EXPECT_LE(d.pigment.relL2, bound) << "pigment (max abs " << d.pigment.maxAbs << ")";
+    EXPECT_LE(d.divergence.relL2, 1e-5) << "divergence (max abs " << d.divergence.maxAbs << ")";
+
+    // Without the solids the same stage from the same marked fields ends elsewhere.
+    FieldState without;
+    if (c.stage == Stage::MarkSolids) {
+        without = input;
+    } else {
+        ReferenceSolver plain(options);
+        plain.setState(marked);
+        plain.runStage(c.stage, emitters);
+        without = plain.state();
+    }
+    EXPECT_GT(fluid::difference(cpu.state(), without).maxRelL2(), 1e-3)
+        << "the solids changed nothing in this stage";
+}
+
+std::vector<SolidStageCase> solidStageCases() {
+    std::vector<SolidStageCase> cases;
+    for (Stage stage : fluid::stepOrder())
+        for (bool mixed : {false, true})
+            cases.push_back({stage, mixed, Storage::Float32, AdvectionScheme::SemiLagrangian});
+    for (Stage stage : fluid::stepOrder())
+        cases.push_back({stage, true, Storage::Float16, AdvectionScheme::SemiLagrangian});
+    for (AdvectionScheme scheme : {AdvectionScheme::MacCormack, AdvectionScheme::Bfecc})
+        for (Stage stage : {Stage::AdvectVelocity, Stage::AdvectPigment})
+            cases.push_back({stage, true, Storage::Float32, scheme});
+    return cases;
+}
+
+INSTANTIATE_TEST_SUITE_P(GpuSolids, GpuSolidsStageTest, ::testing::ValuesIn(solidStageCases()),
+                         caseName);
+
+// The puff for `steps` steps at 16³ with a capsule swept through it (its ends moving on two
+// different lines, so it turns), GPU and reference side by side.
+void sweptCapsuleSideBySide(const gpu::Context& ctx, uint32_t steps,
+                            const std::function<void(SolverOptions&)>& adjust, SideBySide& out) {
+    auto scenario = fluid::makeScenario("puff", {16, 16, 16});
+    ASSERT_TRUE(scenario.ok()) << scenario.error().message;
+    const fluid::Scenario& s = scenario.value();
+    out.options = s.options;
+    if (adjust) adjust(out.options);
+    const fluid::GridShape& g = out.options.grid;
+    const glm::vec3 size = glm::vec3(g.cellsX, g.cellsY, g.cellsZ) * g.cellSize;
+    auto created = SmokeSolver::create(ctx, out.options);
+    ASSERT_TRUE(created.ok()) << created.error().message;
+    SmokeSolver& gpu = *created.value();
+    ReferenceSolver cpu(out.options);
+    gpu.setState(s.initial);
+    cpu.setState(s.initial);
+    const float dt = out.options.dt;
+    for (uint32_t step = 0; step < steps; ++step) {
+        // End A crosses the box along x, end B along z and up; where the step ends.
+        const float t = float(step + 1) * dt;
+        const glm::vec3 velocityA = size * glm::vec3(0.35f, 0.0f, 0.0f);
+        const glm::vec3 velocityB = size * glm::vec3(0.0f, 0.1f, 0.3f);
+        const glm::vec3 a = size * glm::vec3(0.13f, 0.36f, 0.52f) + velocityA * t;
+        const glm::vec3 b = size * glm::vec3(0.47f, 0.57f, 0.19f) + velocityB * t;
+        const shared::FluidSolid solid = capsule(a, b, 0.11f * size.x, velocityA, velocityB);
+        const auto emitters = s.emitters(step);
+        ASSERT_TRUE(gpu.setEmitters(emitters).ok());
+        ASSERT_TRUE(gpu.setSolids(std::span(&solid, 1)).ok());
+        cpu.setSolids(std::span(&solid, 1));
+        gpu.step();
+        cpu.step(emitters);
+    }
+    out.gpu = gpu.state();
+    out.cpu = cpu.state();
+    out.difference = fluid::difference(out.gpu, out.cpu);
+}
+
+using GpuSolidsTest = GpuTest;
+
+// 100 steps with a moving solid: within the bound of the 100-step comparisons without solids
+// (tests/test_fluid_steps.cpp, 1e-4). A cell whose centre the fp32 and fp64 capsule put on
+// different sides of its surface in some step would differ by the cell's whole pigment and
+// velocity: the sweep's geometry keeps every centre clear of the surface at every step.
+TEST_F(GpuSolidsTest, HundredStepsWithASweptCapsuleStayCloseToReference) {
+    SideBySide run;
+    sweptCapsuleSideBySide(ctx(), 100, nullptr, run);
+    if (HasFatalFailure()) return;
+    printDifference("100 steps, swept capsule", run.difference);
+    expectClose(run.difference, 1e-4, "100 steps with a swept capsule");
+    expectMovingAndFinite(run);
+}
+
+// Buffer and direct stores: the same bits with solids, over 10 steps.
+TEST_F(GpuSolidsTest, BothStorePathsStoreTheSameBitsWithSolids) {
+    SideBySide buffer, direct;
+    sweptCapsuleSideBySide(
+        ctx(), 10, [](SolverOptions& o) { o.storePath = fluid::StorePath::Buffer; }, buffer);
+    if (HasFatalFailure()) return;
+    sweptCapsuleSideBySide(
+        ctx(), 10, [](SolverOptions& o) { o.storePath = fluid::StorePath::Direct; }, direct);
+    if (HasFatalFailure()) return;
+    EXPECT_EQ(buffer.gpu.velocityX, direct.gpu.velocityX);
+    EXPECT_EQ(buffer.gpu.velocityY, direct.gpu.velocityY);
+    EXPECT_EQ(buffer.gpu.velocityZ, direct.gpu.velocityZ);
+    EXPECT_EQ(buffer.gpu.pigment, direct.gpu.pigment);
+    EXPECT_EQ(buffer.gpu.pressure, direct.gpu.pressure);
+}
+
+// The root mean square divergence of `state`'s velocity over the cells `marks` calls fluid.
+double fluidDivergence(const ReferenceSolver& marks, const FieldState& state) {
+    const fluid::GridShape& g = state.grid;
+    double squares = 0.0;
+    int cells = 0;
+    for (int k = 0; k < int(g.cellsZ); ++k)
+        for (int j = 0; j < int(g.cellsY); ++j)
+            for (int i = 0; i < int(g.cellsX); ++i) {
+                if (marks.solidCell({i, j, k})) continue;
+                double div = 0.0;
+                for (int c = 0; c < 3; ++c) {
+                    glm::ivec3 hi(i, j, k);
+                    hi[c] += 1;
+                    div += double(component(state, c)[marks.faceIndex(c, hi)]) -
+                           double(component(state, c)[marks.faceIndex(c, {i, j, k})]);
+                }
+                div /= double(g.cellSize);
+                squares += div * div;
+                ++cells;
+            }
+    return std::sqrt(squares / std::max(cells, 1));
+}
+
+TEST_F(GpuSolidsTest, AStillSphereInAUniformStreamLetsNothingThroughItsFaces) {
+    SolverOptions options = streamOptions();
+    options.jacobiIterations = 400; // near convergence, so the two divergences compare the solids
+    FieldState stream = FieldState::zero(kStreamGrid);
+    for (float& u : stream.velocityX)
+        u = 1.0f;
+    const shared::FluidSolid ball = sphere({1.0f, 0.5f, 0.5f}, 0.2f);
+    ReferenceSolver marks(options);
+    marks.setSolids(std::span(&ball, 1));
+    // A pulse of random air on the stream, so that the step has divergence to remove.
+    FieldState start = stream;
+    const FieldState noise = randomState(kStreamGrid, 5);
+    for (int c = 0; c < 3; ++c)
+        for (size_t i = 0; i < component(start, c).size(); ++i)
+            component(start, c)[i] += 0.5f * component(noise, c)[i];
+    double divergence[2] = {0.0, 0.0};
+    for (int with = 0; with < 2; ++with) {
+        auto gpu = SmokeSolver::create(ctx(), options).value();
+        gpu->setState(start);
+        if (with) {
+            ASSERT_TRUE(gpu->setSolids(std::span(&ball, 1)).ok());
+        }
+        gpu->step();
+        const FieldState state = gpu->state();
+        divergence[with] = fluidDivergence(marks, state);
+        if (with) {
+            EXPECT_EQ(solidFaceError(marks, state, glm::dvec3(0.0)), 0.0)
+                << "flux through the sphere's faces";
+        }
+    }
+    const double before = fluidDivergence(marks, start);
+    std::printf("rms divergence over the fluid cells: %.3g before the step; after it %.3g with "
+                "the sphere, %.3g without\n",
+                before, divergence[1], divergence[0]);
+    EXPECT_LT(divergence[1], 0.05 * before);
+    EXPECT_LE(divergence[1], 1.5 * divergence[0]) << "the sphere leaves more divergence";
+}
+
+TEST_F(GpuSolidsTest, AMovingSphereCarriesItsFacesPushesTheAirAsideAndLeavesAWake) {
+    SolverOptions options = streamOptions();
+    options.jacobiIterations = 80;
+    options.integrator = fluid::Integrator::RK2;
+    auto gpu = SmokeSolver::create(ctx(), options).value();
+    gpu->setState(FieldState::zero(kStreamGrid));
+    const glm::vec3 velocity(2.0f, 0.0f, 0.0f);
+    const double radius = 0.15;
+    glm::vec3 centre(0.4f, 0.5f, 0.5f);
+    ReferenceSolver marks(options);
+    for (int step = 0; step < 24; ++step) {
+        centre += velocity * options.dt;
+        const shared::FluidSolid ball = sphere(centre, float(radius), velocity);
+        ASSERT_TRUE(gpu->setSolids(std::span(&ball, 1)).ok());
+        marks.setSolids(std::span(&ball, 1));
+        gpu->step();
+        ASSERT_EQ(solidFaceError(marks, gpu->state(), glm::dvec3(velocity)), 0.0)
+            << "step " << step;
+    }
+    const FieldState state = gpu->state();
+    const double h = kStreamGrid.cellSize;
+    const glm::dvec3 at(centre);
+    const FlowRegion ahead =
+        flowRegion(state, marks, at, at.x + radius, at.x + radius + 4 * h, radius);
+    const FlowRegion behind =
+        flowRegion(state, marks, at, at.x - radius - 6 * h, at.x - radius, radius);
+    std::printf("GPU: ahead of the sphere mean u_x %.3f m/s, mean |curl| %.2f /s; behind %.3f, "
+                "%.2f\n",
+                ahead.meanU, ahead.meanCurl, behind.meanU, behind.meanCurl);
+    EXPECT_GT(ahead.meanU, 0.2 * double(velocity.x)) << "the air ahead is pushed";
+    EXPECT_GT(behind.meanCurl, ahead.meanCurl) << "a wake behind";
+}
+
+// Solids set and then removed before a step: the step is the solver without solids, bit for bit
+// (the stages compile without the solid tests again).
+TEST_F(GpuSolidsTest, RemovedSolidsLeaveTheSolverAsItWas) {
+    const SolverOptions options = mixedBoundaryOptions();
+    const FieldState input = randomState(options.grid, 77);
+    const auto emitters = twoEmitters(options.grid);
+    const auto solids = twoSolids(options.grid);
+    FieldState states[2];
+    for (int i = 0; i < 2; ++i) {
+        auto gpu = SmokeSolver::create(ctx(), options).value();
+        gpu->setState(input);
+        ASSERT_TRUE(gpu->setEmitters(emitters).ok());
+        if (i == 1) {
+            ASSERT_TRUE(gpu->setSolids(solids).ok());
+            ASSERT_TRUE(gpu->setSolids({}).ok());
+            EXPECT_FALSE(gpu->hasSolids());
+        }
+        gpu->step();
+        states[i] = gpu->state();
+    }
+    EXPECT_EQ(fluid::difference(states[0], states[1]).maxRelL2(), 0.0);
+    EXPECT_EQ(states[0].pigment, states[1].pigment);
+    EXPECT_EQ(states[0].velocityY, states[1].velocityY);
+}
+
+TEST_F(GpuSolidsTest, BadSolidsAndSolversWithoutSolidsAreRefusedInOneLine) {
+    auto gpu = SmokeSolver::create(ctx(), closedBoxOptions()).value();
+    shared::FluidSolid bad = sphere({0.5f, 0.5f, 0.5f}, 0.2f);
+    bad.velocityB.y = std::numeric_limits<float>::quiet_NaN();
+    const Status nan = gpu->setSolids(std::span(&bad, 1));
+    ASSERT_FALSE(nan.ok());
+    EXPECT_EQ(nan.error().message, "solid 0: a velocity is not finite");
+    EXPECT_FALSE(gpu->hasSolids());
+
+    SolverOptions multigrid = closedBoxOptions();
+    multigrid.pressureSolver = fluid::PressureSolver::Multigrid;
+    auto other = SmokeSolver::create(ctx(), multigrid).value();
+    const shared::FluidSolid ball = sphere({0.5f, 0.5f, 0.5f}, 0.2f);
+    const Status refused = other->setSolids(std::span(&ball, 1));
+    ASSERT_FALSE(refused.ok());
+    EXPECT_NE(refused.error().message.find("\"multigrid\" does not take solids"), std::string::npos)
+        << refused.error().message;
+    EXPECT_EQ(refused.error().message.find('\n'), std::string::npos);
+}
+
+// The fighter's roundhouse kick (its body capsules, fluid/body_solids.h) through a band of smoke,
+// as the reference's test (test_fluid_solids.cpp) on the GPU: at most 1% of the pigment in the
+// body's solid cells after every step (none, by the solid rules), and the band's air set moving.
+TEST_F(GpuSolidsTest, TheKickThroughACloudPushesItAndNeverHoldsPigmentInside) {
+    const anim::Character fighter = anim::makeFighter();
+    const anim::Clip* kick = fighter.findClip("roundhouse_kick");
+    ASSERT_NE(kick, nullptr);
+    const std::vector<anim::BodyCapsule> capsules = anim::fitBodyCapsules(fighter);
+    constexpr uint32_t kN = 24, kBandLow = 10, kBandHigh = 17; // the band: y 0.83 to 1.42 m
+    SolverOptions options;
+    options.grid = {kN, kN, kN, 2.0f / kN};
+    options.dt = 1.0f / 60.0f;
+    options.jacobiIterations = 40;
+    for (int face = 0; face < 6; ++face)
+        options.boundaries[face].kind =
+            face == fluid::FaceLowY ? fluid::Boundary::WallFreeSlip : fluid::Boundary::Open;
+    const glm::vec3 origin(-1.0f, 0.0f, -1.0f);
+    FieldState cloud = FieldState::zero(options.grid);
+    for (uint32_t k = 0; k < kN; ++k)
+        for (uint32_t j = kBandLow; j < kBandHigh; ++j)
+            for (uint32_t i = 0; i < kN; ++i)
+                for (int channel = 0; channel < 4; ++channel)
+                    cloud.pigment[options.grid.index(i, j, k) * 4 + size_t(channel)] = 0.6f;
+    auto with = SmokeSolver::create(ctx(), options).value();
+    auto without = SmokeSolver::create(ctx(), options).value();
+    with->setState(cloud);
+    without->setState(cloud);
+    ReferenceSolver marks(options);
+    double largestInside = 0.0;
+    for (float t = 0.2f; t < 0.7f; t += options.dt) {
+        const std::vector<shared::FluidSolid> solids =
+            fluid::bodySolids(capsules, anim::samplePose(fighter, kick, t),
+                              anim::samplePose(fighter, kick, t + options.dt), options.dt, origin);
+        ASSERT_TRUE(with->setSolids(solids).ok());
+        marks.setSolids(solids);
+        with->step();
+        without->step();
+        const FieldState state = with->state();
+        double inside = 0.0, total = 0.0;
+        for (int k = 0; k < int(kN); ++k)
+            for (int j = 0; j < int(kN); ++j)
+                for (int i = 0; i < int(kN); ++i) {
+                    const double alpha = state.pigment[options.grid.index(i, j, k) * 4 + 3];
+                    total += alpha;
+                    if (marks.solidCell({i, j, k})) inside += alpha;
+                }
+        ASSERT_GT(total, 0.0);
+        largestInside = std::max(largestInside, inside / total);
+    }
+    // The mean speed of the band's fluid cells after the kick.
+    auto meanSpeed = [&](const FieldState& state) {
+        double sum = 0.0;
+        int n = 0;
+        for (int k = 0; k < int(kN); ++k)
+            for (int j = int(kBandLow); j < int(kBandHigh); ++j)
+                for (int i = 0; i < int(kN); ++i) {
+                    if (marks.solidCell({i, j, k})) continue;
+                    glm::dvec3 u;
+                    for (int c = 0; c < 3; ++c) {
+                        glm::ivec3 hi(i, j, k);
+                        hi[c] += 1;
+                        u[c] = 0.5 * (double(component(state, c)[marks.faceIndex(c, {i, j, k})]) +
+                                      double(component(state, c)[marks.faceIndex(c, hi)]));
+                    }
+                    sum += glm::length(u);
+                    ++n;
+                }
+        return sum / std::max(n, 1);
+    };
+    const double speed = meanSpeed(with->state()), stillSpeed = meanSpeed(without->state());
+    std::printf(
+        "GPU kick through a band of smoke: at most %.2g of the pigment inside the body; the "
+        "band's air at %.3f m/s (%.3f without the body)\n",
+        largestInside, speed, stillSpeed);
+    EXPECT_LE(largestInside, 0.01);
+    EXPECT_GT(speed, 0.05);
+    EXPECT_LT(stillSpeed, 1e-6);
+}
+
+} // namespace
+} // namespace mfx::test
