@@ -19,6 +19,8 @@ gpu::DescriptorWrite storage(uint32_t binding, const gpu::Image& image) {
 
 } // namespace
 
+static_assert(SmokeSolver::kMaxSolids == 1024, "shaders/fluid/mark_solids.comp's kMaxSolids");
+
 bool storesDirect(StorePath path, const gpu::Context& ctx) {
     return path == StorePath::Direct || (path == StorePath::Auto && !ctx.info().isCpu());
 }
@@ -128,9 +130,23 @@ Status SmokeSolver::setSolids(std::span<const shared::FluidSolid> solids) {
             gpu::createBuffer(ctx_, kMaxSolids * sizeof(shared::FluidSolid),
                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                               gpu::MemoryUsage::DeviceLocal, "fluid solids");
-        solidCells_ = gpu::createBuffer(ctx_, options_.grid.cellCount() * 2 * sizeof(uint32_t),
-                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                        gpu::MemoryUsage::DeviceLocal, "fluid solid cells");
+        // A flag byte per cell, rows padded to whole words of four (fluid_solids.glsl).
+        const GridShape& g = options_.grid;
+        solidCells_ = gpu::createBuffer(
+            ctx_, uint64_t((g.cellsX + 3) / 4) * g.cellsY * g.cellsZ * sizeof(uint32_t),
+            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::DeviceLocal, "fluid solid cells");
+        solidHolders_ =
+            gpu::createBuffer(ctx_, g.cellCount() * sizeof(uint32_t),
+                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                              gpu::MemoryUsage::DeviceLocal, "fluid solid holders");
+        // One word per Jacobi brick (solve_pressure.comp).
+        const uint64_t bricks = uint64_t((g.cellsX + kPressureBrickX - 1) / kPressureBrickX) *
+                                ((g.cellsY + kPressureRows - 1) / kPressureRows) *
+                                ((g.cellsZ + kPressureLayers - 1) / kPressureLayers);
+        solidBricks_ =
+            gpu::createBuffer(ctx_, bricks * sizeof(uint32_t),
+                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                              gpu::MemoryUsage::DeviceLocal, "fluid solid bricks");
     }
     solids_.assign(solids.begin(), solids.end());
     programs_.setSolids(!solids_.empty());
@@ -220,19 +236,55 @@ void SmokeSolver::markSolids(VkCommandBuffer cmd) {
                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
     SmokeFields& f = fields_;
     const auto& v = f.velocity[size_t(f.currentVelocity)];
-    const gpu::DescriptorWrite writes[] = {
+    // The flags are written through binding 17 (passes 0 and 1) and read through 15 (pass 2):
+    // never the same buffer at both in one dispatch.
+    Writes writes = {
         gpu::bindBuffer(0, parameters_),
         gpu::bindBuffer(1, solidsBuffer_, 0, bytes),
         storage(2, v[0]),
         storage(3, v[1]),
         storage(4, v[2]),
         storage(5, f.pigment[size_t(f.currentPigment)]),
-        solidCellsWrite(),
+        gpu::bindBuffer(15, noSolidCells_),
+        gpu::bindBuffer(16, solidHolders_),
+        gpu::bindBuffer(17, solidCells_),
+        gpu::bindBuffer(18, solidBricks_),
     };
-    // The cells, then the faces and the neighbour bits, which read every cell's mark.
-    dispatch(cmd, programs_.get("mark_solids", 0, 0), writes, f.cells);
+    // Every cell air, then each solid over the cells of its bounding box (one cell wider: the box
+    // is found in fp32), then the faces, pigment and flags, which read every cell's holder.
+    vkCmdFillBuffer(cmd, solidHolders_.get(), 0, VK_WHOLE_SIZE, 0);
+    vkCmdFillBuffer(cmd, solidBricks_.get(), 0, VK_WHOLE_SIZE, 0);
+    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    gpu::Program& cells = programs_.get("mark_solids", 0, 0);
+    cells.bind(cmd, writes);
+    const float h = options_.grid.cellSize;
+    const glm::ivec3 last = glm::ivec3(f.cells) - 1;
+    const std::array<uint32_t, 3>& group = options_.workgroup;
+    for (size_t i = 0; i < solids_.size(); ++i) {
+        const shared::FluidSolid& s = solids_[i];
+        const glm::vec3 a(s.endA), b(s.endB);
+        const float r = s.endA.w;
+        const glm::ivec3 low =
+            glm::max(glm::ivec3(glm::floor((glm::min(a, b) - r) / h - 0.5f)) - 1, glm::ivec3(0));
+        const glm::ivec3 high =
+            glm::min(glm::ivec3(glm::ceil((glm::max(a, b) + r) / h - 0.5f)) + 1, last);
+        if (glm::any(glm::greaterThan(low, high))) continue; // wholly outside the grid
+        const glm::uvec3 extent(high - low + 1);
+        cells.push(cmd, shared::FluidDispatch{uint32_t(i), uint32_t(low.x), uint32_t(low.y),
+                                              uint32_t(low.z)});
+        ++dispatches_;
+        vkCmdDispatch(cmd, gpu::groupCount(extent.x, group[0]), gpu::groupCount(extent.y, group[1]),
+                      gpu::groupCount(extent.z, group[2]));
+    }
     fieldBarrier(cmd);
-    dispatch(cmd, programs_.get("mark_solids", 0, 1), writes, f.cells + glm::uvec3(1));
+    const glm::uvec3 words((f.cells.x + 3) / 4, f.cells.y, f.cells.z);
+    dispatch(cmd, programs_.get("mark_solids", 0, 1), writes, words);
+    fieldBarrier(cmd);
+    writes[6] = gpu::bindBuffer(15, solidCells_);
+    writes[8] = gpu::bindBuffer(17, noSolidCells_);
+    dispatch(cmd, programs_.get("mark_solids", 0, 2), writes, f.cells + glm::uvec3(1));
     fieldBarrier(cmd);
 }
 
@@ -489,6 +541,7 @@ void SmokeSolver::solvePressure(VkCommandBuffer cmd) {
             gpu::bindBuffer(5, f.packedPressure[packedIn]),
             gpu::bindBuffer(6, f.packedPressure[packedOut]),
             gpu::bindBuffer(7, f.packedPressure[packedIn]),
+            gpu::bindBuffer(8, solidBricks_.get() != VK_NULL_HANDLE ? solidBricks_ : noSolidCells_),
             solidCellsWrite(),
         };
         dispatch(cmd, programs_.get("solve_pressure", 0, mode), writes, bricks);
@@ -557,7 +610,8 @@ void SmokeSolver::recordStep(VkCommandBuffer cmd, gpu::GpuTimer* timer) {
 
 uint64_t SmokeSolver::memoryBytes() const {
     uint64_t bytes = fields_.memoryBytes() + parameters_.size + ownEmitters_.size +
-                     solidsBuffer_.size + solidCells_.size + noSolidCells_.size;
+                     solidsBuffer_.size + solidCells_.size + solidHolders_.size +
+                     solidBricks_.size + noSolidCells_.size;
     if (multigrid_) bytes += multigrid_->memoryBytes();
     return bytes;
 }

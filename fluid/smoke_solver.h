@@ -189,8 +189,10 @@ private:
     gpu::Buffer splatRegions_;               // SplatRegion per target, written by emitter_bounds
     std::vector<shared::FluidSolid> solids_; // what markSolids records
     gpu::Buffer solidsBuffer_;               // where it records them (kMaxSolids; once solids come)
-    gpu::Buffer solidCells_;                 // uvec2 per cell (fluid_solids.glsl; likewise)
-    gpu::Buffer noSolidCells_;               // bound in its place before any solid
+    gpu::Buffer solidCells_;                 // a flag byte per cell (fluid_solids.glsl; likewise)
+    gpu::Buffer solidHolders_; // per cell, which solid holds it (mark_solids.comp; likewise)
+    gpu::Buffer solidBricks_;  // per Jacobi brick, whether solids are near (likewise)
+    gpu::Buffer noSolidCells_; // bound in its place before any solid
 
     mutable uint32_t dispatches_ = 0; // vkCmdDispatch calls recorded so far
     StageDispatches lastStepDispatches_;

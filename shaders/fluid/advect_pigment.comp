@@ -75,7 +75,7 @@ vec4 samplePigment(int field, vec3 x) {
     vec4 c11 = lerpValue(fetchPigment(field, i0 + ivec3(0, 1, 1)),
                          fetchPigment(field, i0 + ivec3(1, 1, 1)), f.x);
     vec4 plain = lerpValue(lerpValue(c00, c10, f.y), lerpValue(c01, c11, f.y), f.z);
-    return kSolids ? sampleOutsideSolids(field, i0, f, plain) : plain;
+    return kSolids && solidInStencil(i0) ? sampleOutsideSolids(field, i0, f, plain) : plain;
 }
 
 // Per channel, the smallest and largest of the eight source values samplePigment interpolates.

@@ -1,59 +1,63 @@
-// Moving solids in the grid (docs/fluid.md, "Solids"), as the stages read them: the solid cells of
-// the sub-step, marked by shaders/fluid/mark_solids.comp into one uvec2 per cell (x-fastest):
-//   x  the first solid (1-based, in the list's order) holding the cell's centre; 0 for air
-//   y  bit s set when the cell's neighbour on side s (-x, +x, -y, +y, -z, +z) is a solid cell
-//      (a neighbour inside the grid, or across a periodic face)
-// Twin: fluid/reference/mark_solids.cpp. Without solids (kSolids false, constant id 15) every test
-// below folds to false and a stage is the one it was before solids existed.
+// Moving solids in the grid (docs/fluid.md, "Solids"), as the stages read them: the solid cells
+// of the sub-step, marked by shaders/fluid/mark_solids.comp into one flag byte per cell, four
+// x-consecutive cells to a word, rows padded to whole words (word X + ceil(nx / 4) (y + ny z) holds
+// cells 4X..4X+3 of row (y, z), the layout of the Jacobi sweep's packed pressure):
+//   bit 0     the cell is solid (its centre inside a capsule)
+//   bit 1 + s the cell's neighbour on side s (-x, +x, -y, +y, -z, +z) is a solid cell (a
+//             neighbour inside the grid, or across a periodic face)
+//   bit 7     one of the eight cells q + {0, 1}³ (each resolved as a fetch resolves it, clamped or
+//             wrapped) is solid: a trilinear sample whose stencil starts at q touches a solid
+// so that a row of four cells is one load, and whether a face is solid is one byte. Twin:
+// fluid/reference/mark_solids.cpp. Without solids (kSolids false, constant id 15) every test below
+// folds to false and a stage is the one it was before solids existed.
 #ifndef MFX_FLUID_SOLIDS_GLSL
 #define MFX_FLUID_SOLIDS_GLSL
 
 layout(constant_id = 15) const bool kSolids = false;
 
-#ifdef MFX_MARKS_SOLIDS
-layout(std430, binding = 15) buffer SolidCells {
-    uvec2 solidCells[];
+layout(std430, binding = 15) readonly buffer SolidFlags {
+    uint solidFlags[];
 };
-#else
-layout(std430, binding = 15) readonly buffer SolidCells {
-    uvec2 solidCells[];
-};
-#endif
+
+// The word of cells 4 texel .. 4 texel + 3 of row (y, z).
+int solidWordIndex(int texel, int y, int z) {
+    return texel + ((cellCount().x + 3) / 4) * (y + cellCount().y * z);
+}
+
+// The flag byte of cell q (inside the grid); 0 without solids.
+uint solidByte(ivec3 q) {
+    if (!kSolids) return 0u;
+    return (solidFlags[solidWordIndex(q.x >> 2, q.y, q.z)] >> (8 * (q.x & 3))) & 0xffu;
+}
 
 // Whether cell q (inside the grid) is solid.
 bool solidCell(ivec3 q) {
-    return kSolids && solidCells[cellElement(q)].x != 0u;
+    return (solidByte(q) & 1u) != 0u;
 }
 
-// Cell q - e_c and cell q of face q of component c, those that exist (out of the grid across a
-// non-periodic face: none), wrapped across periodic faces.
-bool solidBelowFace(int c, ivec3 q) {
-    ivec3 below = q;
-    below[c] -= 1;
-    if (below[c] < 0) {
-        if (!periodicAxis(c)) return false;
-        below[c] = cellCount()[c] - 1;
-    }
-    return solidCell(below);
-}
-bool solidAboveFace(int c, ivec3 q) {
-    if (q[c] >= cellCount()[c]) {
-        if (!periodicAxis(c)) return false;
-        q[c] = 0;
-    }
-    return solidCell(q);
+// Whether the trilinear stencil whose low corner is cell i0 (resolved as a fetch resolves it)
+// holds a solid cell.
+bool solidInStencil(ivec3 i0) {
+    return (solidByte(resolveCell(i0)) & 0x80u) != 0u;
 }
 
-// Whether face q of component c is solid: a cell beside it is, and it is not wall-normal (a wall
-// stays a wall).
+// The six sides' solid-neighbour bits of cell q (inside the grid), side s at bit s.
+uint solidNeighbours(ivec3 q) {
+    return (solidByte(q) >> 1) & 63u;
+}
+
+// Whether face q of component c is solid: a cell beside it is (cells beyond a non-periodic face
+// are not), and it is not wall-normal (a wall stays a wall). One byte: cell q's own bit and its
+// -c neighbour's, or past the last cell, cell q - e_c's own bit and its +c neighbour's.
 bool solidFace(int c, ivec3 q) {
     if (!kSolids || wallNormalFace(c, q)) return false;
-    return solidBelowFace(c, q) || solidAboveFace(c, q);
-}
-
-// The six sides' solid-neighbour bits of cell q (inside the grid), in the order above.
-uint solidNeighbours(ivec3 q) {
-    return kSolids ? solidCells[cellElement(q)].y : 0u;
+    ivec3 cell = q;
+    uint side = uint(2 * c);
+    if (q[c] >= cellCount()[c]) {
+        cell[c] -= 1;
+        side += 1u;
+    }
+    return (solidByte(cell) & (1u | (2u << side))) != 0u;
 }
 
 #endif

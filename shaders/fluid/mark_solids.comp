@@ -4,17 +4,22 @@
 // every step with its surface's velocity). Twin: fluid/reference/mark_solids.cpp. Each solid is a
 // capsule (shared::FluidSolid) where the step ends, with its two ends' velocities.
 //
-// Two dispatches (kPass, constant id 11):
-//   0  over the cells: the first capsule holding the cell's centre into solidCells[].x
-//      (shaders/fluid/fluid_solids.glsl), and a solid cell's pigment set to 0;
-//   1  over cells + 1 along each axis: every solid face of each component takes the solid's
-//      velocity at the face (the capsule holding the cell below it, else the one above), and each
-//      cell's solid-neighbour bits go into solidCells[].y.
-// Both write in place: pass 0 only cells it alone owns, pass 1 only faces and words pass 0 did not.
+// With the holders and the pressure bricks' flags cleared to 0, three passes (kPass, constant
+// id 11):
+//   0  one dispatch per solid over the cells of its bounding box (the solid's index in
+//      dispatchInfo.target, the box's first cell in its origin): each cell whose centre it holds
+//      takes max(its holder, kMaxSolids - index), so the first solid in list order wins, as in the
+//      reference; 0 stays air;
+//   1  over the flag words (four cells along x each): the cells' flag bytes
+//      (shaders/fluid/fluid_solids.glsl), and a word with any flag marks its Jacobi brick
+//      (solve_pressure.comp: 4 x kPressureRows x kPressureLayers cells), so that a sweep reads the
+//      flags only where solids are near;
+//   2  over cells + 1 along each axis: every solid face of each component takes its solid's
+//      velocity at the face (the solid holding the cell below it, else the one above), and a solid
+//      cell's pigment is set to 0.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "fluid_common.glsl"
-#define MFX_MARKS_SOLIDS
 #include "fluid_solids.glsl"
 #include "jacobi_neighbours.glsl"
 
@@ -26,8 +31,25 @@ layout(binding = 2, MFX_VELOCITY_FORMAT) uniform writeonly image3D velocityX;
 layout(binding = 3, MFX_VELOCITY_FORMAT) uniform writeonly image3D velocityY;
 layout(binding = 4, MFX_VELOCITY_FORMAT) uniform writeonly image3D velocityZ;
 layout(binding = 5, MFX_PIGMENT_FORMAT) uniform writeonly image3D pigment;
+// Per cell (x fastest): kMaxSolids - the index of the first solid holding its centre; 0 for air.
+layout(std430, binding = 16) buffer SolidHolders {
+    uint holders[];
+};
+// The flags the stages read (pass 1 writes them; binding 15 is their read-only view).
+layout(std430, binding = 17) buffer SolidFlagsOut {
+    uint flagsOut[];
+};
+// One word per Jacobi brick: nonzero where a cell of it has a flag.
+layout(std430, binding = 18) buffer SolidBricks {
+    uint solidBricks[];
+};
 
 layout(constant_id = 11) const uint kPass = 0u;
+// The Jacobi brick's rows and layers (fluid/smoke_fields.h kPressureRows, kPressureLayers).
+const int kBrickRows = 4;
+const int kBrickLayers = 4;
+// SmokeSolver::kMaxSolids.
+const uint kMaxSolids = 1024u;
 
 // Where the point of the axis closest to x lies along it: 0 at end A, 1 at end B.
 float axisParameter(FluidSolid s, vec3 x) {
@@ -42,39 +64,32 @@ bool insideSolid(FluidSolid s, vec3 x) {
     return dot(d, d) < s.endA.w * s.endA.w;
 }
 
-// 1-based index of the first solid holding x; 0 for none.
-uint holderOf(vec3 x) {
-    uint count = uint(solids.length());
-    for (uint i = 0u; i < count; ++i)
-        if (insideSolid(solids[i], x)) return i + 1u;
-    return 0u;
+// The holder of cell q, as the index of its solid + 1; 0 for air.
+uint holderOf(ivec3 q) {
+    uint h = holders[cellElement(q)];
+    return h == 0u ? 0u : kMaxSolids - h + 1u;
 }
 
-void markCell(ivec3 q) {
-    uint holder = holderOf(cellCentre(q));
-    solidCells[cellElement(q)].x = holder;
-    if (holder != 0u) imageStore(pigment, q, vec4(0.0));
-}
-
-// The 1-based holder of the solid cell beside face q of component c: below first, then above.
+// The holder of the solid cell beside face q of component c: below first, then above.
 uint faceHolder(int c, ivec3 q) {
     ivec3 below = q;
     below[c] -= 1;
     if (below[c] < 0 && periodicAxis(c)) below[c] = cellCount()[c] - 1;
     if (below[c] >= 0) {
-        uint holder = solidCells[cellElement(below)].x;
+        uint holder = holderOf(below);
         if (holder != 0u) return holder;
     }
     ivec3 above = q;
     if (above[c] >= cellCount()[c] && periodicAxis(c)) above[c] = 0;
-    return above[c] < cellCount()[c] ? solidCells[cellElement(above)].x : 0u;
+    return above[c] < cellCount()[c] ? holderOf(above) : 0u;
 }
 
 void markFace(int c, ivec3 q) {
-    if (!solidFace(c, q)) return;
-    FluidSolid s = solids[faceHolder(c, q) - 1u];
-    vec3 x = facePosition(c, q);
-    float v = mix(s.velocityA.xyz, s.velocityB.xyz, axisParameter(s, x))[c];
+    if (wallNormalFace(c, q)) return; // a wall stays a wall
+    uint holder = faceHolder(c, q);
+    if (holder == 0u) return;
+    FluidSolid s = solids[holder - 1u];
+    float v = mix(s.velocityA.xyz, s.velocityB.xyz, axisParameter(s, facePosition(c, q)))[c];
     if (c == 0)
         imageStore(velocityX, q, vec4(MFX_STORED(v)));
     else if (c == 1)
@@ -83,15 +98,20 @@ void markFace(int c, ivec3 q) {
         imageStore(velocityZ, q, vec4(MFX_STORED(v)));
 }
 
-// Bit s: the neighbour on side s is a solid cell (one inside the grid, or wrapped).
-uint neighbourBits(ivec3 q) {
-    uint bits = 0u;
+// Cell q's flag byte: its own bit, a bit for each side whose neighbour is a solid cell (one
+// inside the grid, or wrapped), and whether the stencil q + {0, 1}³ holds a solid.
+uint flagByte(ivec3 q) {
+    uint bits = holders[cellElement(q)] != 0u ? 1u : 0u;
     for (int side = 0; side < 6; ++side) {
         int axis = side / 2;
         NeighbourRef ref = neighbourRef(axis, q[axis] + ((side & 1) == 0 ? -1 : 1));
         ivec3 neighbour = q;
         neighbour[axis] = ref.index;
-        if (ref.value && solidCells[cellElement(neighbour)].x != 0u) bits |= 1u << uint(side);
+        if (ref.value && holders[cellElement(neighbour)] != 0u) bits |= 2u << uint(side);
+    }
+    for (int corner = 0; corner < 8; ++corner) {
+        ivec3 cell = resolveCell(q + ivec3(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1));
+        if (holders[cellElement(cell)] != 0u) bits |= 0x80u;
     }
     return bits;
 }
@@ -99,10 +119,35 @@ uint neighbourBits(ivec3 q) {
 void main() {
     ivec3 q = ivec3(gl_GlobalInvocationID);
     if (kPass == 0u) {
-        if (all(lessThan(q, cellCount()))) markCell(q);
+        q += ivec3(dispatchInfo.originX, dispatchInfo.originY, dispatchInfo.originZ);
+        if (any(greaterThanEqual(q, cellCount()))) return;
+        uint index = dispatchInfo.target;
+        if (insideSolid(solids[index], cellCentre(q)))
+            atomicMax(holders[cellElement(q)], kMaxSolids - index);
         return;
     }
+    ivec3 n = cellCount();
+    if (kPass == 1u) {
+        int texel = q.x;
+        if (4 * texel >= n.x || q.y >= n.y || q.z >= n.z) return;
+        uint word = 0u;
+        for (int i = 0; i < 4 && 4 * texel + i < n.x; ++i)
+            word |= flagByte(ivec3(4 * texel + i, q.y, q.z)) << (8 * i);
+        flagsOut[solidWordIndex(texel, q.y, q.z)] = word;
+        if (word != 0u) {
+            ivec3 bricks = (n + ivec3(3, kBrickRows - 1, kBrickLayers - 1)) /
+                           ivec3(4, kBrickRows, kBrickLayers);
+            int brick = texel + bricks.x * (q.y / kBrickRows + bricks.y * (q.z / kBrickLayers));
+            atomicOr(solidBricks[brick], 1u);
+        }
+        return;
+    }
+    // Cell q's byte (pass 1's) says whether faces q of the three components are solid: its own
+    // bit or its -c neighbour's. Faces past the last cell along an axis look below them.
+    bool inside = all(lessThan(q, n));
+    uint byte = inside ? solidByte(q) : 0xffu;
+    if ((byte & 0x2bu) == 0u) return; // bits 0, 1 (-x), 3 (-y), 5 (-z)
     for (int c = 0; c < 3; ++c)
         if (all(lessThan(q, faceCount(c)))) markFace(c, q);
-    if (all(lessThan(q, cellCount()))) solidCells[cellElement(q)].y = neighbourBits(q);
+    if (inside && (byte & 1u) != 0u) imageStore(pigment, q, vec4(0.0));
 }

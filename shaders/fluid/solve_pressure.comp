@@ -38,6 +38,12 @@ layout(std430, binding = 7) readonly buffer PackedInCells {
     float packedInCells[];
 };
 
+// With solids: one word per brick, nonzero where a cell of the brick has a solid flag
+// (mark_solids.comp); the sweep reads the rows' flags only there.
+layout(std430, binding = 8) readonly buffer SolidBricks {
+    uint solidBricks[];
+};
+
 // Which side is packed (see above), and the brick's rows along y and layers along z
 // (SmokeSolver::solvePressure sizes the dispatch by them).
 layout(constant_id = 11) const uint kPressureMode = 0;
@@ -103,6 +109,10 @@ void main() {
     for (int i = 0; i < kPressureRows + 2; ++i)
         windowY[i] = neighbourRef(1, brick.y - 1 + i).index;
 
+    ivec3 bricks = (n + ivec3(3, kPressureRows - 1, kPressureLayers - 1)) /
+                   ivec3(4, kPressureRows, kPressureLayers);
+    ivec3 b = ivec3(gl_GlobalInvocationID);
+    bool nearSolids = kSolids && solidBricks[b.x + bricks.x * (b.y + bricks.y * b.z)] != 0u;
     vec4 below[kPressureRows], centre[kPressureRows + 2], above[kPressureRows + 2];
     int belowZ = neighbourRef(2, brick.z - 1).index;
     for (int r = 0; r < kPressureRows; ++r)
@@ -152,17 +162,16 @@ void main() {
                           (refBelow.counted ? 1 : 0) + (refAbove.counted ? 1 : 0);
             // Solids (docs/fluid.md, "Solids"): a solid neighbour is neither summed nor counted
             // (zero normal gradient, as across a wall), and a solid cell holds p = 0.
+            // The row's four flag bytes are one word (fluid_solids.glsl); most rows have none.
             bvec4 solid = bvec4(false);
-            if (kSolids) {
-                uvec4 bits;
-                for (int c = 0; c < 4; ++c) {
-                    uvec2 cell = solidCells[cellElement(ivec3(columns[c], rowY, z))];
-                    bits[c] = cell.y;
-                    solid[c] = cell.x != 0u;
-                }
+            uint flags = nearSolids ? solidFlags[solidWordIndex(texel, rowY, z)] : 0u;
+            if (flags != 0u) {
+                uvec4 bytes = (uvec4(flags) >> uvec4(0u, 8u, 16u, 24u)) & 0xffu;
+                solid = notEqual(bytes & 1u, uvec4(0u));
                 for (int s = 0; s < 6; ++s)
-                    side[s] = mix(side[s], vec4(0.0), notEqual(bits & (1u << uint(s)), uvec4(0u)));
-                count -= bitCount(bits);
+                    side[s] =
+                        mix(side[s], vec4(0.0), notEqual(bytes & (2u << uint(s)), uvec4(0u)));
+                count -= bitCount((bytes >> 1u) & 63u);
             }
             vec4 sum = vec4(0.0);
             for (int s = 0; s < 6; ++s)
