@@ -134,7 +134,8 @@ Status SmokeSolver::setSolids(std::span<const shared::FluidSolid> solids) {
         const GridShape& g = options_.grid;
         solidCells_ = gpu::createBuffer(
             ctx_, uint64_t((g.cellsX + 3) / 4) * g.cellsY * g.cellsZ * sizeof(uint32_t),
-            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::DeviceLocal, "fluid solid cells");
+            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+            gpu::MemoryUsage::DeviceLocal, "fluid solid cells");
         solidHolders_ =
             gpu::createBuffer(ctx_, g.cellCount() * sizeof(uint32_t),
                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
@@ -143,6 +144,16 @@ Status SmokeSolver::setSolids(std::span<const shared::FluidSolid> solids) {
         const uint64_t bricks = uint64_t((g.cellsX + kPressureBrickX - 1) / kPressureBrickX) *
                                 ((g.cellsY + kPressureRows - 1) / kPressureRows) *
                                 ((g.cellsZ + kPressureLayers - 1) / kPressureLayers);
+        // One word per workgroup-sized block of the largest dispatch (cells + 1 along each axis;
+        // fluid_solids.glsl).
+        const std::array<uint32_t, 3>& w = options_.workgroup;
+        const uint64_t blocks = uint64_t(gpu::groupCount(g.cellsX + 1, w[0])) *
+                                gpu::groupCount(g.cellsY + 1, w[1]) *
+                                gpu::groupCount(g.cellsZ + 1, w[2]);
+        solidBlocks_ =
+            gpu::createBuffer(ctx_, blocks * sizeof(uint32_t),
+                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                              gpu::MemoryUsage::DeviceLocal, "fluid solid blocks");
         solidBricks_ =
             gpu::createBuffer(ctx_, bricks * sizeof(uint32_t),
                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
@@ -151,6 +162,10 @@ Status SmokeSolver::setSolids(std::span<const shared::FluidSolid> solids) {
     solids_.assign(solids.begin(), solids.end());
     programs_.setSolids(!solids_.empty());
     return Ok{};
+}
+
+gpu::DescriptorWrite SmokeSolver::solidBlocksWrite() const {
+    return gpu::bindBuffer(19, solidBlocks_.get() != VK_NULL_HANDLE ? solidBlocks_ : noSolidCells_);
 }
 
 gpu::DescriptorWrite SmokeSolver::solidCellsWrite() const {
@@ -249,11 +264,17 @@ void SmokeSolver::markSolids(VkCommandBuffer cmd) {
         gpu::bindBuffer(16, solidHolders_),
         gpu::bindBuffer(17, solidCells_),
         gpu::bindBuffer(18, solidBricks_),
+        gpu::bindBuffer(19, noSolidCells_),
+        gpu::bindBuffer(20, solidBlocks_),
     };
-    // Every cell air, then each solid over the cells of its bounding box (one cell wider: the box
-    // is found in fp32), then the faces, pigment and flags, which read every cell's holder.
+    // Every cell air and without flags, then each solid over the cells of its bounding box (one
+    // cell wider: the box is found in fp32), then the flags and the faces and pigment, over the
+    // solids' joint box two cells wider (a flag's neighbour and stencil bits reach a cell beyond;
+    // the whole axis where it is periodic: they wrap).
     vkCmdFillBuffer(cmd, solidHolders_.get(), 0, VK_WHOLE_SIZE, 0);
+    vkCmdFillBuffer(cmd, solidCells_.get(), 0, VK_WHOLE_SIZE, 0);
     vkCmdFillBuffer(cmd, solidBricks_.get(), 0, VK_WHOLE_SIZE, 0);
+    vkCmdFillBuffer(cmd, solidBlocks_.get(), 0, VK_WHOLE_SIZE, 0);
     gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
@@ -262,6 +283,7 @@ void SmokeSolver::markSolids(VkCommandBuffer cmd) {
     const float h = options_.grid.cellSize;
     const glm::ivec3 last = glm::ivec3(f.cells) - 1;
     const std::array<uint32_t, 3>& group = options_.workgroup;
+    glm::ivec3 jointLow = last + 1, jointHigh(-1);
     for (size_t i = 0; i < solids_.size(); ++i) {
         const shared::FluidSolid& s = solids_[i];
         const glm::vec3 a(s.endA), b(s.endB);
@@ -271,6 +293,8 @@ void SmokeSolver::markSolids(VkCommandBuffer cmd) {
         const glm::ivec3 high =
             glm::min(glm::ivec3(glm::ceil((glm::max(a, b) + r) / h - 0.5f)) + 1, last);
         if (glm::any(glm::greaterThan(low, high))) continue; // wholly outside the grid
+        jointLow = glm::min(jointLow, low);
+        jointHigh = glm::max(jointHigh, high);
         const glm::uvec3 extent(high - low + 1);
         cells.push(cmd, shared::FluidDispatch{uint32_t(i), uint32_t(low.x), uint32_t(low.y),
                                               uint32_t(low.z)});
@@ -279,12 +303,36 @@ void SmokeSolver::markSolids(VkCommandBuffer cmd) {
                       gpu::groupCount(extent.z, group[2]));
     }
     fieldBarrier(cmd);
-    const glm::uvec3 words((f.cells.x + 3) / 4, f.cells.y, f.cells.z);
-    dispatch(cmd, programs_.get("mark_solids", 0, 1), writes, words);
+    if (glm::any(glm::greaterThan(jointLow, jointHigh))) return; // no solid in the grid
+    for (int axis = 0; axis < 3; ++axis) {
+        jointLow[axis] = options_.periodic(axis) ? 0 : std::max(jointLow[axis] - 2, 0);
+        jointHigh[axis] =
+            options_.periodic(axis) ? last[axis] : std::min(jointHigh[axis] + 2, last[axis]);
+    }
+    // Over the box's flag words (four cells along x each; the origin in words along x).
+    const glm::ivec3 firstWord(jointLow.x / 4, jointLow.y, jointLow.z);
+    const glm::uvec3 words(uint32_t(jointHigh.x / 4 - firstWord.x + 1),
+                           uint32_t(jointHigh.y - jointLow.y + 1),
+                           uint32_t(jointHigh.z - jointLow.z + 1));
+    gpu::Program& flags = programs_.get("mark_solids", 0, 1);
+    flags.bind(cmd, writes);
+    flags.push(cmd, shared::FluidDispatch{0, uint32_t(firstWord.x), uint32_t(firstWord.y),
+                                          uint32_t(firstWord.z)});
+    ++dispatches_;
+    vkCmdDispatch(cmd, gpu::groupCount(words.x, group[0]), gpu::groupCount(words.y, group[1]),
+                  gpu::groupCount(words.z, group[2]));
     fieldBarrier(cmd);
+    // Over the box's cells and the faces past them (one more along each axis).
     writes[6] = gpu::bindBuffer(15, solidCells_);
     writes[8] = gpu::bindBuffer(17, noSolidCells_);
-    dispatch(cmd, programs_.get("mark_solids", 0, 2), writes, f.cells + glm::uvec3(1));
+    gpu::Program& faces = programs_.get("mark_solids", 0, 2);
+    faces.bind(cmd, writes);
+    faces.push(cmd, shared::FluidDispatch{0, uint32_t(jointLow.x), uint32_t(jointLow.y),
+                                          uint32_t(jointLow.z)});
+    ++dispatches_;
+    const glm::uvec3 extent(jointHigh - jointLow + 2);
+    vkCmdDispatch(cmd, gpu::groupCount(extent.x, group[0]), gpu::groupCount(extent.y, group[1]),
+                  gpu::groupCount(extent.z, group[2]));
     fieldBarrier(cmd);
 }
 
@@ -314,6 +362,7 @@ void SmokeSolver::splatImpulses(VkCommandBuffer cmd) {
         storage(5, f.pigment[size_t(f.currentPigment)]),
         gpu::bindBuffer(6, splatRegions_),
         solidCellsWrite(),
+        solidBlocksWrite(),
     };
     for (uint32_t target = 0; target < 4; ++target) {
         gpu::Program& prog = programs_.get("splat_impulses", target);
@@ -355,6 +404,7 @@ void SmokeSolver::advectVelocity(VkCommandBuffer cmd) {
             w.push_back(storage(5, out[c]));
             w.push_back(storage(6, out[c]));
             w.push_back(solidCellsWrite());
+            w.push_back(solidBlocksWrite());
             dispatch(cmd, programs_.get("advect_velocity", c, pass, direct), w,
                      faceExtent(options_.grid, int(c)));
         }
@@ -376,6 +426,7 @@ void SmokeSolver::advectPigment(VkCommandBuffer cmd) {
         w.push_back(storage(6, f.pigment[size_t(to)]));
         w.push_back(storage(7, f.pigment[size_t(to)]));
         w.push_back(solidCellsWrite());
+        w.push_back(solidBlocksWrite());
         dispatch(cmd, programs_.get("advect_pigment", MFX_TARGET_PIGMENT, pass, direct), w,
                  f.cells);
         storeFields(cmd, direct, {{&f.scratch[0], &f.pigment[size_t(to)]}});
@@ -392,7 +443,8 @@ void SmokeSolver::applyBuoyancy(VkCommandBuffer cmd) {
                                            storage(2, f.pigment[size_t(f.currentPigment)]),
                                            gpu::bindBuffer(3, f.scratch[1]),
                                            storage(4, velocityY),
-                                           solidCellsWrite()};
+                                           solidCellsWrite(),
+                                           solidBlocksWrite()};
     dispatch(cmd, programs_.get("apply_buoyancy", MFX_TARGET_VELOCITY_Y, 0, direct_), writes,
              faceExtent(options_.grid, 1));
     storeFields(cmd, direct_, {{&f.scratch[1], &velocityY}});
@@ -435,6 +487,7 @@ void SmokeSolver::applyVorticityForce(VkCommandBuffer cmd) {
     for (uint32_t c = 0; c < 3; ++c)
         apply.push_back(storage(8 + c, v[c]));
     apply.push_back(solidCellsWrite());
+    apply.push_back(solidBlocksWrite());
     dispatch(cmd, programs_.get("apply_vorticity_force", 0, 0, direct_), apply,
              f.cells + glm::uvec3(1));
     storeFields(cmd, direct_,
@@ -456,6 +509,7 @@ void SmokeSolver::diffuseViscosity(VkCommandBuffer cmd) {
         for (uint32_t c = 0; c < 3; ++c)
             w.push_back(storage(7 + c, f.velocity[size_t(out)][c]));
         w.push_back(solidCellsWrite());
+        w.push_back(solidBlocksWrite());
         for (uint32_t c = 0; c < 3; ++c)
             dispatch(cmd, programs_.get("diffuse_viscosity", c), w,
                      faceExtent(options_.grid, int(c)));
@@ -490,6 +544,7 @@ void SmokeSolver::computeDivergence(VkCommandBuffer cmd) {
     w.push_back(gpu::bindBuffer(7, f.packedPressure[1]));
     w.push_back(storage(8, f.pressure[size_t(1 - f.currentPressure)]));
     w.push_back(solidCellsWrite());
+    w.push_back(solidBlocksWrite());
     dispatch(cmd, programs_.get("compute_divergence", 0, firstSweep, direct_), w, f.cells);
     // Either path's barriers (the copy's carry a global memory barrier) cover the sweep's output.
     storeFields(cmd, direct_, {{&f.scratch[0], &f.divergence}});
@@ -543,6 +598,7 @@ void SmokeSolver::solvePressure(VkCommandBuffer cmd) {
             gpu::bindBuffer(7, f.packedPressure[packedIn]),
             gpu::bindBuffer(8, solidBricks_.get() != VK_NULL_HANDLE ? solidBricks_ : noSolidCells_),
             solidCellsWrite(),
+            solidBlocksWrite(),
         };
         dispatch(cmd, programs_.get("solve_pressure", 0, mode), writes, bricks);
         fieldBarrier(cmd);
@@ -562,7 +618,8 @@ void SmokeSolver::project(VkCommandBuffer cmd) {
                                           storage(4, f.pressure[size_t(f.currentPressure)]),
                                           gpu::bindBuffer(5, f.scratch[c]),
                                           storage(6, v[c]),
-                                          solidCellsWrite()};
+                                          solidCellsWrite(),
+                                          solidBlocksWrite()};
         dispatch(cmd, programs_.get("project", c, 0, direct_), w,
                  faceExtent(options_.grid, int(c)));
     }
@@ -611,7 +668,7 @@ void SmokeSolver::recordStep(VkCommandBuffer cmd, gpu::GpuTimer* timer) {
 uint64_t SmokeSolver::memoryBytes() const {
     uint64_t bytes = fields_.memoryBytes() + parameters_.size + ownEmitters_.size +
                      solidsBuffer_.size + solidCells_.size + solidHolders_.size +
-                     solidBricks_.size + noSolidCells_.size;
+                     solidBricks_.size + solidBlocks_.size + noSolidCells_.size;
     if (multigrid_) bytes += multigrid_->memoryBytes();
     return bytes;
 }

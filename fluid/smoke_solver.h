@@ -152,6 +152,8 @@ private:
 
     // The solid cells (binding 15 of the stages that read them: shaders/fluid/fluid_solids.glsl).
     gpu::DescriptorWrite solidCellsWrite() const;
+    // The blocks near solids (binding 19: fluid_solids.glsl).
+    gpu::DescriptorWrite solidBlocksWrite() const;
 
     void markSolids(VkCommandBuffer cmd);
     void splatImpulses(VkCommandBuffer cmd);
@@ -192,6 +194,7 @@ private:
     gpu::Buffer solidCells_;                 // a flag byte per cell (fluid_solids.glsl; likewise)
     gpu::Buffer solidHolders_; // per cell, which solid holds it (mark_solids.comp; likewise)
     gpu::Buffer solidBricks_;  // per Jacobi brick, whether solids are near (likewise)
+    gpu::Buffer solidBlocks_;  // per workgroup-sized block, whether solids are near (likewise)
     gpu::Buffer noSolidCells_; // bound in its place before any solid
 
     mutable uint32_t dispatches_ = 0; // vkCmdDispatch calls recorded so far

@@ -115,7 +115,7 @@ void main() {
         }
         if (kPass != MFX_ADVECT_PREDICT) value = flushTiny(value * exp(-params.rates.x * timeStep()));
         // None inside a solid (docs/fluid.md, "Solids"): the last pass writes 0 there.
-        if (kPass != MFX_ADVECT_PREDICT && solidCell(q)) value = vec4(0.0);
+        if (kPass != MFX_ADVECT_PREDICT && solidsNearWorkgroup() && solidCell(q)) value = vec4(0.0);
     }
     if (kDirectStore)
         imageStore(pigmentOutImage, q, MFX_STORED4(value));

@@ -70,7 +70,9 @@ void main() {
     value = lastPass ? flushTiny(value) : value;
     // Solid faces move with the solid, not with the air: the last pass keeps the solid's velocity
     // they hold (docs/fluid.md, "Solids"); the passes before it advect them as any face.
-    if (lastPass && solidFace(c, at)) value = loadFaceField(kVelocityField, c, at);
+    // (A periodic axis's last face is face 0, outside this workgroup's block.)
+    bool near = any(notEqual(at, q)) || solidsNearWorkgroup();
+    if (lastPass && near && solidFace(c, at)) value = loadFaceField(kVelocityField, c, at);
     if (kDirectStore)
         imageStore(outField, q, vec4(MFX_STORED(value)));
     else

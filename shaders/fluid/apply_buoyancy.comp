@@ -18,7 +18,7 @@ void main() {
     ivec3 q = ivec3(gl_GlobalInvocationID);
     if (any(greaterThanEqual(q, faceCount(1)))) return;
     float v = imageLoad(velocityY, q).r;
-    if (!wallNormalFace(1, q) && !solidFace(1, q)) { // solid faces keep the solid's velocity
+    if (!wallNormalFace(1, q) && !(solidsNearWorkgroup() && solidFace(1, q))) { // solid faces keep the solid's velocity
         float density = 0.5 * (imageLoad(pigment, resolveCell(q - ivec3(0, 1, 0))).a +
                                imageLoad(pigment, resolveCell(q)).a);
         v += timeStep() * params.rates.y * density;

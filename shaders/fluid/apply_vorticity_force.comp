@@ -39,7 +39,7 @@ float velocity(int c, ivec3 q) {
 float forcedFace(int c, ivec3 q, vec4 here, vec4 below) {
     float value = velocity(c, q);
     // Solid faces keep the solid's velocity.
-    if (!wallNormalFace(c, q) && !solidFace(c, q)) value += timeStep() * (0.5 * (below[c] + here[c]));
+    if (!wallNormalFace(c, q) && !(solidsNearWorkgroup() && solidFace(c, q))) value += timeStep() * (0.5 * (below[c] + here[c]));
     return value;
 }
 

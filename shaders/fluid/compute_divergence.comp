@@ -44,7 +44,8 @@ void main() {
                 (imageLoad(velocityZ, q + ivec3(0, 0, 1)).r - imageLoad(velocityZ, q).r);
     // A solid cell has no pressure unknown, and so no divergence to remove (docs/fluid.md,
     // "Solids").
-    bool solid = solidCell(q);
+    bool near = solidsNearWorkgroup();
+    bool solid = near && solidCell(q);
     float div = solid ? 0.0 : sum / cellSize();
     if (kDirectStore)
         imageStore(divergenceImage, q, vec4(div));
@@ -55,7 +56,7 @@ void main() {
     // As solve_pressure.comp computes a cold first sweep, operation for operation.
     float h = cellSize();
     float h2 = h * h;
-    int count = jacobiNeighbourCount(q) - bitCount(solidNeighbours(q));
+    int count = jacobiNeighbourCount(q) - bitCount(near ? solidNeighbours(q) : 0u);
     float p = count == 0 || solid ? 0.0 : (0.0 - h2 * div) / float(count);
     if (kFirstSweep == 1u) {
         int element = 4 * packedIndex(0, q.y, q.z);

@@ -28,7 +28,7 @@ void main() {
     ivec3 q = ivec3(gl_GlobalInvocationID);
     if (any(greaterThanEqual(q, faceCount(c)))) return;
     float value = 0.0;
-    if (solidFace(c, q)) { // the solid's velocity, a fixed boundary value
+    if (solidsNearWorkgroup() && solidFace(c, q)) { // the solid's velocity, a fixed boundary value
         value = c == 0 ? imageLoad(sourceX, q).r
                        : (c == 1 ? imageLoad(sourceY, q).r : imageLoad(sourceZ, q).r);
     } else if (!wallNormalFace(c, q)) {

@@ -18,6 +18,26 @@ layout(constant_id = 15) const bool kSolids = false;
 layout(std430, binding = 15) readonly buffer SolidFlags {
     uint solidFlags[];
 };
+// One word per block of the workgroup's shape over cells + 1 along each axis: nonzero where a
+// cell from one before the block to its last has a nonzero flag byte, so that a workgroup of a
+// dispatch over the cells or faces from 0 knows from one load, the same for all its invocations,
+// whether any solid test of its own cells and faces can be true.
+layout(std430, binding = 19) readonly buffer SolidBlocks {
+    uint solidBlocks[];
+};
+
+// The block index of workgroup g (mark_solids.comp writes them).
+int solidBlockIndex(uvec3 g) {
+    uvec3 blocks = (uvec3(cellCount()) + uvec3(1) + gl_WorkGroupSize - 1u) / gl_WorkGroupSize;
+    return int(g.x + blocks.x * (g.y + blocks.y * g.z));
+}
+
+// Whether this workgroup's cells and faces (a dispatch from cell or face 0 in the solver's
+// workgroup shape) may have solids: where false, solidCell, solidFace and solidNeighbours of them
+// are all false.
+bool solidsNearWorkgroup() {
+    return kSolids && solidBlocks[solidBlockIndex(gl_WorkGroupID)] != 0u;
+}
 
 // The word of cells 4 texel .. 4 texel + 3 of row (y, z).
 int solidWordIndex(int texel, int y, int z) {

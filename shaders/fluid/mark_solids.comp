@@ -4,17 +4,19 @@
 // every step with its surface's velocity). Twin: fluid/reference/mark_solids.cpp. Each solid is a
 // capsule (shared::FluidSolid) where the step ends, with its two ends' velocities.
 //
-// With the holders and the pressure bricks' flags cleared to 0, three passes (kPass, constant
-// id 11):
+// With the holders, the flags and the bricks' and blocks' words cleared to 0, three passes (kPass,
+// constant id 11), 1 and 2 over the solids' joint bounding box two cells wider only (the whole
+// of a periodic axis), from its first cell (dispatchInfo's origin; in words along x for pass 1):
 //   0  one dispatch per solid over the cells of its bounding box (the solid's index in
 //      dispatchInfo.target, the box's first cell in its origin): each cell whose centre it holds
 //      takes max(its holder, kMaxSolids - index), so the first solid in list order wins, as in the
 //      reference; 0 stays air;
 //   1  over the flag words (four cells along x each): the cells' flag bytes
-//      (shaders/fluid/fluid_solids.glsl), and a word with any flag marks its Jacobi brick
+//      (shaders/fluid/fluid_solids.glsl); a word with any flag marks its Jacobi brick
 //      (solve_pressure.comp: 4 x kPressureRows x kPressureLayers cells), so that a sweep reads the
-//      flags only where solids are near;
-//   2  over cells + 1 along each axis: every solid face of each component takes its solid's
+//      flags only where solids are near, and a cell with a flag the workgroup blocks that reach it
+//      (fluid_solids.glsl), so that the other stages read them only there;
+//   2  over the box's cells and one more along each axis: every solid face of each component takes its solid's
 //      velocity at the face (the solid holding the cell below it, else the one above), and a solid
 //      cell's pigment is set to 0.
 #version 450
@@ -43,6 +45,22 @@ layout(std430, binding = 17) buffer SolidFlagsOut {
 layout(std430, binding = 18) buffer SolidBricks {
     uint solidBricks[];
 };
+// The workgroup blocks' words (fluid_solids.glsl; binding 19 is their read-only view).
+layout(std430, binding = 20) buffer SolidBlocksOut {
+    uint blocksOut[];
+};
+
+// Marks the blocks whose cells from one before them to their last include cell x (per axis the
+// blocks x / S and (x + 1) / S, S the workgroup's size).
+void markBlocks(ivec3 x) {
+    uvec3 size = gl_WorkGroupSize;
+    uvec3 blocks = (uvec3(cellCount()) + uvec3(1) + size - 1u) / size;
+    uvec3 low = uvec3(x) / size, high = min((uvec3(x) + 1u) / size, blocks - 1u);
+    for (uint k = low.z; k <= high.z; ++k)
+        for (uint j = low.y; j <= high.y; ++j)
+            for (uint i = low.x; i <= high.x; ++i)
+                atomicOr(blocksOut[i + blocks.x * (j + blocks.y * k)], 1u);
+}
 
 layout(constant_id = 11) const uint kPass = 0u;
 // The Jacobi brick's rows and layers (fluid/smoke_fields.h kPressureRows, kPressureLayers).
@@ -127,12 +145,17 @@ void main() {
         return;
     }
     ivec3 n = cellCount();
+    // Passes 1 and 2 run over the solids' joint box (in words along x for pass 1), from its origin.
+    q += ivec3(dispatchInfo.originX, dispatchInfo.originY, dispatchInfo.originZ);
     if (kPass == 1u) {
         int texel = q.x;
         if (4 * texel >= n.x || q.y >= n.y || q.z >= n.z) return;
         uint word = 0u;
-        for (int i = 0; i < 4 && 4 * texel + i < n.x; ++i)
-            word |= flagByte(ivec3(4 * texel + i, q.y, q.z)) << (8 * i);
+        for (int i = 0; i < 4 && 4 * texel + i < n.x; ++i) {
+            uint byte = flagByte(ivec3(4 * texel + i, q.y, q.z));
+            word |= byte << (8 * i);
+            if (byte != 0u) markBlocks(ivec3(4 * texel + i, q.y, q.z));
+        }
         flagsOut[solidWordIndex(texel, q.y, q.z)] = word;
         if (word != 0u) {
             ivec3 bricks = (n + ivec3(3, kBrickRows - 1, kBrickLayers - 1)) /

@@ -32,7 +32,8 @@ void main() {
     ivec3 q = ivec3(gl_GlobalInvocationID);
     if (any(greaterThanEqual(q, faceCount(c)))) return;
     float value = imageLoad(velocity, q).r;
-    if (!wallNormalFace(c, q) && !solidFace(c, q)) { // u·n = u_solid·n kept on solid faces
+    // u·n = u_solid·n kept on solid faces.
+    if (!wallNormalFace(c, q) && !(solidsNearWorkgroup() && solidFace(c, q))) {
         ivec3 below = q;
         below[c] -= 1;
         float gradient = (pressureAt(q, c) - pressureAt(below, c)) * inverseCellSize();
