@@ -242,9 +242,9 @@ const BadScene kBadScenes[] = {
      R"({"effects": [{"type": "smoke", "pressure": "multigrid", "collide": true}]})",
      "effects[0].collide: only with \"pressure\": \"jacobi\" (the other pressure solvers do not "
      "take solids yet)"},
-    {"CollideBonesWithoutCollide",
-     R"({"effects": [{"type": "smoke", "collide_bones": ["@right_leg"]}]})",
-     "effects[0].collide_bones: only with \"collide\": true"},
+    {"CollideThicknessWithMgpcg",
+     R"({"effects": [{"type": "smoke", "pressure": "mgpcg", "collide_thickness": 0.1}]})",
+     "effects[0].collide_thickness: only with \"pressure\": \"jacobi\""},
     {"NegativeCollideThickness",
      R"({"effects": [{"type": "smoke", "collide": true, "collide_thickness": -1}]})",
      "effects[0].collide_thickness: -1 is outside"},
