@@ -126,38 +126,31 @@ Status SmokeSolver::setSolids(std::span<const shared::FluidSolid> solids) {
     // Made once, at their largest, and never replaced: a recording in flight (several steps
     // recorded together, solids set between them) may name them.
     if (!solids.empty() && solidsBuffer_.get() == VK_NULL_HANDLE) {
-        solidsBuffer_ =
-            gpu::createBuffer(ctx_, kMaxSolids * sizeof(shared::FluidSolid),
-                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                              gpu::MemoryUsage::DeviceLocal, "fluid solids");
-        // A flag byte per cell, rows padded to whole words of four (fluid_solids.glsl).
+        // Storage the GPU fills (vkCmdUpdateBuffer, vkCmdFillBuffer) and reads.
+        auto make = [&](uint64_t bytes, const char* name) {
+            return gpu::createBuffer(
+                ctx_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                gpu::MemoryUsage::DeviceLocal, name);
+        };
         const GridShape& g = options_.grid;
-        solidCells_ = gpu::createBuffer(
-            ctx_, uint64_t((g.cellsX + 3) / 4) * g.cellsY * g.cellsZ * sizeof(uint32_t),
-            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-            gpu::MemoryUsage::DeviceLocal, "fluid solid cells");
-        solidHolders_ =
-            gpu::createBuffer(ctx_, g.cellCount() * sizeof(uint32_t),
-                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                              gpu::MemoryUsage::DeviceLocal, "fluid solid holders");
+        const std::array<uint32_t, 3>& w = options_.workgroup;
+        solidsBuffer_ = make(kMaxSolids * sizeof(shared::FluidSolid), "fluid solids");
+        // A flag byte per cell, rows padded to whole words of four (fluid_solids.glsl).
+        solidCells_ = make(uint64_t((g.cellsX + 3) / 4) * g.cellsY * g.cellsZ * sizeof(uint32_t),
+                           "fluid solid cells");
+        solidHolders_ = make(g.cellCount() * sizeof(uint32_t), "fluid solid holders");
         // One word per Jacobi brick (solve_pressure.comp).
-        const uint64_t bricks = uint64_t((g.cellsX + kPressureBrickX - 1) / kPressureBrickX) *
-                                ((g.cellsY + kPressureRows - 1) / kPressureRows) *
-                                ((g.cellsZ + kPressureLayers - 1) / kPressureLayers);
+        solidBricks_ =
+            make(uint64_t((g.cellsX + kPressureBrickX - 1) / kPressureBrickX) *
+                     ((g.cellsY + kPressureRows - 1) / kPressureRows) *
+                     ((g.cellsZ + kPressureLayers - 1) / kPressureLayers) * sizeof(uint32_t),
+                 "fluid solid bricks");
         // One word per workgroup-sized block of the largest dispatch (cells + 1 along each axis;
         // fluid_solids.glsl).
-        const std::array<uint32_t, 3>& w = options_.workgroup;
-        const uint64_t blocks = uint64_t(gpu::groupCount(g.cellsX + 1, w[0])) *
+        solidBlocks_ = make(uint64_t(gpu::groupCount(g.cellsX + 1, w[0])) *
                                 gpu::groupCount(g.cellsY + 1, w[1]) *
-                                gpu::groupCount(g.cellsZ + 1, w[2]);
-        solidBlocks_ =
-            gpu::createBuffer(ctx_, blocks * sizeof(uint32_t),
-                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                              gpu::MemoryUsage::DeviceLocal, "fluid solid blocks");
-        solidBricks_ =
-            gpu::createBuffer(ctx_, bricks * sizeof(uint32_t),
-                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                              gpu::MemoryUsage::DeviceLocal, "fluid solid bricks");
+                                gpu::groupCount(g.cellsZ + 1, w[2]) * sizeof(uint32_t),
+                            "fluid solid blocks");
     }
     solids_.assign(solids.begin(), solids.end());
     programs_.setSolids(!solids_.empty());

@@ -54,11 +54,12 @@ double advectionPasses(const SolverOptions& o) {
 }
 
 StageBytes markSolidsBytes(const SolverOptions& o, const StageWork& w) {
-    // The mark, two 32-bit words a cell whatever the storage, written once and read back once by
-    // the faces' and neighbours' pass (the few solid faces and cells it also writes not counted).
+    // Whatever the storage: the holder (a 32-bit word a cell) cleared and read once by the flags'
+    // pass, the flags (a byte a cell) written once (the few solid faces and cells, and the boxes
+    // the solids mark, not counted: a small part of the grid).
     if (w.solids == 0) return {};
     const double cells = double(o.grid.cellCount());
-    return {4.0 * cells, 8.0 * cells};
+    return {4.0 * cells, 5.0 * cells};
 }
 
 StageBytes splatBytes(const SolverOptions& o, const StageWork& w) {
@@ -200,7 +201,7 @@ std::span<const StageEntry> stageTable() {
     static const StageEntry table[] = {
         {Stage::MarkSolids, "mark_solids", "mark_solids", "", &SmokeSolver::markSolids, nullptr,
          referenceStage<&ReferenceSolver::markSolids>, markSolidsBytes,
-         "the solid mark (two words a cell) written, and read once for faces and neighbours", true},
+         "each cell's holder (a word) cleared and read once, its flag byte written", true},
         {Stage::SplatImpulses, "splat_impulses", "emitter_bounds splat_impulses",
          "sparse_splat_impulses", &SmokeSolver::splatImpulses, &SparseSmokeSolver::splatImpulses,
          referenceSplat, splatBytes,

@@ -48,6 +48,35 @@ inline double solidFaceError(const fluid::ReferenceSolver& marks, const fluid::F
     return largest;
 }
 
+// The velocity at the centre of cell q of `state` (each component the mean of its two faces).
+inline glm::dvec3 centredVelocity(const fluid::FieldState& state,
+                                  const fluid::ReferenceSolver& marks, glm::ivec3 q) {
+    glm::dvec3 u;
+    for (int c = 0; c < 3; ++c) {
+        glm::ivec3 hi = q;
+        hi[c] += 1;
+        u[c] = 0.5 * (double(component(state, c)[marks.faceIndex(c, q)]) +
+                      double(component(state, c)[marks.faceIndex(c, hi)]));
+    }
+    return u;
+}
+
+// The mean speed of the fluid cells (as `marks` has them) of the layers y in [yLow, yHigh).
+inline double meanFluidSpeed(const fluid::FieldState& state, const fluid::ReferenceSolver& marks,
+                             int yLow, int yHigh) {
+    const fluid::GridShape& g = state.grid;
+    double sum = 0.0;
+    int n = 0;
+    for (int k = 0; k < int(g.cellsZ); ++k)
+        for (int j = yLow; j < yHigh; ++j)
+            for (int i = 0; i < int(g.cellsX); ++i) {
+                if (marks.solidCell({i, j, k})) continue;
+                sum += glm::length(centredVelocity(state, marks, {i, j, k}));
+                ++n;
+            }
+    return sum / std::max(n, 1);
+}
+
 // The mean x velocity and the mean magnitude of the curl of the cell-centred velocity over the
 // fluid cells (as `marks` has them; the grid's outer layer left out) whose centres lie in
 // [x0, x1] along x and within `half` of `centre` along y and z.
@@ -58,16 +87,7 @@ inline FlowRegion flowRegion(const fluid::FieldState& state, const fluid::Refere
                              glm::dvec3 centre, double x0, double x1, double half) {
     const fluid::GridShape& g = state.grid;
     const double h = g.cellSize;
-    auto cellVelocity = [&](glm::ivec3 q) {
-        glm::dvec3 u;
-        for (int c = 0; c < 3; ++c) {
-            glm::ivec3 hi = q;
-            hi[c] += 1;
-            u[c] = 0.5 * (double(component(state, c)[marks.faceIndex(c, q)]) +
-                          double(component(state, c)[marks.faceIndex(c, hi)]));
-        }
-        return u;
-    };
+    auto cellVelocity = [&](glm::ivec3 q) { return centredVelocity(state, marks, q); };
     FlowRegion result;
     int n = 0;
     for (int k = 1; k < int(g.cellsZ) - 1; ++k)

@@ -421,23 +421,7 @@ TEST_F(GpuSolidsTest, TheKickThroughACloudPushesItAndNeverHoldsPigmentInside) {
     }
     // The mean speed of the band's fluid cells after the kick.
     auto meanSpeed = [&](const FieldState& state) {
-        double sum = 0.0;
-        int n = 0;
-        for (int k = 0; k < int(kN); ++k)
-            for (int j = int(kBandLow); j < int(kBandHigh); ++j)
-                for (int i = 0; i < int(kN); ++i) {
-                    if (marks.solidCell({i, j, k})) continue;
-                    glm::dvec3 u;
-                    for (int c = 0; c < 3; ++c) {
-                        glm::ivec3 hi(i, j, k);
-                        hi[c] += 1;
-                        u[c] = 0.5 * (double(component(state, c)[marks.faceIndex(c, {i, j, k})]) +
-                                      double(component(state, c)[marks.faceIndex(c, hi)]));
-                    }
-                    sum += glm::length(u);
-                    ++n;
-                }
-        return sum / std::max(n, 1);
+        return meanFluidSpeed(state, marks, int(kBandLow), int(kBandHigh));
     };
     const double speed = meanSpeed(with->state()), stillSpeed = meanSpeed(without->state());
     std::printf(

@@ -227,24 +227,7 @@ TEST(FluidSolids, TheKickThroughACloudPushesItAndNeverHoldsPigmentInside) {
     }
     // The mean speed of the fluid cells of the band, after the kick.
     auto meanSpeed = [&](const ReferenceSolver& s) {
-        const fluid::FieldState state = s.state();
-        double sum = 0.0;
-        int n = 0;
-        for (int k = 0; k < int(kN); ++k)
-            for (int j = int(kBandLow); j < int(kBandHigh); ++j)
-                for (int i = 0; i < int(kN); ++i) {
-                    if (s.solidCell({i, j, k})) continue;
-                    glm::dvec3 u;
-                    for (int c = 0; c < 3; ++c) {
-                        glm::ivec3 hi(i, j, k);
-                        hi[c] += 1;
-                        u[c] = 0.5 * (double(component(state, c)[s.faceIndex(c, {i, j, k})]) +
-                                      double(component(state, c)[s.faceIndex(c, hi)]));
-                    }
-                    sum += glm::length(u);
-                    ++n;
-                }
-        return sum / n;
+        return meanFluidSpeed(s.state(), s, int(kBandLow), int(kBandHigh));
     };
     speed = meanSpeed(with);
     stillSpeed = meanSpeed(without);
