@@ -122,11 +122,12 @@ SANITIZER_EXCLUDED=(
     # the kick through a cloud: 30 reference steps at 24³; the solids' stages: the other FluidSolids
     '^FluidSolids[.]TheKick'
     # solids on the GPU over many steps (2,000-step hard cases, 100 steps, the kick, the spheres,
-    # both store paths) and their fp16 and corrected-advection stage variants; the solids' host
-    # code (setSolids, the mark's recording, the bindings): GpuSolids/GpuSolidsStageTest's fp32
-    # stages, GpuSolidsTest.RemovedSolids... and .BadSolids...
+    # both store paths, split and whole stages) and their fp16 and corrected-advection stage
+    # variants; the solids' host code (setSolids, the mark's recording, the split dispatches, the
+    # bindings): GpuSolids/GpuSolidsStageTest's fp32 stages, GpuSolidsTest.RemovedSolids...,
+    # .BadSolids... and .TheStagesAreSplit...
     '^GpuSolids/GpuSolidsHardCaseTest' '^GpuSolids/GpuSolidsStageTest[.].*(_fp16|maccormack|bfecc)'
-    '^GpuSolidsTest[.](HundredSteps|BothStorePaths|TheKick|AMovingSphere|AStillSphere)'
+    '^GpuSolidsTest[.](HundredSteps|BothStorePaths|SplitStages|TheKick|AMovingSphere|AStillSphere)'
     # a scene's kick with and without collision, 36 frames each; the scene's solids' set-up and
     # steps: SceneCollideTest.CollideBones...
     '^SceneCollideTest[.]TheKicks'

@@ -103,6 +103,7 @@ struct SolverChoice {
     fluid::ByDevice residualInRestriction = fluid::ByDevice::Auto;
     fluid::ByDevice firstSweepInDivergence = fluid::ByDevice::Auto;
     bool bodySolids = false; // --solids body
+    fluid::ByDevice solidLists = fluid::ByDevice::Auto;
 };
 
 // The solids of --solids body: the built-in fighter's capsules (core/anim/body_capsules.h) in the
@@ -141,6 +142,7 @@ Result<GridResult> benchGrid(const gpu::Context& ctx, const std::string& scenari
     scenario.options.multigrid.coarseCells = choice.coarseCells;
     scenario.options.multigrid.residualInRestriction = choice.residualInRestriction;
     scenario.options.firstSweepInDivergence = choice.firstSweepInDivergence;
+    scenario.options.solidLists = choice.solidLists;
     auto solverResult = fluid::SmokeSolver::create(ctx, scenario.options);
     if (!solverResult) return solverResult.error();
     fluid::SmokeSolver& solver = *solverResult.value();
@@ -207,9 +209,9 @@ Result<GridResult> benchGrid(const gpu::Context& ctx, const std::string& scenari
 int runBenchSolver(const cli::ParsedArgs& parsed) {
     const std::string domain = parsed.value("domain", "dense");
     if (domain == "sparse") {
-        for (const char* denseOnly :
-             {"store", "copy-mib", "markdown", "workgroups", "coarse-group", "brick",
-              "coarse-cells", "residual-in-restriction", "first-sweep-in-divergence", "solids"})
+        for (const char* denseOnly : {"store", "copy-mib", "markdown", "workgroups", "coarse-group",
+                                      "brick", "coarse-cells", "residual-in-restriction",
+                                      "first-sweep-in-divergence", "solids", "solid-lists"})
             if (parsed.has(denseOnly)) {
                 printError(std::string("--") + denseOnly + " is an option of the dense domain");
                 return kExitUsage;
@@ -243,9 +245,10 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
         printError("--brick must be 0 (by device), 1, 2 or 4, not 3");
         return kExitUsage;
     }
-    std::optional<fluid::ByDevice> fused, firstSweep;
+    std::optional<fluid::ByDevice> fused, firstSweep, solidLists;
     for (auto [option, choice] : {std::pair{"residual-in-restriction", &fused},
-                                  std::pair{"first-sweep-in-divergence", &firstSweep}}) {
+                                  std::pair{"first-sweep-in-divergence", &firstSweep},
+                                  std::pair{"solid-lists", &solidLists}}) {
         *choice = fluid::byDeviceFromName(parsed.value(option, "auto"));
         if (!*choice) {
             printError(std::string("--") + option + " must be auto, on or off, not \"" +
@@ -315,9 +318,13 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
     resolved.jacobiIterations = jacobi.value();
     resolved.firstSweepInDivergence = *firstSweep;
     const bool firstSweepFused = resolved.firstSweepFused();
+    const bool splitSolids = fluid::splitsSolids(*solidLists, ctx);
     if (bodySolids)
-        std::printf("solids: the fighter's body, %zu capsules mid-kick (--solids body)\n\n",
-                    benchBodySolids(glm::vec3(1.0f), 1.0f / 60.0f).size());
+        std::printf("solids: the fighter's body, %zu capsules mid-kick (--solids body); the "
+                    "stages %s\n\n",
+                    benchBodySolids(glm::vec3(1.0f), 1.0f / 60.0f).size(),
+                    splitSolids ? "split into the blocks away from and near them (--solid-lists)"
+                                : "dispatched whole (--solid-lists)");
     if (*pressure == fluid::PressureSolver::Jacobi)
         std::printf("the first sweep %s\n\n", firstSweepFused ? "computed by the divergence pass"
                                                               : "computed by the pressure pass");
@@ -335,7 +342,7 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
             auto r =
                 benchGrid(ctx, scenarioName, cells, workgroup,
                           {jacobi.value(), *pressure, *store, coarseGroup.value(), brick.value(),
-                           coarseCells.value(), *fused, *firstSweep, bodySolids},
+                           coarseCells.value(), *fused, *firstSweep, bodySolids, *solidLists},
                           steps.value());
             if (!r) {
                 printError(r.error().message);
@@ -439,7 +446,10 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
                  ? "first sweep in the solve, "
                  : "") +
             (direct ? "direct" : "buffer") + " store (" + scenarioName +
-            (bodySolids ? ", the fighter's body as solids" : "") + ")";
+            (bodySolids ? std::string(", the fighter's body as solids") +
+                              (splitSolids ? "" : ", stages whole")
+                        : std::string()) +
+            ")";
         if (Status written = writeMarkdownSection(parsed.value("markdown"), title, ctx,
                                                   reproduceCommand("bench solver", parsed), body);
             !written) {
@@ -509,6 +519,7 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
                                    {"brick", hierarchy ? bricks : 0u},
                                    {"coarse_cells", hierarchy ? fusedCells : 0u},
                                    {"solids", solidsName},
+                                   {"solid_lists", bodySolids && splitSolids},
                                    {"residual_in_restriction", residualFused},
                                    {"first_sweep_in_divergence", firstSweepFused},
                                    {"steps", steps.value()},

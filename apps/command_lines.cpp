@@ -143,6 +143,9 @@ CommandLine benchSolverCommandLine() {
         .option("solids", "none|body",
                 "dense, jacobi: moving solids in the grid, none (default) or the built-in "
                 "fighter's body capsules mid-kick, half size, standing in the box")
+        .option("solid-lists", "auto|on|off",
+                "with solids: each stage that reads them dispatched over the blocks away from "
+                "them and over those near them (default auto: on a CPU device only)")
         .option("first-sweep-in-divergence", "auto|on|off",
                 "jacobi: the divergence pass computes the cold solve's first sweep (default "
                 "auto: on every device)")

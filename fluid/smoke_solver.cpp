@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <cstring>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
 namespace mfx::fluid {
@@ -19,10 +21,24 @@ gpu::DescriptorWrite storage(uint32_t binding, const gpu::Image& image) {
 
 } // namespace
 
+constexpr uint32_t kSolidBlockLists = MFX_SOLID_BLOCK_LISTS;
+constexpr uint32_t kSolidListEntries = MFX_SOLID_LIST_ENTRIES;
+// A block list's uniform window (fluid_solids.glsl): its entries, four to a uvec4.
+constexpr VkDeviceSize kSolidListBytes = kSolidListEntries * sizeof(uint32_t);
+// mark_solids.comp's uniform buffers: kMaxSolids solids, 4,096 box blocks (uvec4 each).
+constexpr uint32_t kSolidUniformBytes = 65536;
+constexpr uint32_t kBoxBlocksAPass = kSolidUniformBytes / (4 * sizeof(uint32_t));
+
+static_assert(SmokeSolver::kMaxSolids * sizeof(shared::FluidSolid) == kSolidUniformBytes,
+              "mark_solids.comp's uniform buffer of solids");
 static_assert(SmokeSolver::kMaxSolids == 1024, "shaders/fluid/mark_solids.comp's kMaxSolids");
 
 bool storesDirect(StorePath path, const gpu::Context& ctx) {
     return path == StorePath::Direct || (path == StorePath::Auto && !ctx.info().isCpu());
+}
+
+bool splitsSolids(ByDevice choice, const gpu::Context& ctx) {
+    return choice == ByDevice::On || (choice == ByDevice::Auto && ctx.info().isCpu());
 }
 
 Result<std::unique_ptr<SmokeSolver>> SmokeSolver::create(const gpu::Context& ctx,
@@ -64,7 +80,16 @@ Result<std::unique_ptr<SmokeSolver>> SmokeSolver::create(const gpu::Context& ctx
 
 SmokeSolver::SmokeSolver(const gpu::Context& ctx, const SolverOptions& options)
     : ctx_(ctx), options_(options), fields_(ctx, options), programs_(ctx, options),
-      direct_(fluid::storesDirect(options.storePath, ctx)) {
+      direct_(fluid::storesDirect(options.storePath, ctx)),
+      splitSolids_(fluid::splitsSolids(options.solidLists, ctx)) {
+    // A block list packs a block's coordinates into 11, 11 and 10 bits (fluid_solids.glsl), a
+    // brick list a brick's into 10 each (at most 4096 cells along an axis: 1024 bricks).
+    const glm::uvec3 size(options.workgroup[0], options.workgroup[1], options.workgroup[2]);
+    const glm::uvec3 blocks = (fields_.cells + 1u + size - 1u) / size;
+    if (blocks.x > 2048 || blocks.y > 2048 || blocks.z > 1024 ||
+        blocks.x * blocks.y * blocks.z > kSolidListEntries ||
+        ctx.limits().maxUniformBufferRange < kSolidListBytes)
+        splitSolids_ = false; // a list holds at most kSolidListEntries blocks
     // The fused vorticity pass keeps a vec4 per cell of its workgroup's block and ring.
     const std::array<uint32_t, 3>& g = options.workgroup;
     const uint64_t tileBytes = uint64_t(g[0] + 2) * (g[1] + 2) * (g[2] + 2) * 4 * sizeof(float);
@@ -80,6 +105,10 @@ SmokeSolver::SmokeSolver(const gpu::Context& ctx, const SolverOptions& options)
     // Bound by every stage that reads the solids (binding 15) until solids come.
     noSolidCells_ = gpu::createBuffer(ctx, 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                       gpu::MemoryUsage::DeviceLocal, "fluid no solid cells");
+    // Bound at binding 21 (a block list) where no list is walked.
+    noSolidList_ = gpu::createBuffer(
+        ctx, std::min<VkDeviceSize>(kSolidListBytes, ctx.limits().maxUniformBufferRange),
+        VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUsage::DeviceLocal, "fluid no solid list");
     splatRegions_ =
         gpu::createBuffer(ctx, 4 * sizeof(shared::SplatRegion),
                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
@@ -123,38 +152,111 @@ Status SmokeSolver::setSolids(std::span<const shared::FluidSolid> solids) {
     if (solids.size() > kMaxSolids)
         return Error{"solids: " + std::to_string(solids.size()) + " solids, at most " +
                      std::to_string(kMaxSolids) + " a step"};
+    if (!solids.empty() && ctx_.limits().maxUniformBufferRange < kSolidUniformBytes)
+        return Error{"solids: the device's uniform buffers hold " +
+                     std::to_string(ctx_.limits().maxUniformBufferRange) + " bytes, solids need " +
+                     std::to_string(kSolidUniformBytes)};
     // Made once, at their largest, and never replaced: a recording in flight (several steps
     // recorded together, solids set between them) may name them.
     if (!solids.empty() && solidsBuffer_.get() == VK_NULL_HANDLE) {
         // Storage the GPU fills (vkCmdUpdateBuffer, vkCmdFillBuffer) and reads.
         auto make = [&](uint64_t bytes, const char* name) {
             return gpu::createBuffer(
-                ctx_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                ctx_, bytes,
+                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT |
+                    VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
                 gpu::MemoryUsage::DeviceLocal, name);
         };
         const GridShape& g = options_.grid;
-        const std::array<uint32_t, 3>& w = options_.workgroup;
-        solidsBuffer_ = make(kMaxSolids * sizeof(shared::FluidSolid), "fluid solids");
+        // mark_solids.comp's two uniform buffers: the solids and its first pass's box blocks.
+        solidsBuffer_ = make(kSolidUniformBytes, "fluid solids");
+        solidBoxBlocks_ = make(kSolidUniformBytes, "fluid solid box blocks");
         // A flag byte per cell, rows padded to whole words of four (fluid_solids.glsl).
         solidCells_ = make(uint64_t((g.cellsX + 3) / 4) * g.cellsY * g.cellsZ * sizeof(uint32_t),
                            "fluid solid cells");
         solidHolders_ = make(g.cellCount() * sizeof(uint32_t), "fluid solid holders");
-        // One word per Jacobi brick (solve_pressure.comp).
+        // A bit per cell, rows padded to whole words of 32 (mark_solids.comp).
+        solidBits_ = make(uint64_t((g.cellsX + 31) / 32) * g.cellsY * g.cellsZ * sizeof(uint32_t),
+                          "fluid solid bits");
+        // One word per Jacobi brick, then its two lists, their dispatches and lengths
+        // (solve_pressure.comp).
         solidBricks_ =
-            make(uint64_t((g.cellsX + kPressureBrickX - 1) / kPressureBrickX) *
-                     ((g.cellsY + kPressureRows - 1) / kPressureRows) *
-                     ((g.cellsZ + kPressureLayers - 1) / kPressureLayers) * sizeof(uint32_t),
-                 "fluid solid bricks");
-        // One word per workgroup-sized block of the largest dispatch (cells + 1 along each axis;
-        // fluid_solids.glsl).
-        solidBlocks_ = make(uint64_t(gpu::groupCount(g.cellsX + 1, w[0])) *
-                                gpu::groupCount(g.cellsY + 1, w[1]) *
-                                gpu::groupCount(g.cellsZ + 1, w[2]) * sizeof(uint32_t),
+            make((3 * uint64_t(solidBrickCount()) + 8) * sizeof(uint32_t), "fluid solid bricks");
+        // One word per workgroup-sized block of the largest dispatch (cells + 1 along each axis),
+        // then the block lists and their dispatches (fluid_solids.glsl).
+        solidBlocks_ = make((uint64_t(solidBlockCount()) + 3 * kSolidBlockLists) * sizeof(uint32_t),
                             "fluid solid blocks");
+        solidLists_ = make(kSolidBlockLists * kSolidListBytes, "fluid solid block lists");
+        if (splitSolids_) uploadEmptySolidLists();
     }
     solids_.assign(solids.begin(), solids.end());
     programs_.setSolids(!solids_.empty());
     return Ok{};
+}
+
+uint32_t SmokeSolver::solidBlockCount() const {
+    const GridShape& g = options_.grid;
+    const std::array<uint32_t, 3>& w = options_.workgroup;
+    return gpu::groupCount(g.cellsX + 1, w[0]) * gpu::groupCount(g.cellsY + 1, w[1]) *
+           gpu::groupCount(g.cellsZ + 1, w[2]);
+}
+
+uint32_t SmokeSolver::solidBrickCount() const {
+    const GridShape& g = options_.grid;
+    return ((g.cellsX + kPressureBrickX - 1) / kPressureBrickX) *
+           ((g.cellsY + kPressureRows - 1) / kPressureRows) *
+           ((g.cellsZ + kPressureLayers - 1) / kPressureLayers);
+}
+
+namespace {
+
+// The extents a split stage dispatches over (fluid_solids.glsl's block lists (L - 1) / 2).
+std::array<glm::uvec3, 5> splitExtents(glm::uvec3 cells) {
+    return {cells, cells + glm::uvec3(1, 0, 0), cells + glm::uvec3(0, 1, 0),
+            cells + glm::uvec3(0, 0, 1), cells + glm::uvec3(1)};
+}
+
+} // namespace
+
+void SmokeSolver::uploadEmptySolidLists() {
+    const std::array<uint32_t, 3>& w = options_.workgroup;
+    const glm::uvec3 size(w[0], w[1], w[2]);
+    const glm::uvec3 blocks = (fields_.cells + 1u + size - 1u) / size;
+    const uint32_t total = solidBlockCount();
+    std::vector<uint32_t> words(size_t(total) + 3 * kSolidBlockLists, 0);
+    std::vector<uint32_t> lists(size_t(kSolidBlockLists) * kSolidListEntries, 0);
+    const std::array<glm::uvec3, 5> extents = splitExtents(fields_.cells);
+    for (uint32_t extent = 0; extent < 5; ++extent) {
+        const uint32_t away = 2 * extent + 2; // every block is away from solids
+        uint32_t length = 0;
+        for (uint32_t i = 0; i < total; ++i) {
+            const glm::uvec3 block(i % blocks.x, (i / blocks.x) % blocks.y,
+                                   i / (blocks.x * blocks.y));
+            if (glm::all(glm::lessThan(block * size, extents[extent])))
+                lists[size_t(kSolidListEntries) * (away - 1) + length++] =
+                    block.x | block.y << 11 | block.z << 22;
+        }
+        const size_t near = size_t(total) + 3 * (away - 2);
+        words[near + 0] = 0, words[near + 1] = 1, words[near + 2] = 1;
+        words[near + 3] = length, words[near + 4] = 1, words[near + 5] = 1;
+    }
+    gpu::uploadBuffer(ctx_, solidBlocks_, std::span<const uint32_t>(words));
+    gpu::uploadBuffer(ctx_, solidLists_, std::span<const uint32_t>(lists));
+    const uint32_t bricks = solidBrickCount(), group = w[0] * w[1] * w[2];
+    std::vector<uint32_t> brickWords(3 * size_t(bricks) + 8, 0);
+    const glm::uvec3 brickGrid((fields_.cells.x + kPressureBrickX - 1) / kPressureBrickX,
+                               (fields_.cells.y + kPressureRows - 1) / kPressureRows,
+                               (fields_.cells.z + kPressureLayers - 1) / kPressureLayers);
+    for (uint32_t i = 0; i < bricks; ++i) // the far list
+        brickWords[2 * size_t(bricks) + i] = i % brickGrid.x |
+                                             (i / brickGrid.x) % brickGrid.y << 10 |
+                                             i / (brickGrid.x * brickGrid.y) << 20;
+    const size_t args = 3 * size_t(bricks);
+    brickWords[args + 1] = brickWords[args + 2] = 1;     // near: no group
+    brickWords[args + 3] = (bricks + group - 1) / group; // far: every brick
+    brickWords[args + 4] = brickWords[args + 5] = 1;
+    brickWords[args + 7] = bricks;
+    gpu::uploadBuffer(ctx_, solidBricks_, std::span<const uint32_t>(brickWords));
 }
 
 gpu::DescriptorWrite SmokeSolver::solidBlocksWrite() const {
@@ -170,14 +272,52 @@ void SmokeSolver::writeParameters() {
     std::memcpy(parameters_.mapped, &parameters, sizeof(parameters));
 }
 
+SmokeSolver::Writes SmokeSolver::withSolidList(std::span<const gpu::DescriptorWrite> writes,
+                                               const gpu::Program& program, uint32_t list) const {
+    Writes all(writes.begin(), writes.end());
+    for (const gpu::BindingDesc& b : program.bindings())
+        if (b.binding == 21)
+            all.push_back(list == 0 ? gpu::bindBuffer(21, noSolidList_)
+                                    : gpu::bindBuffer(21, solidLists_, (list - 1) * kSolidListBytes,
+                                                      kSolidListBytes));
+    return all;
+}
+
 void SmokeSolver::dispatch(VkCommandBuffer cmd, gpu::Program& program,
                            std::span<const gpu::DescriptorWrite> writes, glm::uvec3 extent) const {
-    program.bind(cmd, writes);
+    program.bind(cmd, withSolidList(writes, program, 0));
     program.push(cmd, shared::FluidDispatch{0, 0, 0, 0});
     ++dispatches_;
     const std::array<uint32_t, 3>& group = options_.workgroup;
     vkCmdDispatch(cmd, gpu::groupCount(extent.x, group[0]), gpu::groupCount(extent.y, group[1]),
                   gpu::groupCount(extent.z, group[2]));
+}
+
+void SmokeSolver::dispatchStage(VkCommandBuffer cmd, const StageProgram& p,
+                                std::span<const gpu::DescriptorWrite> writes, glm::uvec3 extent) {
+    if (!splitSolids_ || solids_.empty()) {
+        dispatch(cmd, programs_.get(p.name, p.target, p.variant, p.direct), writes, extent);
+        return;
+    }
+    const std::array<glm::uvec3, 5> extents = splitExtents(fields_.cells);
+    uint32_t kind = 0;
+    while (kind < 5 && extents[kind] != extent)
+        ++kind;
+    if (kind == 5)
+        throw std::logic_error("stage " + std::string(p.name) +
+                               ": no block list covers its dispatch");
+    const VkDeviceSize dispatches = VkDeviceSize(solidBlockCount()) * sizeof(uint32_t);
+    // Away from solids, then near them. The two write disjoint blocks of what one dispatch
+    // writes; the barrier between them only tells the validation layer so.
+    for (uint32_t list : {2 * kind + 2, 2 * kind + 1}) {
+        if (list % 2 == 1) fieldBarrier(cmd);
+        gpu::Program& program = programs_.get(p.name, p.target, p.variant, p.direct, list);
+        program.bind(cmd, withSolidList(writes, program, list));
+        program.push(cmd, shared::FluidDispatch{0, 0, 0, 0});
+        ++dispatches_;
+        vkCmdDispatchIndirect(cmd, solidBlocks_.get(),
+                              dispatches + 3 * (list - 1) * sizeof(uint32_t));
+    }
 }
 
 void SmokeSolver::storeFields(
@@ -241,18 +381,21 @@ void SmokeSolver::markSolids(VkCommandBuffer cmd) {
     const VkDeviceSize bytes = solids_.size() * sizeof(shared::FluidSolid);
     vkCmdUpdateBuffer(cmd, solidsBuffer_.get(), 0, bytes, solids_.data());
     gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_UNIFORM_READ_BIT);
     SmokeFields& f = fields_;
     const auto& v = f.velocity[size_t(f.currentVelocity)];
     // The flags are written through binding 17 (passes 0 and 1) and read through 15 (pass 2):
     // never the same buffer at both in one dispatch.
     Writes writes = {
         gpu::bindBuffer(0, parameters_),
-        gpu::bindBuffer(1, solidsBuffer_, 0, bytes),
+        gpu::bindBuffer(1, solidsBuffer_),
         storage(2, v[0]),
         storage(3, v[1]),
         storage(4, v[2]),
         storage(5, f.pigment[size_t(f.currentPigment)]),
+        gpu::bindBuffer(6, solidBoxBlocks_),
+        gpu::bindBuffer(7, splitSolids_ ? solidLists_ : noSolidCells_),
+        gpu::bindBuffer(8, solidBits_),
         gpu::bindBuffer(15, noSolidCells_),
         gpu::bindBuffer(16, solidHolders_),
         gpu::bindBuffer(17, solidCells_),
@@ -264,19 +407,23 @@ void SmokeSolver::markSolids(VkCommandBuffer cmd) {
     // cell wider: the box is found in fp32), then the flags and the faces and pigment, over the
     // solids' joint box two cells wider (a flag's neighbour and stencil bits reach a cell beyond;
     // the whole axis where it is periodic: they wrap).
+    const uint32_t blockCount = solidBlockCount(), brickCount = solidBrickCount();
     vkCmdFillBuffer(cmd, solidHolders_.get(), 0, VK_WHOLE_SIZE, 0);
     vkCmdFillBuffer(cmd, solidCells_.get(), 0, VK_WHOLE_SIZE, 0);
-    vkCmdFillBuffer(cmd, solidBricks_.get(), 0, VK_WHOLE_SIZE, 0);
-    vkCmdFillBuffer(cmd, solidBlocks_.get(), 0, VK_WHOLE_SIZE, 0);
+    vkCmdFillBuffer(cmd, solidBricks_.get(), 0, brickCount * sizeof(uint32_t), 0);
+    vkCmdFillBuffer(cmd, solidBlocks_.get(), 0, blockCount * sizeof(uint32_t), 0);
+    vkCmdFillBuffer(cmd, solidBits_.get(), 0, VK_WHOLE_SIZE, 0);
     gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-    gpu::Program& cells = programs_.get("mark_solids", 0, 0);
-    cells.bind(cmd, writes);
+    // Each solid's bounding box (one cell wider: the box is found in fp32) in workgroup-sized
+    // blocks of the grid, pass 0's entries, 4,096 a dispatch.
     const float h = options_.grid.cellSize;
     const glm::ivec3 last = glm::ivec3(f.cells) - 1;
     const std::array<uint32_t, 3>& group = options_.workgroup;
+    const glm::ivec3 size(group[0], group[1], group[2]);
     glm::ivec3 jointLow = last + 1, jointHigh(-1);
+    std::vector<glm::uvec4> boxBlocks;
     for (size_t i = 0; i < solids_.size(); ++i) {
         const shared::FluidSolid& s = solids_[i];
         const glm::vec3 a(s.endA), b(s.endB);
@@ -288,15 +435,33 @@ void SmokeSolver::markSolids(VkCommandBuffer cmd) {
         if (glm::any(glm::greaterThan(low, high))) continue; // wholly outside the grid
         jointLow = glm::min(jointLow, low);
         jointHigh = glm::max(jointHigh, high);
-        const glm::uvec3 extent(high - low + 1);
-        cells.push(cmd, shared::FluidDispatch{uint32_t(i), uint32_t(low.x), uint32_t(low.y),
-                                              uint32_t(low.z)});
+        const glm::ivec3 first = low / size, end = high / size;
+        for (int z = first.z; z <= end.z; ++z)
+            for (int y = first.y; y <= end.y; ++y)
+                for (int x = first.x; x <= end.x; ++x)
+                    boxBlocks.emplace_back(uint32_t(i), uint32_t(x), uint32_t(y), uint32_t(z));
+    }
+    gpu::Program& cells = programs_.get("mark_solids", 0, 0);
+    for (size_t done = 0; done < boxBlocks.size(); done += kBoxBlocksAPass) {
+        const size_t count = std::min<size_t>(kBoxBlocksAPass, boxBlocks.size() - done);
+        if (done > 0) // the last dispatch has read the entries this update replaces
+            gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_NONE,
+                               VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_NONE);
+        vkCmdUpdateBuffer(cmd, solidBoxBlocks_.get(), 0, count * sizeof(glm::uvec4),
+                          boxBlocks.data() + done);
+        gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                           VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                           VK_ACCESS_2_UNIFORM_READ_BIT);
+        cells.bind(cmd, withSolidList(writes, cells, 0));
+        cells.push(cmd, shared::FluidDispatch{0, 0, 0, 0});
         ++dispatches_;
-        vkCmdDispatch(cmd, gpu::groupCount(extent.x, group[0]), gpu::groupCount(extent.y, group[1]),
-                      gpu::groupCount(extent.z, group[2]));
+        vkCmdDispatch(cmd, uint32_t(count), 1, 1);
     }
     fieldBarrier(cmd);
-    if (glm::any(glm::greaterThan(jointLow, jointHigh))) return; // no solid in the grid
+    if (glm::any(glm::greaterThan(jointLow, jointHigh))) { // no solid in the grid
+        if (splitSolids_) makeSolidLists(cmd, writes);
+        return;
+    }
     for (int axis = 0; axis < 3; ++axis) {
         jointLow[axis] = options_.periodic(axis) ? 0 : std::max(jointLow[axis] - 2, 0);
         jointHigh[axis] =
@@ -307,26 +472,71 @@ void SmokeSolver::markSolids(VkCommandBuffer cmd) {
     const glm::uvec3 words(uint32_t(jointHigh.x / 4 - firstWord.x + 1),
                            uint32_t(jointHigh.y - jointLow.y + 1),
                            uint32_t(jointHigh.z - jointLow.z + 1));
-    gpu::Program& flags = programs_.get("mark_solids", 0, 1);
-    flags.bind(cmd, writes);
+    gpu::Program& flags = programs_.get("mark_solids", 0, splitSolids_ ? 4 : 1);
+    flags.bind(cmd, withSolidList(writes, flags, 0));
     flags.push(cmd, shared::FluidDispatch{0, uint32_t(firstWord.x), uint32_t(firstWord.y),
                                           uint32_t(firstWord.z)});
     ++dispatches_;
     vkCmdDispatch(cmd, gpu::groupCount(words.x, group[0]), gpu::groupCount(words.y, group[1]),
                   gpu::groupCount(words.z, group[2]));
     fieldBarrier(cmd);
-    // Over the box's cells and the faces past them (one more along each axis).
-    writes[6] = gpu::bindBuffer(15, solidCells_);
-    writes[8] = gpu::bindBuffer(17, noSolidCells_);
-    gpu::Program& faces = programs_.get("mark_solids", 0, 2);
-    faces.bind(cmd, writes);
-    faces.push(cmd, shared::FluidDispatch{0, uint32_t(jointLow.x), uint32_t(jointLow.y),
-                                          uint32_t(jointLow.z)});
-    ++dispatches_;
-    const glm::uvec3 extent(jointHigh - jointLow + 2);
-    vkCmdDispatch(cmd, gpu::groupCount(extent.x, group[0]), gpu::groupCount(extent.y, group[1]),
-                  gpu::groupCount(extent.z, group[2]));
+    if (splitSolids_) makeSolidLists(cmd, writes);
+    // Over the box's cells and the faces past them (one more along each axis), or over the
+    // blocks near solids of the cells + 1 (block list 9).
+    // A write replaced by its binding.
+    auto rebind = [&writes](uint32_t binding, const gpu::Buffer& buffer) {
+        for (gpu::DescriptorWrite& w : writes)
+            if (w.binding == binding) w = gpu::bindBuffer(binding, buffer);
+    };
+    rebind(15, solidCells_);
+    rebind(17, noSolidCells_);
+    if (splitSolids_) {
+        rebind(7, noSolidCells_);  // the block lists stay as pass 2 left them: read at 21
+        rebind(18, noSolidCells_); // and the brick lists
+        rebind(19, solidBlocks_);
+        rebind(20, noSolidCells_);
+        const uint32_t list = 2 * 4 + 1;
+        gpu::Program& faces = programs_.get("mark_solids", 0, 3, false, list);
+        faces.bind(cmd, withSolidList(writes, faces, list));
+        faces.push(cmd, shared::FluidDispatch{0, 0, 0, 0});
+        ++dispatches_;
+        vkCmdDispatchIndirect(cmd, solidBlocks_.get(),
+                              (VkDeviceSize(blockCount) + 3 * (list - 1)) * sizeof(uint32_t));
+    } else {
+        gpu::Program& faces = programs_.get("mark_solids", 0, 3);
+        faces.bind(cmd, withSolidList(writes, faces, 0));
+        faces.push(cmd, shared::FluidDispatch{0, uint32_t(jointLow.x), uint32_t(jointLow.y),
+                                              uint32_t(jointLow.z)});
+        ++dispatches_;
+        const glm::uvec3 extent(jointHigh - jointLow + 2);
+        vkCmdDispatch(cmd, gpu::groupCount(extent.x, group[0]), gpu::groupCount(extent.y, group[1]),
+                      gpu::groupCount(extent.z, group[2]));
+    }
     fieldBarrier(cmd);
+}
+
+void SmokeSolver::makeSolidLists(VkCommandBuffer cmd,
+                                 std::span<const gpu::DescriptorWrite> writes) {
+    // Pass 2: each block's and brick's word; pass 5: the lists.
+    const std::array<uint32_t, 3>& group = options_.workgroup;
+    const uint32_t items = std::max(solidBlockCount(), solidBrickCount());
+    gpu::Program& words = programs_.get("mark_solids", 0, 2);
+    words.bind(cmd, withSolidList(writes, words, 0));
+    words.push(cmd, shared::FluidDispatch{0, 0, 0, 0});
+    ++dispatches_;
+    vkCmdDispatch(cmd, gpu::groupCount(items, group[0] * group[1] * group[2]), 1, 1);
+    fieldBarrier(cmd);
+    gpu::Program& lists = programs_.get("mark_solids", 0, 5);
+    lists.bind(cmd, withSolidList(writes, lists, 0));
+    lists.push(cmd, shared::FluidDispatch{0, 0, 0, 0});
+    ++dispatches_;
+    vkCmdDispatch(cmd, 1, 1, 1);
+    // The lists are read by the stages' indirect dispatches and their workgroups.
+    gpu::memoryBarrier(
+        cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+        VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+        VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
+            VK_ACCESS_2_UNIFORM_READ_BIT);
 }
 
 void SmokeSolver::splatImpulses(VkCommandBuffer cmd) {
@@ -359,7 +569,7 @@ void SmokeSolver::splatImpulses(VkCommandBuffer cmd) {
     };
     for (uint32_t target = 0; target < 4; ++target) {
         gpu::Program& prog = programs_.get("splat_impulses", target);
-        prog.bind(cmd, writes);
+        prog.bind(cmd, withSolidList(writes, prog, 0));
         prog.push(cmd, shared::FluidDispatch{0, 0, 0, 0});
         ++dispatches_;
         vkCmdDispatchIndirect(cmd, splatRegions_.get(), target * sizeof(shared::SplatRegion));
@@ -398,8 +608,8 @@ void SmokeSolver::advectVelocity(VkCommandBuffer cmd) {
             w.push_back(storage(6, out[c]));
             w.push_back(solidCellsWrite());
             w.push_back(solidBlocksWrite());
-            dispatch(cmd, programs_.get("advect_velocity", c, pass, direct), w,
-                     faceExtent(options_.grid, int(c)));
+            dispatchStage(cmd, {"advect_velocity", c, pass, direct}, w,
+                          faceExtent(options_.grid, int(c)));
         }
         storeFields(cmd, direct,
                     {{&f.scratch[0], &out[0]}, {&f.scratch[1], &out[1]}, {&f.scratch[2], &out[2]}});
@@ -420,8 +630,7 @@ void SmokeSolver::advectPigment(VkCommandBuffer cmd) {
         w.push_back(storage(7, f.pigment[size_t(to)]));
         w.push_back(solidCellsWrite());
         w.push_back(solidBlocksWrite());
-        dispatch(cmd, programs_.get("advect_pigment", MFX_TARGET_PIGMENT, pass, direct), w,
-                 f.cells);
+        dispatchStage(cmd, {"advect_pigment", MFX_TARGET_PIGMENT, pass, direct}, w, f.cells);
         storeFields(cmd, direct, {{&f.scratch[0], &f.pigment[size_t(to)]}});
     }
     f.currentPigment = to;
@@ -438,8 +647,8 @@ void SmokeSolver::applyBuoyancy(VkCommandBuffer cmd) {
                                            storage(4, velocityY),
                                            solidCellsWrite(),
                                            solidBlocksWrite()};
-    dispatch(cmd, programs_.get("apply_buoyancy", MFX_TARGET_VELOCITY_Y, 0, direct_), writes,
-             faceExtent(options_.grid, 1));
+    dispatchStage(cmd, {"apply_buoyancy", MFX_TARGET_VELOCITY_Y, 0, direct_}, writes,
+                  faceExtent(options_.grid, 1));
     storeFields(cmd, direct_, {{&f.scratch[1], &velocityY}});
 }
 
@@ -481,8 +690,7 @@ void SmokeSolver::applyVorticityForce(VkCommandBuffer cmd) {
         apply.push_back(storage(8 + c, v[c]));
     apply.push_back(solidCellsWrite());
     apply.push_back(solidBlocksWrite());
-    dispatch(cmd, programs_.get("apply_vorticity_force", 0, 0, direct_), apply,
-             f.cells + glm::uvec3(1));
+    dispatchStage(cmd, {"apply_vorticity_force", 0, 0, direct_}, apply, f.cells + glm::uvec3(1));
     storeFields(cmd, direct_,
                 {{&f.scratch[0], &v[0]}, {&f.scratch[1], &v[1]}, {&f.scratch[2], &v[2]}});
 }
@@ -504,8 +712,7 @@ void SmokeSolver::diffuseViscosity(VkCommandBuffer cmd) {
         w.push_back(solidCellsWrite());
         w.push_back(solidBlocksWrite());
         for (uint32_t c = 0; c < 3; ++c)
-            dispatch(cmd, programs_.get("diffuse_viscosity", c), w,
-                     faceExtent(options_.grid, int(c)));
+            dispatchStage(cmd, {"diffuse_viscosity", c}, w, faceExtent(options_.grid, int(c)));
         fieldBarrier(cmd);
         in = out;
         out = out == other ? scratch : other;
@@ -538,7 +745,7 @@ void SmokeSolver::computeDivergence(VkCommandBuffer cmd) {
     w.push_back(storage(8, f.pressure[size_t(1 - f.currentPressure)]));
     w.push_back(solidCellsWrite());
     w.push_back(solidBlocksWrite());
-    dispatch(cmd, programs_.get("compute_divergence", 0, firstSweep, direct_), w, f.cells);
+    dispatchStage(cmd, {"compute_divergence", 0, firstSweep, direct_}, w, f.cells);
     // Either path's barriers (the copy's carry a global memory barrier) cover the sweep's output.
     storeFields(cmd, direct_, {{&f.scratch[0], &f.divergence}});
     firstSweepDone_ = firstSweep;
@@ -593,7 +800,21 @@ void SmokeSolver::solvePressure(VkCommandBuffer cmd) {
             solidCellsWrite(),
             solidBlocksWrite(),
         };
-        dispatch(cmd, programs_.get("solve_pressure", 0, mode), writes, bricks);
+        if (splitSolids_ && !solids_.empty()) {
+            // The bricks away from solids, then those near them (solve_pressure.comp's lists).
+            const VkDeviceSize lists = 3 * VkDeviceSize(solidBrickCount()) * sizeof(uint32_t);
+            for (uint32_t list : {2u, 1u}) {
+                if (list == 1u) fieldBarrier(cmd); // as dispatchStage's
+                gpu::Program& program = programs_.get("solve_pressure", 0, mode, false, list);
+                program.bind(cmd, withSolidList(writes, program, 0));
+                program.push(cmd, shared::FluidDispatch{0, 0, 0, 0});
+                ++dispatches_;
+                vkCmdDispatchIndirect(cmd, solidBricks_.get(),
+                                      lists + 3 * (list - 1) * sizeof(uint32_t));
+            }
+        } else {
+            dispatch(cmd, programs_.get("solve_pressure", 0, mode), writes, bricks);
+        }
         fieldBarrier(cmd);
         if (mode & 2u)
             packedIn = packedOut;
@@ -613,8 +834,7 @@ void SmokeSolver::project(VkCommandBuffer cmd) {
                                           storage(6, v[c]),
                                           solidCellsWrite(),
                                           solidBlocksWrite()};
-        dispatch(cmd, programs_.get("project", c, 0, direct_), w,
-                 faceExtent(options_.grid, int(c)));
+        dispatchStage(cmd, {"project", c, 0, direct_}, w, faceExtent(options_.grid, int(c)));
     }
     storeFields(cmd, direct_,
                 {{&f.scratch[0], &v[0]}, {&f.scratch[1], &v[1]}, {&f.scratch[2], &v[2]}});
@@ -660,8 +880,9 @@ void SmokeSolver::recordStep(VkCommandBuffer cmd, gpu::GpuTimer* timer) {
 
 uint64_t SmokeSolver::memoryBytes() const {
     uint64_t bytes = fields_.memoryBytes() + parameters_.size + ownEmitters_.size +
-                     solidsBuffer_.size + solidCells_.size + solidHolders_.size +
-                     solidBricks_.size + solidBlocks_.size + noSolidCells_.size;
+                     solidsBuffer_.size + solidBoxBlocks_.size + solidCells_.size +
+                     solidHolders_.size + solidBits_.size + solidBricks_.size + solidBlocks_.size +
+                     solidLists_.size + noSolidCells_.size + noSolidList_.size;
     if (multigrid_) bytes += multigrid_->memoryBytes();
     return bytes;
 }

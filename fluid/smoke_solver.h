@@ -35,6 +35,7 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <string_view>
 #include <vector>
 
 namespace mfx::gpu {
@@ -46,6 +47,9 @@ namespace mfx::fluid {
 // Whether stages store whole fields straight into their images on `ctx`'s device: `path`, with
 // Auto resolved by the device (Buffer on a CPU device, Direct on any other).
 bool storesDirect(StorePath path, const gpu::Context& ctx);
+// Whether the stages that read solids are split into the blocks away from and near them on
+// `ctx`'s device (SolverOptions::solidLists; Auto: on a CPU device).
+bool splitsSolids(ByDevice choice, const gpu::Context& ctx);
 
 class SmokeSolver final : public GridSolver {
 public:
@@ -82,6 +86,9 @@ public:
     // their own. The Jacobi pressure solver only, for now (others refused naming why).
     Status setSolids(std::span<const shared::FluidSolid> solids) override;
     bool hasSolids() const { return !solids_.empty(); }
+    // Whether the stages that read solids are dispatched split into the blocks away from and near
+    // them (SolverOptions::solidLists resolved for the device, with solids set).
+    bool splitsSolidStages() const { return splitSolids_ && !solids_.empty(); }
     // The most solids a step takes (they travel in the command buffer: vkCmdUpdateBuffer's 64 KiB).
     static constexpr size_t kMaxSolids = 65536 / sizeof(shared::FluidSolid);
 
@@ -146,6 +153,27 @@ private:
     // Binds `program` with `writes` and dispatches it over `extent` items.
     void dispatch(VkCommandBuffer cmd, gpu::Program& program,
                   std::span<const gpu::DescriptorWrite> writes, glm::uvec3 extent) const;
+    // A stage's program, as StagePrograms::get names it.
+    struct StageProgram {
+        std::string_view name;
+        uint32_t target = 0;
+        uint32_t variant = 0;
+        bool direct = false;
+    };
+    // A stage that reads the solids, over `extent` items (the cells, the faces of a component or
+    // the cells + 1): one dispatch, or where the solids split it (splitSolids_) two indirect
+    // ones, over the blocks away from solids and over those near them (fluid_solids.glsl).
+    void dispatchStage(VkCommandBuffer cmd, const StageProgram& program,
+                       std::span<const gpu::DescriptorWrite> writes, glm::uvec3 extent);
+    // `writes` and, where `program` declares binding 21, block list `list`'s window there (0: a
+    // buffer that no workgroup reads; fluid_solids.glsl).
+    Writes withSolidList(std::span<const gpu::DescriptorWrite> writes, const gpu::Program& program,
+                         uint32_t list) const;
+    // Workgroup-sized blocks over the cells + 1 (fluid_solids.glsl), and Jacobi bricks.
+    uint32_t solidBlockCount() const;
+    uint32_t solidBrickCount() const;
+    // The block lists and brick lists as if no cell were near a solid (before the first mark).
+    void uploadEmptySolidLists();
     // The parameters uniform at binding 0, then the three components of velocity image set `set`
     // at bindings 1-3 (the layout of most stages).
     Writes withVelocity(int set) const;
@@ -156,6 +184,8 @@ private:
     gpu::DescriptorWrite solidBlocksWrite() const;
 
     void markSolids(VkCommandBuffer cmd);
+    // mark_solids' passes 2 and 5: the blocks' and bricks' words from the flags, then their lists.
+    void makeSolidLists(VkCommandBuffer cmd, std::span<const gpu::DescriptorWrite> writes);
     void splatImpulses(VkCommandBuffer cmd);
     std::vector<uint32_t> advectionPasses() const;
     void advectVelocity(VkCommandBuffer cmd);
@@ -176,6 +206,7 @@ private:
     std::unique_ptr<GpuMultigrid> multigrid_; // every pressure solver but Jacobi
     bool direct_ = false;                     // options.storePath resolved for the device
     bool fusedVorticity_ = false;             // the direct path's one-dispatch curl and force
+    bool splitSolids_ = false;                // options.solidLists resolved for the device
     // Recording a step (not a stage alone): the divergence pass may do the Jacobi solve's first
     // sweep (SolverOptions::firstSweepInDivergence); firstSweepDone_ tells solvePressure where it
     // went: 0 not done, 1 packedPressure[1], 2 the other pressure image (compute_divergence.comp's
@@ -191,11 +222,15 @@ private:
     gpu::Buffer splatRegions_;               // SplatRegion per target, written by emitter_bounds
     std::vector<shared::FluidSolid> solids_; // what markSolids records
     gpu::Buffer solidsBuffer_;               // where it records them (kMaxSolids; once solids come)
+    gpu::Buffer solidBoxBlocks_;             // mark_solids' first pass's blocks (likewise)
     gpu::Buffer solidCells_;                 // a flag byte per cell (fluid_solids.glsl; likewise)
     gpu::Buffer solidHolders_; // per cell, which solid holds it (mark_solids.comp; likewise)
-    gpu::Buffer solidBricks_;  // per Jacobi brick, whether solids are near (likewise)
-    gpu::Buffer solidBlocks_;  // per workgroup-sized block, whether solids are near (likewise)
+    gpu::Buffer solidBits_;    // per cell, whether a solid holds it (likewise)
+    gpu::Buffer solidBricks_;  // per Jacobi brick, whether solids are near; the lists (likewise)
+    gpu::Buffer solidBlocks_;  // per workgroup-sized block, whether solids are near; the lists
+    gpu::Buffer solidLists_;   // the block lists (fluid_solids.glsl; where the stages are split)
     gpu::Buffer noSolidCells_; // bound in its place before any solid
+    gpu::Buffer noSolidList_;  // bound as binding 21 where no block list is walked
 
     mutable uint32_t dispatches_ = 0; // vkCmdDispatch calls recorded so far
     StageDispatches lastStepDispatches_;

@@ -128,6 +128,12 @@ struct SolverOptions {
     // sweep needs each cell's own divergence only): one dispatch, its barrier and a read of the
     // divergence fewer, the same values. Auto: on every device (a performance setting only).
     ByDevice firstSweepInDivergence = ByDevice::Auto;
+    // With solids, the stages that read them dispatched twice: over the workgroup blocks away
+    // from solids with every solid test compiled out, and over those near them (the block lists
+    // mark_solids builds; shaders/fluid/fluid_solids.glsl). The same values. Auto: on CPU
+    // devices, whose compiled branches run both sides; a GPU skips a workgroup's untaken
+    // branch by itself (a performance setting only).
+    ByDevice solidLists = ByDevice::Auto;
     AdvectionScheme advection = AdvectionScheme::SemiLagrangian;
     Storage storage = Storage::Float32;
     std::array<FaceBoundary, 6> boundaries{};

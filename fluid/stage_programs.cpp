@@ -64,12 +64,12 @@ StagePrograms::StagePrograms(const gpu::Context& ctx, const SolverOptions& optio
     : ctx_(ctx), options_(options) {}
 
 gpu::Program& StagePrograms::get(std::string_view name, uint32_t target, uint32_t variant,
-                                 bool direct) {
+                                 bool direct, uint32_t blockList) {
     const Kernel* kernel = findKernel(name);
     if (kernel == nullptr)
         throw std::logic_error("the smoke solver has no kernel " + std::string(name));
     if (kernel->extra == Extra::None) variant = 0;
-    gpu::Program& slot = programs_[{kernel->name, target, variant, direct, solids_}];
+    gpu::Program& slot = programs_[{kernel->name, target, variant, direct, solids_, blockList}];
     if (slot.pipeline() != VK_NULL_HANDLE) return slot;
 
     gpu::ComputeProgramDesc desc;
@@ -92,6 +92,7 @@ gpu::Program& StagePrograms::get(std::string_view name, uint32_t target, uint32_
     desc.specialization.resize(14, 0u); // ids 11-13 a kernel does not take are ignored
     desc.specialization.push_back(direct ? 1u : 0u);
     desc.specialization.push_back(solids_ ? 1u : 0u); // id 15, kSolids
+    desc.specialization.push_back(blockList);         // id 16, kBlockList
     slot = gpu::createComputeProgram(ctx_, desc);
     return slot;
 }

@@ -28,9 +28,10 @@ public:
     // `variant` (the advection pass, MFX_ADVECT_*, or the Jacobi sweep's packing; constant id 11
     // for the kernels that take one, ignored by the others), storing its whole-field output
     // straight into the image with `direct` (constant id 14, kDirectStore). An unknown name
-    // throws std::logic_error.
+    // throws std::logic_error. `blockList` (constant id 16, kBlockList) is the block list its
+    // workgroups walk (shaders/fluid/fluid_solids.glsl; 0: none).
     gpu::Program& get(std::string_view name, uint32_t target = 0, uint32_t variant = 0,
-                      bool direct = false);
+                      bool direct = false, uint32_t blockList = 0);
     // Whether the programs get() returns from now on take the sub-step's solids into account
     // (constant id 15, kSolids: shaders/fluid/fluid_solids.glsl); without, a stage compiles as if
     // solids did not exist.
@@ -41,7 +42,8 @@ private:
     const gpu::Context& ctx_;
     SolverOptions options_;
     bool solids_ = false;
-    std::map<std::tuple<std::string_view, uint32_t, uint32_t, bool, bool>, gpu::Program> programs_;
+    std::map<std::tuple<std::string_view, uint32_t, uint32_t, bool, bool, uint32_t>, gpu::Program>
+        programs_;
 };
 
 } // namespace mfx::fluid

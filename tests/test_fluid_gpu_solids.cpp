@@ -231,6 +231,76 @@ TEST_F(GpuSolidsTest, BothStorePathsStoreTheSameBitsWithSolids) {
     EXPECT_EQ(buffer.gpu.pressure, direct.gpu.pressure);
 }
 
+// The stages split into the workgroup blocks away from the solids and those near them
+// (SolverOptions::solidLists, fluid_solids.glsl's block lists) compute what the whole dispatches
+// compute, bit for bit: in a closed box, and with mixed boundaries (a periodic axis), viscosity
+// and MacCormack advection, so that every stage that reads solids runs split, its passes too.
+TEST_F(GpuSolidsTest, SplitStagesStoreTheSameBitsAsWholeOnes) {
+    for (bool mixed : {false, true}) {
+        SCOPED_TRACE(mixed ? "mixed boundaries" : "closed box");
+        auto adjust = [mixed](fluid::ByDevice lists) {
+            return [mixed, lists](SolverOptions& o) {
+                o.solidLists = lists;
+                o.workgroup = {4, 4, 4}; // 125 blocks over the 16³ cells + 1
+                if (!mixed) return;
+                o.boundaries = mixedBoundaryOptions(o.grid).boundaries;
+                o.viscosity = 0.02f;
+                o.viscosityIterations = 3;
+                o.advection = AdvectionScheme::MacCormack;
+            };
+        };
+        SideBySide split, whole;
+        sweptCapsuleSideBySide(ctx(), 5, adjust(fluid::ByDevice::On), split);
+        if (HasFatalFailure()) return;
+        sweptCapsuleSideBySide(ctx(), 5, adjust(fluid::ByDevice::Off), whole);
+        if (HasFatalFailure()) return;
+        EXPECT_EQ(split.gpu.velocityX, whole.gpu.velocityX);
+        EXPECT_EQ(split.gpu.velocityY, whole.gpu.velocityY);
+        EXPECT_EQ(split.gpu.velocityZ, whole.gpu.velocityZ);
+        EXPECT_EQ(split.gpu.pigment, whole.gpu.pigment);
+        EXPECT_EQ(split.gpu.pressure, whole.gpu.pressure);
+        // And in the closed box both are the solver the 100-step comparison checks (its bound;
+        // the mixed case's stages are checked one by one above).
+        if (!mixed) {
+            EXPECT_LE(split.difference.velocity.relL2, 1e-4);
+            EXPECT_LE(split.difference.pigment.relL2, 1e-4);
+        }
+    }
+}
+
+// Auto splits on a CPU device only; On and Off as asked; never without solids.
+TEST_F(GpuSolidsTest, TheStagesAreSplitWhereAskedAndOnlyWithSolids) {
+    const shared::FluidSolid ball = sphere({0.5f, 0.5f, 0.5f}, 0.2f);
+    for (fluid::ByDevice lists :
+         {fluid::ByDevice::Auto, fluid::ByDevice::On, fluid::ByDevice::Off}) {
+        SolverOptions options = closedBoxOptions();
+        options.solidLists = lists;
+        auto created = SmokeSolver::create(ctx(), options);
+        ASSERT_TRUE(created.ok()) << created.error().message;
+        SmokeSolver& solver = *created.value();
+        EXPECT_FALSE(solver.splitsSolidStages());
+        ASSERT_TRUE(solver.setSolids(std::span(&ball, 1)).ok());
+        const bool expected = lists == fluid::ByDevice::On ||
+                              (lists == fluid::ByDevice::Auto && ctx().info().isCpu());
+        EXPECT_EQ(solver.splitsSolidStages(), expected);
+        EXPECT_EQ(fluid::splitsSolids(lists, ctx()), expected);
+        // Split, a step records each split stage's two halves: more dispatches than whole.
+        solver.step();
+        uint32_t dispatches = 0;
+        for (const auto& [stage, count] : solver.lastStepDispatches())
+            dispatches += count;
+        ASSERT_TRUE(solver.setSolids({}).ok());
+        EXPECT_FALSE(solver.splitsSolidStages());
+        solver.step();
+        uint32_t without = 0;
+        for (const auto& [stage, count] : solver.lastStepDispatches())
+            without += count;
+        if (expected) {
+            EXPECT_GT(dispatches, without + 8);
+        }
+    }
+}
+
 // The root mean square divergence of `state`'s velocity over the cells `marks` calls fluid.
 double fluidDivergence(const ReferenceSolver& marks, const FieldState& state) {
     const fluid::GridShape& g = state.grid;

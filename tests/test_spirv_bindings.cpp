@@ -48,11 +48,11 @@ TEST(SpirvBindings, CombinedImageSamplerAndBuffers) {
 
 TEST(SpirvBindings, UniformBufferImagesAndBufferOfASolverStage) {
     // shaders/fluid/project.comp: the parameters uniform, its velocity component and the pressure,
-    // the face buffer out, the component's image (the direct store path), the solid cells and the
-    // blocks near solids (fluid_solids.glsl); no bindings 2 and 3.
+    // the face buffer out, the component's image (the direct store path), the solid cells, the
+    // blocks near solids and a block list (fluid_solids.glsl); no bindings 2 and 3.
     const auto bindings =
         gpu::spirvBindings(shaders::project_comp, VK_SHADER_STAGE_COMPUTE_BIT, "project");
-    ASSERT_EQ(bindings.size(), 7u);
+    ASSERT_EQ(bindings.size(), 8u);
     expectBinding(bindings[0], 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT);
     expectBinding(bindings[1], 1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT);
     expectBinding(bindings[2], 4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT);
@@ -60,6 +60,7 @@ TEST(SpirvBindings, UniformBufferImagesAndBufferOfASolverStage) {
     expectBinding(bindings[4], 6, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT);
     expectBinding(bindings[5], 15, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT);
     expectBinding(bindings[6], 19, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT);
+    expectBinding(bindings[7], 21, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT);
 }
 
 TEST(SpirvBindings, OnlyWhatTheShaderDeclares) {

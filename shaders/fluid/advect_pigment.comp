@@ -39,22 +39,21 @@ vec4 fetchPigment(int field, ivec3 index) {
 
 // With solids near x: the trilinear sample from the fluid cells alone, the weights of solid cells
 // dropped and the rest renormalised (0 when all eight are solid), in the reference's order
-// (fluid/reference/mark_solids.cpp, sampleCellOutsideSolids). `plain` when none of the eight is
-// solid.
-vec4 sampleOutsideSolids(int field, ivec3 i0, vec3 f, vec4 plain) {
+// (fluid/reference/mark_solids.cpp, sampleCellOutsideSolids), from the eight corner values the
+// plain sample read. `plain` when none of the eight is solid.
+vec4 sampleOutsideSolids(ivec3 i0, vec3 f, vec4 corners[8], vec4 plain) {
     bool anySolid = false;
     vec4 sum = vec4(0.0);
     float weight = 0.0;
     for (int corner = 0; corner < 8; ++corner) {
         ivec3 d = ivec3(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
-        ivec3 cell = resolveCell(i0 + d);
-        if (solidCell(cell)) {
+        if (solidCell(resolveCell(i0 + d))) {
             anySolid = true;
             continue;
         }
         float w = (d.x != 0 ? f.x : 1.0 - f.x) * (d.y != 0 ? f.y : 1.0 - f.y) *
                   (d.z != 0 ? f.z : 1.0 - f.z);
-        sum += w * fetchPigment(field, cell);
+        sum += w * corners[corner];
         weight += w;
     }
     if (!anySolid) return plain;
@@ -66,16 +65,16 @@ vec4 samplePigment(int field, vec3 x) {
     vec3 base = floor(g);
     vec3 f = g - base;
     ivec3 i0 = ivec3(base);
-    vec4 c00 = lerpValue(fetchPigment(field, i0 + ivec3(0, 0, 0)),
-                         fetchPigment(field, i0 + ivec3(1, 0, 0)), f.x);
-    vec4 c10 = lerpValue(fetchPigment(field, i0 + ivec3(0, 1, 0)),
-                         fetchPigment(field, i0 + ivec3(1, 1, 0)), f.x);
-    vec4 c01 = lerpValue(fetchPigment(field, i0 + ivec3(0, 0, 1)),
-                         fetchPigment(field, i0 + ivec3(1, 0, 1)), f.x);
-    vec4 c11 = lerpValue(fetchPigment(field, i0 + ivec3(0, 1, 1)),
-                         fetchPigment(field, i0 + ivec3(1, 1, 1)), f.x);
+    vec4 corners[8]; // x fastest: corner k is i0 + (k & 1, (k >> 1) & 1, k >> 2)
+    for (int corner = 0; corner < 8; ++corner)
+        corners[corner] =
+            fetchPigment(field, i0 + ivec3(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1));
+    vec4 c00 = lerpValue(corners[0], corners[1], f.x);
+    vec4 c10 = lerpValue(corners[2], corners[3], f.x);
+    vec4 c01 = lerpValue(corners[4], corners[5], f.x);
+    vec4 c11 = lerpValue(corners[6], corners[7], f.x);
     vec4 plain = lerpValue(lerpValue(c00, c10, f.y), lerpValue(c01, c11, f.y), f.z);
-    return kSolids && solidInStencil(i0) ? sampleOutsideSolids(field, i0, f, plain) : plain;
+    return kSolids && solidInStencil(i0) ? sampleOutsideSolids(i0, f, corners, plain) : plain;
 }
 
 // Per channel, the smallest and largest of the eight source values samplePigment interpolates.
@@ -92,7 +91,7 @@ void sourceRange(vec3 x, out vec4 low, out vec4 high) {
 }
 
 void main() {
-    ivec3 q = ivec3(gl_GlobalInvocationID);
+    ivec3 q = stageInvocation();
     if (any(greaterThanEqual(q, cellCount()))) return;
     vec4 value;
     if (kPass == MFX_ADVECT_BFECC_COMPENSATE) {

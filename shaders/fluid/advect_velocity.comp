@@ -35,7 +35,7 @@ float loadFaceField(int field, int c, ivec3 index) {
 
 void main() {
     int c = int(kTarget);
-    ivec3 q = ivec3(gl_GlobalInvocationID);
+    ivec3 q = stageInvocation();
     if (any(greaterThanEqual(q, faceCount(c)))) return;
     // The boundaries (docs/fluid.md, "Boundaries"): wall-normal faces are 0, and a periodic axis's
     // last face is its first, computed as face 0 so that the two agree bit for bit.

@@ -15,7 +15,7 @@ layout(std430, binding = 3) writeonly buffer Out {
 layout(binding = 4, MFX_VELOCITY_FORMAT) uniform writeonly image3D outField; // kDirectStore
 
 void main() {
-    ivec3 q = ivec3(gl_GlobalInvocationID);
+    ivec3 q = stageInvocation();
     if (any(greaterThanEqual(q, faceCount(1)))) return;
     float v = imageLoad(velocityY, q).r;
     if (!wallNormalFace(1, q) && !(solidsNearWorkgroup() && solidFace(1, q))) { // solid faces keep the solid's velocity

@@ -44,7 +44,7 @@ float forcedFace(int c, ivec3 q, vec4 here, vec4 below) {
 }
 
 void main() {
-    ivec3 q = ivec3(gl_GlobalInvocationID);
+    ivec3 q = stageInvocation();
     if (any(greaterThan(q, cellCount()))) return;
     vec4 here = imageLoad(force, resolveCell(q));
     if (all(lessThan(q, faceCount(0)))) {

@@ -36,7 +36,7 @@ layout(binding = 8, MFX_PRESSURE_FORMAT) uniform writeonly image3D pressureOut;
 layout(constant_id = 11) const uint kFirstSweep = 0;
 
 void main() {
-    ivec3 q = ivec3(gl_GlobalInvocationID);
+    ivec3 q = stageInvocation();
     ivec3 n = cellCount();
     if (any(greaterThanEqual(q, n))) return;
     float sum = (imageLoad(velocityX, q + ivec3(1, 0, 0)).r - imageLoad(velocityX, q).r) +

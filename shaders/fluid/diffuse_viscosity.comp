@@ -25,7 +25,7 @@ float fetchGuess(int c, ivec3 index) {
 
 void main() {
     int c = int(kTarget);
-    ivec3 q = ivec3(gl_GlobalInvocationID);
+    ivec3 q = stageInvocation();
     if (any(greaterThanEqual(q, faceCount(c)))) return;
     float value = 0.0;
     if (solidsNearWorkgroup() && solidFace(c, q)) { // the solid's velocity, a fixed boundary value

@@ -18,25 +18,71 @@ layout(constant_id = 15) const bool kSolids = false;
 layout(std430, binding = 15) readonly buffer SolidFlags {
     uint solidFlags[];
 };
-// One word per block of the workgroup's shape over cells + 1 along each axis: nonzero where a
-// cell from one before the block to its last has a nonzero flag byte, so that a workgroup of a
-// dispatch over the cells or faces from 0 knows from one load, the same for all its invocations,
-// whether any solid test of its own cells and faces can be true.
+// The solids' block words (mark_solids.comp writes them):
+//   [0, T)            one word per block of the workgroup's shape over cells + 1 along each axis
+//                     (T blocks): nonzero where a cell from one before the block to its last has
+//                     a nonzero flag byte, so that a workgroup of a dispatch over the cells or
+//                     faces from 0 knows from one load, the same for all its invocations,
+//                     whether any solid test of its own cells and faces can be true;
+//   [T + 3 (L - 1), + 3)  block list L's indirect dispatch (its length, 1, 1).
 layout(std430, binding = 19) readonly buffer SolidBlocks {
     uint solidBlocks[];
 };
+// Block list L (1 to kSolidBlockLists), bound as the window of 4 kSolidListEntries words at
+// L - 1 of them: the blocks near solids (odd L) or away from them (even L) among those a
+// dispatch over extent (L - 1) / 2 covers (0 the cells, 1 to 3 the faces of x, y, z, 4 the
+// cells + 1), packed (packSolidBlock). A uniform buffer: a workgroup reads its entry at one
+// address for all its invocations, and a CPU device loads such a value once, not once an
+// invocation.
+layout(std140, binding = 21) uniform SolidBlockList {
+    uvec4 solidBlockList[MFX_SOLID_LIST_ENTRIES / 4u];
+};
+const uint kSolidBlockLists = MFX_SOLID_BLOCK_LISTS;
+
+// Which list a dispatch's workgroups walk (constant id 16): 0 none (workgroup g is block g),
+// else block list L above: a stage dispatched twice, once over the blocks away from solids, where
+// every solid test gated by solidsNearWorkgroup() compiles out, and once over those near them.
+layout(constant_id = 16) const uint kBlockList = 0u;
+
+uvec3 solidBlockGrid() {
+    return (uvec3(cellCount()) + uvec3(1) + gl_WorkGroupSize - 1u) / gl_WorkGroupSize;
+}
 
 // The block index of workgroup g (mark_solids.comp writes them).
 int solidBlockIndex(uvec3 g) {
-    uvec3 blocks = (uvec3(cellCount()) + uvec3(1) + gl_WorkGroupSize - 1u) / gl_WorkGroupSize;
+    uvec3 blocks = solidBlockGrid();
     return int(g.x + blocks.x * (g.y + blocks.y * g.z));
+}
+
+// A list's entry: the block's coordinates, x + 2048 y + 2048² z (SmokeSolver splits a stage only
+// where the blocks along x and y number at most 2048 and along z at most 1024), so that a
+// workgroup finds its block without a division.
+uint packSolidBlock(uvec3 block) {
+    return block.x | (block.y << 11) | (block.z << 22);
+}
+uvec3 unpackSolidBlock(uint entry) {
+    return uvec3(entry & 0x7ffu, (entry >> 11) & 0x7ffu, entry >> 22);
+}
+
+// The block this workgroup computes: its own, or its entry in the block list it walks.
+uvec3 stageWorkGroup() {
+    if (kBlockList == 0u) return gl_WorkGroupID;
+    uint i = gl_WorkGroupID.x;
+    return unpackSolidBlock(solidBlockList[i >> 2u][i & 3u]);
+}
+
+// The cell or face this invocation computes (gl_GlobalInvocationID without a block list).
+ivec3 stageInvocation() {
+    return ivec3(stageWorkGroup() * gl_WorkGroupSize + gl_LocalInvocationID);
 }
 
 // Whether this workgroup's cells and faces (a dispatch from cell or face 0 in the solver's
 // workgroup shape) may have solids: where false, solidCell, solidFace and solidNeighbours of them
-// are all false.
+// are all false. Walking a block list it is known without a load.
 bool solidsNearWorkgroup() {
-    return kSolids && solidBlocks[solidBlockIndex(gl_WorkGroupID)] != 0u;
+    if (!kSolids) return false;
+    if (kBlockList != 0u) return kBlockList % 2u == 1u;
+    return solidBlocks[solidBlockIndex(gl_WorkGroupID)] != 0u;
 }
 
 // The word of cells 4 texel .. 4 texel + 3 of row (y, z).

@@ -4,30 +4,46 @@
 // every step with its surface's velocity). Twin: fluid/reference/mark_solids.cpp. Each solid is a
 // capsule (shared::FluidSolid) where the step ends, with its two ends' velocities.
 //
-// With the holders, the flags and the bricks' and blocks' words cleared to 0, three passes (kPass,
-// constant id 11), 1 and 2 over the solids' joint bounding box two cells wider only (the whole
-// of a periodic axis), from its first cell (dispatchInfo's origin; in words along x for pass 1):
-//   0  one dispatch per solid over the cells of its bounding box (the solid's index in
-//      dispatchInfo.target, the box's first cell in its origin): each cell whose centre it holds
-//      takes max(its holder, kMaxSolids - index), so the first solid in list order wins, as in the
-//      reference; 0 stays air;
+// With the holders, the solid bits, the flags and the bricks' and blocks' words cleared to 0, the
+// passes (kPass, constant id 11); 1, 3 and 4 over the solids' joint bounding box two cells wider
+// only (the whole of a periodic axis), from its first cell (dispatchInfo's origin; in words along
+// x for passes 1 and 4):
+//   0  one workgroup per entry of the box blocks (each solid's bounding box in workgroup-sized
+//      blocks; a dispatch per 4,096 entries): each cell of the block whose centre the entry's
+//      solid holds takes max(its holder, kMaxSolids - index), so the first solid in list order
+//      wins, as in the reference (0 stays air), and its solid bit;
 //   1  over the flag words (four cells along x each): the cells' flag bytes
-//      (shaders/fluid/fluid_solids.glsl); a word with any flag marks its Jacobi brick
-//      (solve_pressure.comp: 4 x kPressureRows x kPressureLayers cells), so that a sweep reads the
-//      flags only where solids are near, and a cell with a flag the workgroup blocks that reach it
-//      (fluid_solids.glsl), so that the other stages read them only there;
-//   2  over the box's cells and one more along each axis: every solid face of each component takes its solid's
-//      velocity at the face (the solid holding the cell below it, else the one above), and a solid
-//      cell's pigment is set to 0.
+//      (shaders/fluid/fluid_solids.glsl) from the solid bits of the rows around them; a word with
+//      any flag marks its Jacobi brick (solve_pressure.comp: 4 x kPressureRows x kPressureLayers
+//      cells), so that a sweep reads the flags only where solids are near, and the workgroup
+//      blocks that its cells reach (fluid_solids.glsl), so that the other stages read them only
+//      there;
+//   then, where the stages are split (SolverOptions::solidLists), instead:
+//   4  pass 1's flags alone;
+//   2  one invocation per block and per brick: its word, from the flags over its cells (no
+//      atomics: every word is written once);
+//   5  one invocation: the block lists (fluid_solids.glsl) and the brick lists
+//      (solve_pressure.comp), with their indirect dispatches;
+//   and last
+//   3  over the box's cells and one more along each axis, or over the blocks near solids (block
+//      list 9, kBlockList): every solid face of each component takes its solid's velocity at the
+//      face (the solid holding the cell below it, else the one above), and a solid cell's pigment
+//      is set to 0.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "fluid_common.glsl"
 #include "fluid_solids.glsl"
 #include "jacobi_neighbours.glsl"
 
-// The sub-step's solids, bound with exactly their count's range.
-layout(std430, binding = 1) readonly buffer Solids {
-    FluidSolid solids[];
+// The sub-step's solids (kMaxSolids of room; the first dispatchInfo.target are this step's), and
+// pass 0's blocks: entry i is (a solid's index, a workgroup-sized block of the grid its bounding
+// box reaches). Uniform buffers: a workgroup reads its entry and solid at one address for all its
+// invocations, and a CPU device loads such a value once instead of once an invocation.
+layout(std140, binding = 1) uniform Solids {
+    FluidSolid solids[1024];
+};
+layout(std140, binding = 6) uniform SolidBoxBlocks {
+    uvec4 boxBlocks[4096];
 };
 layout(binding = 2, MFX_VELOCITY_FORMAT) uniform writeonly image3D velocityX;
 layout(binding = 3, MFX_VELOCITY_FORMAT) uniform writeonly image3D velocityY;
@@ -37,25 +53,36 @@ layout(binding = 5, MFX_PIGMENT_FORMAT) uniform writeonly image3D pigment;
 layout(std430, binding = 16) buffer SolidHolders {
     uint holders[];
 };
+// A bit per cell, 32 x-consecutive cells to a word, rows padded to whole words: whether the cell
+// is solid (pass 0 sets them, pass 1 reads a row's six bits around a flag word in two loads).
+layout(std430, binding = 8) buffer SolidBits {
+    uint solidBits[];
+};
 // The flags the stages read (pass 1 writes them; binding 15 is their read-only view).
 layout(std430, binding = 17) buffer SolidFlagsOut {
     uint flagsOut[];
 };
-// One word per Jacobi brick: nonzero where a cell of it has a flag.
+// One word per Jacobi brick: nonzero where a cell of it has a flag; then the brick lists
+// (solve_pressure.comp).
 layout(std430, binding = 18) buffer SolidBricks {
     uint solidBricks[];
 };
-// The workgroup blocks' words (fluid_solids.glsl; binding 19 is their read-only view).
+// The block lists (fluid_solids.glsl; binding 21 is a list's uniform window).
+layout(std430, binding = 7) buffer SolidListsOut {
+    uint listsOut[];
+};
+// The workgroup blocks' words and the lists' dispatches (fluid_solids.glsl; binding 19 is their
+// read-only view).
 layout(std430, binding = 20) buffer SolidBlocksOut {
     uint blocksOut[];
 };
 
-// Marks the blocks whose cells from one before them to their last include cell x (per axis the
-// blocks x / S and (x + 1) / S, S the workgroup's size).
-void markBlocks(ivec3 x) {
+// Marks the blocks whose cells from one before them to their last include a cell of lo .. hi
+// (per axis the blocks lo / S to (hi + 1) / S, S the workgroup's size).
+void markBlocks(ivec3 lo, ivec3 hi) {
     uvec3 size = gl_WorkGroupSize;
     uvec3 blocks = (uvec3(cellCount()) + uvec3(1) + size - 1u) / size;
-    uvec3 low = uvec3(x) / size, high = min((uvec3(x) + 1u) / size, blocks - 1u);
+    uvec3 low = uvec3(lo) / size, high = min((uvec3(hi) + 1u) / size, blocks - 1u);
     for (uint k = low.z; k <= high.z; ++k)
         for (uint j = low.y; j <= high.y; ++j)
             for (uint i = low.x; i <= high.x; ++i)
@@ -116,48 +143,193 @@ void markFace(int c, ivec3 q) {
         imageStore(velocityZ, q, vec4(MFX_STORED(v)));
 }
 
-// Cell q's flag byte: its own bit, a bit for each side whose neighbour is a solid cell (one
-// inside the grid, or wrapped), and whether the stencil q + {0, 1}³ holds a solid.
-uint flagByte(ivec3 q) {
-    uint bits = holders[cellElement(q)] != 0u ? 1u : 0u;
-    for (int side = 0; side < 6; ++side) {
-        int axis = side / 2;
-        NeighbourRef ref = neighbourRef(axis, q[axis] + ((side & 1) == 0 ? -1 : 1));
-        ivec3 neighbour = q;
-        neighbour[axis] = ref.index;
-        if (ref.value && holders[cellElement(neighbour)] != 0u) bits |= 2u << uint(side);
+// The solid bits of cells 4 X - 1 .. 4 X + 4 of row (y, z) at bits 0..5 (cells outside the
+// grid 0), and, along a periodic x, those of the row's last and first cells.
+struct RowBits {
+    uint window;
+    bool last;
+    bool first;
+};
+
+int bitWordIndex(int word, int y, int z) {
+    return word + ((cellCount().x + 31) / 32) * (y + cellCount().y * z);
+}
+
+RowBits rowBits(int X, int y, int z) {
+    int n = cellCount().x;
+    int low = max(4 * X - 1, 0), high = min(4 * X + 4, n - 1);
+    uint w0 = solidBits[bitWordIndex(low >> 5, y, z)];
+    uint w1 = solidBits[bitWordIndex(high >> 5, y, z)];
+    RowBits r;
+    r.window = 0u;
+    for (int k = 0; k < 6; ++k) {
+        int x = 4 * X - 1 + k;
+        uint word = (x >> 5) == (low >> 5) ? w0 : w1;
+        if (x >= 0 && x < n && ((word >> uint(x & 31)) & 1u) != 0u) r.window |= 1u << uint(k);
     }
-    for (int corner = 0; corner < 8; ++corner) {
-        ivec3 cell = resolveCell(q + ivec3(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1));
-        if (holders[cellElement(cell)] != 0u) bits |= 0x80u;
+    r.last = false;
+    r.first = false;
+    if (periodicAxis(0)) {
+        r.last = ((solidBits[bitWordIndex((n - 1) >> 5, y, z)] >> uint((n - 1) & 31)) & 1u) != 0u;
+        r.first = (solidBits[bitWordIndex(0, y, z)] & 1u) != 0u;
     }
-    return bits;
+    return r;
+}
+
+// Cell 4 X + i of the row (inside the grid).
+bool cellBit(RowBits r, int i) {
+    return ((r.window >> uint(i + 1)) & 1u) != 0u;
+}
+
+// Its -x and +x neighbours as neighbourRef resolves them (none past a non-periodic face), and
+// its +x stencil corner as resolveCell resolves it (clamped: the cell itself).
+bool minusXBit(RowBits r, int X, int i) {
+    return 4 * X + i > 0 ? ((r.window >> uint(i)) & 1u) != 0u : r.last;
+}
+bool plusXBit(RowBits r, int X, int i) {
+    return 4 * X + i + 1 < cellCount().x ? ((r.window >> uint(i + 2)) & 1u) != 0u : r.first;
+}
+bool stencilXBits(RowBits r, int X, int i) {
+    bool beyond = 4 * X + i + 1 >= cellCount().x;
+    return cellBit(r, i) || (beyond ? (periodicAxis(0) ? r.first : false) : plusXBit(r, X, i));
+}
+
+// The flag word of cells 4 X .. 4 X + 3 of row (y, z) (fluid_solids.glsl): each cell's own bit, a
+// bit for each side whose neighbour is a solid cell (one inside the grid, or wrapped), and
+// whether the stencil q + {0, 1}³ holds a solid; cells past the last are 0.
+uint flagWord(int X, int y, int z) {
+    NeighbourRef yMinus = neighbourRef(1, y - 1), yPlus = neighbourRef(1, y + 1);
+    NeighbourRef zMinus = neighbourRef(2, z - 1), zPlus = neighbourRef(2, z + 1);
+    // The +y and +z rows are also the stencil's (neighbourRef's index resolves as resolveCell).
+    RowBits here = rowBits(X, y, z);
+    RowBits below = rowBits(X, yMinus.index, z), above = rowBits(X, yPlus.index, z);
+    RowBits back = rowBits(X, y, zMinus.index), front = rowBits(X, y, zPlus.index);
+    RowBits corner = rowBits(X, yPlus.index, zPlus.index);
+    uint word = 0u;
+    for (int i = 0; i < 4 && 4 * X + i < cellCount().x; ++i) {
+        uint bits = cellBit(here, i) ? 1u : 0u;
+        if (minusXBit(here, X, i)) bits |= 2u;
+        if (plusXBit(here, X, i)) bits |= 4u;
+        if (yMinus.value && cellBit(below, i)) bits |= 8u;
+        if (yPlus.value && cellBit(above, i)) bits |= 16u;
+        if (zMinus.value && cellBit(back, i)) bits |= 32u;
+        if (zPlus.value && cellBit(front, i)) bits |= 64u;
+        if (stencilXBits(here, X, i) || stencilXBits(above, X, i) || stencilXBits(front, X, i) ||
+            stencilXBits(corner, X, i))
+            bits |= 0x80u;
+        word |= bits << uint(8 * i);
+    }
+    return word;
+}
+
+// Whether any flag word of cells lo .. hi (inclusive, inside the grid; whole words along x) is
+// nonzero.
+bool anyFlag(ivec3 lo, ivec3 hi) {
+    for (int z = lo.z; z <= hi.z; ++z)
+        for (int y = lo.y; y <= hi.y; ++y)
+            for (int X = lo.x >> 2; X <= hi.x >> 2; ++X)
+                if (flagsOut[solidWordIndex(X, y, z)] != 0u) return true;
+    return false;
+}
+
+// Pass 2, invocation i: the word of block i (a flag from one cell before the block to its last)
+// and of brick i (a flag in the brick).
+void markNear(uint i) {
+    ivec3 n = cellCount();
+    uvec3 blocks = solidBlockGrid();
+    if (i < blocks.x * blocks.y * blocks.z) {
+        uvec3 block = uvec3(i % blocks.x, (i / blocks.x) % blocks.y, i / (blocks.x * blocks.y));
+        ivec3 first = ivec3(block * gl_WorkGroupSize);
+        ivec3 lo = max(first - 1, ivec3(0)), hi = min(first + ivec3(gl_WorkGroupSize) - 1, n - 1);
+        blocksOut[i] = all(lessThanEqual(lo, hi)) && anyFlag(lo, hi) ? 1u : 0u;
+    }
+    ivec3 bricks = (n + ivec3(3, kBrickRows - 1, kBrickLayers - 1)) / ivec3(4, kBrickRows, kBrickLayers);
+    if (i < uint(bricks.x * bricks.y * bricks.z)) {
+        ivec3 b = ivec3(i % uint(bricks.x), (i / uint(bricks.x)) % uint(bricks.y),
+                        i / uint(bricks.x * bricks.y));
+        ivec3 first = b * ivec3(4, kBrickRows, kBrickLayers);
+        ivec3 hi = min(first + ivec3(3, kBrickRows - 1, kBrickLayers - 1), n - 1);
+        solidBricks[i] = anyFlag(first, hi) ? 1u : 0u;
+    }
+}
+
+// Pass 5, one invocation: every block into the list of each extent that covers it (the near or
+// the far one), every brick into the near or the far brick list, and the lists' dispatches.
+void makeLists() {
+    uvec3 blocks = solidBlockGrid();
+    uint total = blocks.x * blocks.y * blocks.z;
+    uvec3 n = uvec3(cellCount());
+    uint lengths[kSolidBlockLists];
+    for (uint list = 0u; list < kSolidBlockLists; ++list)
+        lengths[list] = 0u;
+    for (uint i = 0u; i < total; ++i) {
+        uvec3 block = uvec3(i % blocks.x, (i / blocks.x) % blocks.y, i / (blocks.x * blocks.y));
+        uvec3 first = block * gl_WorkGroupSize;
+        uint away = blocksOut[i] != 0u ? 0u : 1u;
+        for (uint extent = 0u; extent < 5u; ++extent) {
+            uvec3 size = extent == 4u ? n + 1u : n;
+            if (extent >= 1u && extent <= 3u) size[extent - 1u] += 1u;
+            if (any(greaterThanEqual(first, size))) continue;
+            uint list = 2u * extent + away; // list L - 1
+            listsOut[MFX_SOLID_LIST_ENTRIES * list + lengths[list]] = packSolidBlock(block);
+            lengths[list] += 1u;
+        }
+    }
+    for (uint list = 0u; list < kSolidBlockLists; ++list)
+        blocksOut[total + 3u * list] = lengths[list];
+    ivec3 bricks = ivec3(n + uvec3(3, kBrickRows - 1, kBrickLayers - 1)) /
+                   ivec3(4, kBrickRows, kBrickLayers);
+    uint brickCount = uint(bricks.x * bricks.y * bricks.z);
+    uint brickLengths[2] = uint[2](0u, 0u);
+    for (uint i = 0u; i < brickCount; ++i) {
+        uint list = solidBricks[i] != 0u ? 0u : 1u; // list L - 1
+        uvec3 brick = uvec3(i % uint(bricks.x), (i / uint(bricks.x)) % uint(bricks.y),
+                            i / uint(bricks.x * bricks.y));
+        solidBricks[brickCount * (list + 1u) + brickLengths[list]] =
+            brick.x | (brick.y << 10) | (brick.z << 20);
+        brickLengths[list] += 1u;
+    }
+    uint group = gl_WorkGroupSize.x * gl_WorkGroupSize.y * gl_WorkGroupSize.z;
+    for (uint list = 0u; list < 2u; ++list) {
+        solidBricks[3u * brickCount + 3u * list] = (brickLengths[list] + group - 1u) / group;
+        solidBricks[3u * brickCount + 6u + list] = brickLengths[list];
+    }
 }
 
 void main() {
     ivec3 q = ivec3(gl_GlobalInvocationID);
     if (kPass == 0u) {
-        q += ivec3(dispatchInfo.originX, dispatchInfo.originY, dispatchInfo.originZ);
+        uvec4 entry = boxBlocks[gl_WorkGroupID.x];
+        q = ivec3(entry.yzw * gl_WorkGroupSize + gl_LocalInvocationID);
         if (any(greaterThanEqual(q, cellCount()))) return;
-        uint index = dispatchInfo.target;
-        if (insideSolid(solids[index], cellCentre(q)))
-            atomicMax(holders[cellElement(q)], kMaxSolids - index);
+        if (insideSolid(solids[entry.x], cellCentre(q))) {
+            atomicMax(holders[cellElement(q)], kMaxSolids - entry.x);
+            atomicOr(solidBits[bitWordIndex(q.x >> 5, q.y, q.z)], 1u << uint(q.x & 31));
+        }
         return;
     }
     ivec3 n = cellCount();
-    // Passes 1 and 2 run over the solids' joint box (in words along x for pass 1), from its origin.
+    if (kPass == 2u) {
+        markNear(gl_WorkGroupID.x * (gl_WorkGroupSize.x * gl_WorkGroupSize.y * gl_WorkGroupSize.z) +
+                 gl_LocalInvocationIndex);
+        return;
+    }
+    if (kPass == 5u) {
+        if (gl_LocalInvocationIndex == 0u) makeLists();
+        return;
+    }
+    // Passes 1 and 4 run over the solids' joint box in words along x, pass 3 over its cells, from
+    // its origin.
     q += ivec3(dispatchInfo.originX, dispatchInfo.originY, dispatchInfo.originZ);
-    if (kPass == 1u) {
+    if (kPass == 1u || kPass == 4u) {
         int texel = q.x;
         if (4 * texel >= n.x || q.y >= n.y || q.z >= n.z) return;
-        uint word = 0u;
-        for (int i = 0; i < 4 && 4 * texel + i < n.x; ++i) {
-            uint byte = flagByte(ivec3(4 * texel + i, q.y, q.z));
-            word |= byte << (8 * i);
-            if (byte != 0u) markBlocks(ivec3(4 * texel + i, q.y, q.z));
-        }
+        uint word = flagWord(texel, q.y, q.z);
         flagsOut[solidWordIndex(texel, q.y, q.z)] = word;
-        if (word != 0u) {
+        if (kPass == 1u && word != 0u) {
+            // The blocks its cells reach (markBlocks; the whole word: a block marked near
+            // needlessly only reads its flags) and its brick.
+            markBlocks(ivec3(4 * texel, q.y, q.z), ivec3(min(4 * texel + 3, n.x - 1), q.y, q.z));
             ivec3 bricks = (n + ivec3(3, kBrickRows - 1, kBrickLayers - 1)) /
                            ivec3(4, kBrickRows, kBrickLayers);
             int brick = texel + bricks.x * (q.y / kBrickRows + bricks.y * (q.z / kBrickLayers));
@@ -167,6 +339,7 @@ void main() {
     }
     // Cell q's byte (pass 1's) says whether faces q of the three components are solid: its own
     // bit or its -c neighbour's. Faces past the last cell along an axis look below them.
+    if (kBlockList != 0u) q = stageInvocation();
     bool inside = all(lessThan(q, n));
     uint byte = inside ? solidByte(q) : 0xffu;
     if ((byte & 0x2bu) == 0u) return; // bits 0, 1 (-x), 3 (-y), 5 (-z)

@@ -29,7 +29,7 @@ float pressureAt(ivec3 q, int axis) {
 
 void main() {
     int c = int(kTarget);
-    ivec3 q = ivec3(gl_GlobalInvocationID);
+    ivec3 q = stageInvocation();
     if (any(greaterThanEqual(q, faceCount(c)))) return;
     float value = imageLoad(velocity, q).r;
     // u·n = u_solid·n kept on solid faces.

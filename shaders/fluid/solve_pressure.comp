@@ -38,8 +38,12 @@ layout(std430, binding = 7) readonly buffer PackedInCells {
     float packedInCells[];
 };
 
-// With solids: one word per brick, nonzero where a cell of the brick has a solid flag
-// (mark_solids.comp); the sweep reads the rows' flags only there.
+// With solids: one word per brick (B bricks), nonzero where a cell of the brick has a solid flag
+// (mark_solids.comp); the sweep reads the rows' flags only there. Where the sweep is split
+// (kBlockList, fluid_solids.glsl: 1 the bricks near solids, 2 those away from them), list L's
+// bricks are words [B L, B L + its length) (a brick's coordinates x + 1024 y + 1024² z), its
+// indirect dispatch words 3 B + 3 (L - 1) .. + 2 and
+// its length word 3 B + 6 + (L - 1); invocation i of the dispatch sweeps the list's brick i.
 layout(std430, binding = 8) readonly buffer SolidBricks {
     uint solidBricks[];
 };
@@ -77,7 +81,18 @@ vec4 selectRow(bool use, vec4 value) {
 
 void main() {
     ivec3 n = cellCount();
-    ivec3 brick = ivec3(gl_GlobalInvocationID) * ivec3(1, kPressureRows, kPressureLayers);
+    ivec3 bricks = (n + ivec3(3, kPressureRows - 1, kPressureLayers - 1)) /
+                   ivec3(4, kPressureRows, kPressureLayers);
+    ivec3 b = ivec3(gl_GlobalInvocationID);
+    if (kBlockList != 0u) {
+        uint count = uint(bricks.x * bricks.y * bricks.z);
+        uint listed = gl_WorkGroupID.x * (gl_WorkGroupSize.x * gl_WorkGroupSize.y * gl_WorkGroupSize.z) +
+                      gl_LocalInvocationIndex;
+        if (listed >= solidBricks[3u * count + 6u + kBlockList - 1u]) return;
+        uint entry = solidBricks[count * kBlockList + listed];
+        b = ivec3(entry & 0x3ffu, (entry >> 10) & 0x3ffu, entry >> 20);
+    }
+    ivec3 brick = b * ivec3(1, kPressureRows, kPressureLayers);
     int texel = brick.x;
     int firstX = 4 * texel;
     if (firstX >= n.x || brick.y >= n.y || brick.z >= n.z) return;
@@ -109,10 +124,9 @@ void main() {
     for (int i = 0; i < kPressureRows + 2; ++i)
         windowY[i] = neighbourRef(1, brick.y - 1 + i).index;
 
-    ivec3 bricks = (n + ivec3(3, kPressureRows - 1, kPressureLayers - 1)) /
-                   ivec3(4, kPressureRows, kPressureLayers);
-    ivec3 b = ivec3(gl_GlobalInvocationID);
-    bool nearSolids = kSolids && solidBricks[b.x + bricks.x * (b.y + bricks.y * b.z)] != 0u;
+    bool nearSolids =
+        kSolids && (kBlockList == 1u ||
+                    (kBlockList == 0u && solidBricks[b.x + bricks.x * (b.y + bricks.y * b.z)] != 0u));
     vec4 below[kPressureRows], centre[kPressureRows + 2], above[kPressureRows + 2];
     int belowZ = neighbourRef(2, brick.z - 1).index;
     for (int r = 0; r < kPressureRows; ++r)

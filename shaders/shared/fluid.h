@@ -42,6 +42,12 @@
 #define MFX_TARGET_VELOCITY_Z 2u
 #define MFX_TARGET_PIGMENT 3u
 
+// The block lists of a solver with solids (shaders/fluid/fluid_solids.glsl): near and away from
+// solids, for each of the five extents a stage dispatches over.
+#define MFX_SOLID_BLOCK_LISTS 10u
+// The entries of one block list (a uniform buffer of 64 KiB; more blocks: the stages not split).
+#define MFX_SOLID_LIST_ENTRIES 16384u
+
 MFX_SHARED_BEGIN
 
 // Uniform buffer (std140), written once per sub-step.
