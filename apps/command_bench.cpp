@@ -32,6 +32,9 @@ namespace mfx::app {
 
 namespace {
 
+// --solids: none, the fighter's body, or both side by side.
+enum class BenchSolids { None, Body, Both };
+
 struct GridResult {
     std::array<uint32_t, 3> grid;
     std::array<uint32_t, 3> workgroup;
@@ -41,6 +44,7 @@ struct GridResult {
     std::map<std::string, fluid::StageBytes> stageBytes; // the model, per stage (summed over runs)
     fluid::StageBytes stepBytes;
     uint32_t dispatches = 0; // compute dispatches a step (each followed, mostly, by a barrier)
+    bool withBody = false;   // the fighter's body as solids
 };
 
 // Cells of the box the emitters cover (their spheres' bounds, clipped to the grid): what the
@@ -102,7 +106,7 @@ struct SolverChoice {
     uint32_t coarseCells = 0;
     fluid::ByDevice residualInRestriction = fluid::ByDevice::Auto;
     fluid::ByDevice firstSweepInDivergence = fluid::ByDevice::Auto;
-    bool bodySolids = false; // --solids body
+    BenchSolids solids = BenchSolids::None; // --solids
     fluid::ByDevice solidLists = fluid::ByDevice::Auto;
 };
 
@@ -127,69 +131,82 @@ std::vector<shared::FluidSolid> benchBodySolids(glm::vec3 box, float dt) {
     return solids;
 }
 
-// Times one grid with one workgroup shape: the median of `steps` steps after 3 warm-up steps.
-Result<GridResult> benchGrid(const gpu::Context& ctx, const std::string& scenarioName,
-                             std::array<uint32_t, 3> cells, std::array<uint32_t, 3> workgroup,
-                             const SolverChoice& choice, uint32_t steps) {
-    fluid::Scenario scenario =
-        fluid::makeScenario(scenarioName, glm::uvec3(cells[0], cells[1], cells[2])).value();
-    scenario.options.jacobiIterations = choice.jacobi;
-    scenario.options.pressureSolver = choice.pressure;
-    scenario.options.workgroup = workgroup;
-    scenario.options.storePath = choice.store;
-    scenario.options.multigrid.coarseGroup = choice.coarseGroup;
-    scenario.options.multigrid.brick = choice.brick;
-    scenario.options.multigrid.coarseCells = choice.coarseCells;
-    scenario.options.multigrid.residualInRestriction = choice.residualInRestriction;
-    scenario.options.firstSweepInDivergence = choice.firstSweepInDivergence;
-    scenario.options.solidLists = choice.solidLists;
-    auto solverResult = fluid::SmokeSolver::create(ctx, scenario.options);
-    if (!solverResult) return solverResult.error();
-    fluid::SmokeSolver& solver = *solverResult.value();
-    solver.setState(scenario.initial);
+// One solver of a benchmarked grid and the times of its steps.
+struct GridRun {
+    fluid::Scenario scenario;
+    std::unique_ptr<fluid::SmokeSolver> solver;
+    std::unique_ptr<gpu::GpuTimer> timer;
     std::vector<shared::FluidSolid> solids;
-    if (choice.bodySolids) {
-        const fluid::GridShape& g = scenario.options.grid;
-        solids = benchBodySolids(glm::vec3(g.cellsX, g.cellsY, g.cellsZ) * g.cellSize,
-                                 scenario.options.substepDt());
-        if (Status ok = solver.setSolids(solids); !ok) return ok.error();
-    }
-    gpu::GpuTimer timer(ctx, solver.passesPerStep());
     std::vector<double> stepTimes, wallTimes;
     std::map<std::string, std::vector<double>> stageTimes;
-    std::fprintf(stderr, "  %ux%ux%u, workgroup %s ", cells[0], cells[1], cells[2],
-                 shapeLabel(workgroup).c_str());
-    const uint32_t warmup = 3;
-    for (uint32_t step = 0; step < warmup + steps; ++step) {
-        // Emitters stay on (the scenario's first step) so every stage has work each step.
-        if (Status ok = solver.setEmitters(scenario.emitters(0)); !ok) return ok.error();
-        const auto start = std::chrono::steady_clock::now();
-        gpu::submitOneShot(ctx, [&](VkCommandBuffer cmd) {
-            timer.reset(cmd);
-            solver.recordStep(cmd, &timer);
-        });
-        const double wall =
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-                .count();
-        std::fputc('.', stderr);
-        if (step < warmup) continue;
-        std::map<std::string, double> perStage;
-        double total = 0.0;
-        for (const gpu::PassTime& pass : timer.results()) {
-            perStage[pass.name] += pass.milliseconds;
-            total += pass.milliseconds;
-        }
-        for (const auto& [name, ms] : perStage)
-            stageTimes[name].push_back(ms);
-        stepTimes.push_back(total);
-        wallTimes.push_back(wall);
+};
+
+Result<std::unique_ptr<GridRun>>
+makeGridRun(const gpu::Context& ctx, const std::string& scenarioName, std::array<uint32_t, 3> cells,
+            std::array<uint32_t, 3> workgroup, const SolverChoice& choice, bool body) {
+    auto run = std::make_unique<GridRun>();
+    run->scenario =
+        fluid::makeScenario(scenarioName, glm::uvec3(cells[0], cells[1], cells[2])).value();
+    fluid::SolverOptions& o = run->scenario.options;
+    o.jacobiIterations = choice.jacobi;
+    o.pressureSolver = choice.pressure;
+    o.workgroup = workgroup;
+    o.storePath = choice.store;
+    o.multigrid.coarseGroup = choice.coarseGroup;
+    o.multigrid.brick = choice.brick;
+    o.multigrid.coarseCells = choice.coarseCells;
+    o.multigrid.residualInRestriction = choice.residualInRestriction;
+    o.firstSweepInDivergence = choice.firstSweepInDivergence;
+    o.solidLists = choice.solidLists;
+    auto solverResult = fluid::SmokeSolver::create(ctx, o);
+    if (!solverResult) return solverResult.error();
+    run->solver = std::move(solverResult).value();
+    run->solver->setState(run->scenario.initial);
+    if (body) {
+        const fluid::GridShape& g = o.grid;
+        run->solids =
+            benchBodySolids(glm::vec3(g.cellsX, g.cellsY, g.cellsZ) * g.cellSize, o.substepDt());
+        if (Status ok = run->solver->setSolids(run->solids); !ok) return ok.error();
     }
-    std::fputc('\n', stderr);
-    GridResult r{cells, workgroup, median(stepTimes), median(wallTimes), {}, {}, {}, 0};
-    for (const auto& [name, times] : stageTimes)
+    run->timer = std::make_unique<gpu::GpuTimer>(ctx, run->solver->passesPerStep());
+    return run;
+}
+
+// One step of `run`, its times kept unless `warmup`.
+Status stepGridRun(const gpu::Context& ctx, GridRun& run, bool warmup) {
+    fluid::SmokeSolver& solver = *run.solver;
+    // Emitters stay on (the scenario's first step) so every stage has work each step.
+    if (Status ok = solver.setEmitters(run.scenario.emitters(0)); !ok) return ok;
+    const auto start = std::chrono::steady_clock::now();
+    gpu::submitOneShot(ctx, [&](VkCommandBuffer cmd) {
+        run.timer->reset(cmd);
+        solver.recordStep(cmd, run.timer.get());
+    });
+    const double wall =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    std::fputc('.', stderr);
+    if (warmup) return Ok{};
+    std::map<std::string, double> perStage;
+    double total = 0.0;
+    for (const gpu::PassTime& pass : run.timer->results()) {
+        perStage[pass.name] += pass.milliseconds;
+        total += pass.milliseconds;
+    }
+    for (const auto& [name, ms] : perStage)
+        run.stageTimes[name].push_back(ms);
+    run.stepTimes.push_back(total);
+    run.wallTimes.push_back(wall);
+    return Ok{};
+}
+
+GridResult gridResult(const GridRun& run, std::array<uint32_t, 3> cells,
+                      std::array<uint32_t, 3> workgroup) {
+    const fluid::Scenario& scenario = run.scenario;
+    GridResult r{cells, workgroup, median(run.stepTimes), median(run.wallTimes), {}, {}, {}, 0};
+    for (const auto& [name, times] : run.stageTimes)
         r.stageMs[name] = median(times);
     const fluid::StageWork work{splatCells(scenario.options, scenario.emitters(0)),
-                                solver.lastPressureIterations(), uint32_t(solids.size())};
+                                run.solver->lastPressureIterations(), uint32_t(run.solids.size())};
     for (fluid::Stage stage : fluid::stepOrder()) {
         const fluid::StageBytes b = fluid::stageEntry(stage).bytes(scenario.options, work);
         fluid::StageBytes& sum = r.stageBytes[fluid::stageName(stage)];
@@ -197,11 +214,48 @@ Result<GridResult> benchGrid(const gpu::Context& ctx, const std::string& scenari
         sum.written += b.written * scenario.options.substeps;
     }
     r.stepBytes = fluid::stepBytes(scenario.options, work);
-    for (const auto& [stage, count] : solver.lastStepDispatches())
+    for (const auto& [stage, count] : run.solver->lastStepDispatches())
         r.dispatches += count;
     r.stepBytes.read *= scenario.options.substeps;
     r.stepBytes.written *= scenario.options.substeps;
+    r.withBody = !run.solids.empty();
     return r;
+}
+
+// Times one grid with one workgroup shape: the median of `steps` steps after 3 warm-up steps.
+// With --solids both, two solvers, without and with the body, step by turns (so that a drift of
+// the machine's speed reaches both alike): two results, the second with the body, and the median
+// of the steps' ratios in `ratio`.
+Result<std::vector<GridResult>> benchGrid(const gpu::Context& ctx, const std::string& scenarioName,
+                                          std::array<uint32_t, 3> cells,
+                                          std::array<uint32_t, 3> workgroup,
+                                          const SolverChoice& choice, uint32_t steps,
+                                          double* ratio) {
+    std::vector<std::unique_ptr<GridRun>> runs;
+    for (bool body : {false, true}) {
+        if (body ? choice.solids == BenchSolids::None : choice.solids == BenchSolids::Body)
+            continue;
+        auto run = makeGridRun(ctx, scenarioName, cells, workgroup, choice, body);
+        if (!run) return run.error();
+        runs.push_back(std::move(run).value());
+    }
+    std::fprintf(stderr, "  %ux%ux%u, workgroup %s ", cells[0], cells[1], cells[2],
+                 shapeLabel(workgroup).c_str());
+    const uint32_t warmup = 3;
+    for (uint32_t step = 0; step < warmup + steps; ++step)
+        for (auto& run : runs)
+            if (Status ok = stepGridRun(ctx, *run, step < warmup); !ok) return ok.error();
+    std::fputc('\n', stderr);
+    std::vector<GridResult> results;
+    for (const auto& run : runs)
+        results.push_back(gridResult(*run, cells, workgroup));
+    if (runs.size() == 2 && ratio != nullptr) {
+        std::vector<double> ratios;
+        for (size_t i = 0; i < runs[0]->stepTimes.size(); ++i)
+            ratios.push_back(runs[1]->stepTimes[i] / runs[0]->stepTimes[i]);
+        *ratio = median(ratios);
+    }
+    return results;
 }
 
 } // namespace
@@ -269,11 +323,14 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
         return kExitUsage;
     }
     const std::string solidsName = parsed.value("solids", "none");
-    if (solidsName != "none" && solidsName != "body") {
-        printError("--solids must be none or body, not \"" + solidsName + "\"");
+    if (solidsName != "none" && solidsName != "body" && solidsName != "both") {
+        printError("--solids must be none, body or both, not \"" + solidsName + "\"");
         return kExitUsage;
     }
-    const bool bodySolids = solidsName == "body";
+    const BenchSolids benchSolids = solidsName == "body"   ? BenchSolids::Body
+                                    : solidsName == "both" ? BenchSolids::Both
+                                                           : BenchSolids::None;
+    const bool bodySolids = benchSolids != BenchSolids::None;
     if (bodySolids && *pressure != fluid::PressureSolver::Jacobi) {
         printError(std::string("--solids body: the pressure solver \"") +
                    fluid::pressureSolverName(*pressure) + "\" does not take solids yet");
@@ -320,9 +377,9 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
     const bool firstSweepFused = resolved.firstSweepFused();
     const bool splitSolids = fluid::splitsSolids(*solidLists, ctx);
     if (bodySolids)
-        std::printf("solids: the fighter's body, %zu capsules mid-kick (--solids body); the "
+        std::printf("solids: the fighter's body, %zu capsules mid-kick (--solids %s); the "
                     "stages %s\n\n",
-                    benchBodySolids(glm::vec3(1.0f), 1.0f / 60.0f).size(),
+                    benchBodySolids(glm::vec3(1.0f), 1.0f / 60.0f).size(), solidsName.c_str(),
                     splitSolids ? "split into the blocks away from and near them (--solid-lists)"
                                 : "dispatched whole (--solid-lists)");
     if (*pressure == fluid::PressureSolver::Jacobi)
@@ -337,18 +394,22 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
                                   : "written by a pass before the restriction");
 
     std::vector<GridResult> results;
+    std::vector<double> bodyRatios; // --solids both: per grid, the median step ratio
     for (const auto& cells : grids.value())
         for (const auto& workgroup : workgroups.value()) {
+            double ratio = 0.0;
             auto r =
                 benchGrid(ctx, scenarioName, cells, workgroup,
                           {jacobi.value(), *pressure, *store, coarseGroup.value(), brick.value(),
-                           coarseCells.value(), *fused, *firstSweep, bodySolids, *solidLists},
-                          steps.value());
+                           coarseCells.value(), *fused, *firstSweep, benchSolids, *solidLists},
+                          steps.value(), &ratio);
             if (!r) {
                 printError(r.error().message);
                 return kExitFailure;
             }
-            results.push_back(std::move(r.value()));
+            for (GridResult& one : r.value())
+                results.push_back(std::move(one));
+            if (benchSolids == BenchSolids::Both) bodyRatios.push_back(ratio);
         }
 
     // The yardstick, after the grids (a GPU has left its idle clock by then): a copy as large as
@@ -362,7 +423,8 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
     // Table 1: one row per stage (in the table's order), one column per grid (and workgroup).
     const bool shapes = workgroups.value().size() > 1;
     auto gridLabel = [&](const GridResult& r) {
-        return shapeLabel(r.grid) + (shapes ? " " + shapeLabel(r.workgroup) : "");
+        return shapeLabel(r.grid) + (shapes ? " " + shapeLabel(r.workgroup) : "") +
+               (benchSolids == BenchSolids::Both && r.withBody ? " body" : "");
     };
     MarkdownTable times, rates;
     times.header = rates.header = {"stage"};
@@ -417,6 +479,16 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
         }
     };
     printTable(times);
+    // --solids both: the two solvers stepped by turns, so the ratio of each pair of steps
+    // compares them at one moment of the machine's speed.
+    std::string ratioLine;
+    for (size_t i = 0; i < bodyRatios.size(); ++i)
+        ratioLine += (i == 0 ? "" : ", ") + shapeLabel(results[2 * i].grid) + " " +
+                     fixed(bodyRatios[i], 3) + "x";
+    if (!bodyRatios.empty())
+        std::printf("\nthe step with the body over the step without (median of the steps' ratios, "
+                    "the two solvers stepped by turns): %s\n",
+                    ratioLine.c_str());
     std::printf("\nroofline: copy bandwidth %.1f GB/s (%.0f MiB read and written, median %.3f ms "
                 "of 10%s); each stage's rate is the bytes its model must move over its median "
                 "time\n\n",
@@ -446,7 +518,9 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
                  ? "first sweep in the solve, "
                  : "") +
             (direct ? "direct" : "buffer") + " store (" + scenarioName +
-            (bodySolids ? std::string(", the fighter's body as solids") +
+            (bodySolids ? std::string(benchSolids == BenchSolids::Both
+                                          ? ", without and with the fighter's body as solids"
+                                          : ", the fighter's body as solids") +
                               (splitSolids ? "" : ", stages whole")
                         : std::string()) +
             ")";
@@ -508,6 +582,7 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
                             {"step_bytes", r.stepBytes.total()},
                             {"dispatches", r.dispatches},
                             {"step_gb_per_s", rate(r.stepBytes.total(), r.stepMs)},
+                            {"body", r.withBody},
                             {"stages", stages}});
         }
         jsonFile << nlohmann::json{{"device", ctx.info().name},
@@ -519,6 +594,7 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
                                    {"brick", hierarchy ? bricks : 0u},
                                    {"coarse_cells", hierarchy ? fusedCells : 0u},
                                    {"solids", solidsName},
+                                   {"body_step_ratios", bodyRatios},
                                    {"solid_lists", bodySolids && splitSolids},
                                    {"residual_in_restriction", residualFused},
                                    {"first_sweep_in_divergence", firstSweepFused},

@@ -140,9 +140,10 @@ CommandLine benchSolverCommandLine() {
         .option("residual-in-restriction", "auto|on|off",
                 "multigrid: the restriction computes the residual instead of a pass before it "
                 "(default auto: on a GPU only)")
-        .option("solids", "none|body",
+        .option("solids", "none|body|both",
                 "dense, jacobi: moving solids in the grid, none (default) or the built-in "
-                "fighter's body capsules mid-kick, half size, standing in the box")
+                "fighter's body capsules mid-kick, half size, standing in the box; both: a "
+                "solver without and one with them, stepped by turns, and the steps' ratio")
         .option("solid-lists", "auto|on|off",
                 "with solids: each stage that reads them dispatched over the blocks away from "
                 "them and over those near them (default auto: on a CPU device only)")

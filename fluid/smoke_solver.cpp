@@ -172,8 +172,10 @@ Status SmokeSolver::setSolids(std::span<const shared::FluidSolid> solids) {
         solidsBuffer_ = make(kSolidUniformBytes, "fluid solids");
         solidBoxBlocks_ = make(kSolidUniformBytes, "fluid solid box blocks");
         // A flag byte per cell, rows padded to whole words of four (fluid_solids.glsl).
-        solidCells_ = make(uint64_t((g.cellsX + 3) / 4) * g.cellsY * g.cellsZ * sizeof(uint32_t),
-                           "fluid solid cells");
+        const uint64_t flagBytes = uint64_t((g.cellsX + 3) / 4) * g.cellsY * g.cellsZ * 4;
+        solidCells_ = make(flagBytes, "fluid solid cells");
+        // A byte per cell likewise: its trilinear stencil's solid corners.
+        solidCorners_ = make(flagBytes, "fluid solid corners");
         solidHolders_ = make(g.cellCount() * sizeof(uint32_t), "fluid solid holders");
         // A bit per cell, rows padded to whole words of 32 (mark_solids.comp).
         solidBits_ = make(uint64_t((g.cellsX + 31) / 32) * g.cellsY * g.cellsZ * sizeof(uint32_t),
@@ -275,11 +277,19 @@ void SmokeSolver::writeParameters() {
 SmokeSolver::Writes SmokeSolver::withSolidList(std::span<const gpu::DescriptorWrite> writes,
                                                const gpu::Program& program, uint32_t list) const {
     Writes all(writes.begin(), writes.end());
-    for (const gpu::BindingDesc& b : program.bindings())
-        if (b.binding == 21)
+    auto written = [&](uint32_t binding) {
+        return std::any_of(writes.begin(), writes.end(),
+                           [&](const gpu::DescriptorWrite& w) { return w.binding == binding; });
+    };
+    for (const gpu::BindingDesc& b : program.bindings()) {
+        if (b.binding == 21 && !written(21))
             all.push_back(list == 0 ? gpu::bindBuffer(21, noSolidList_)
                                     : gpu::bindBuffer(21, solidLists_, (list - 1) * kSolidListBytes,
                                                       kSolidListBytes));
+        if (b.binding == 22 && !written(22))
+            all.push_back(gpu::bindBuffer(
+                22, solidCorners_.get() != VK_NULL_HANDLE ? solidCorners_ : noSolidCells_));
+    }
     return all;
 }
 
@@ -396,12 +406,14 @@ void SmokeSolver::markSolids(VkCommandBuffer cmd) {
         gpu::bindBuffer(6, solidBoxBlocks_),
         gpu::bindBuffer(7, splitSolids_ ? solidLists_ : noSolidCells_),
         gpu::bindBuffer(8, solidBits_),
+        gpu::bindBuffer(9, solidCorners_),
         gpu::bindBuffer(15, noSolidCells_),
         gpu::bindBuffer(16, solidHolders_),
         gpu::bindBuffer(17, solidCells_),
         gpu::bindBuffer(18, solidBricks_),
         gpu::bindBuffer(19, noSolidCells_),
         gpu::bindBuffer(20, solidBlocks_),
+        gpu::bindBuffer(22, noSolidCells_), // written at 9
     };
     // Every cell air and without flags, then each solid over the cells of its bounding box (one
     // cell wider: the box is found in fp32), then the flags and the faces and pigment, over the
@@ -410,6 +422,7 @@ void SmokeSolver::markSolids(VkCommandBuffer cmd) {
     const uint32_t blockCount = solidBlockCount(), brickCount = solidBrickCount();
     vkCmdFillBuffer(cmd, solidHolders_.get(), 0, VK_WHOLE_SIZE, 0);
     vkCmdFillBuffer(cmd, solidCells_.get(), 0, VK_WHOLE_SIZE, 0);
+    vkCmdFillBuffer(cmd, solidCorners_.get(), 0, VK_WHOLE_SIZE, 0);
     vkCmdFillBuffer(cmd, solidBricks_.get(), 0, brickCount * sizeof(uint32_t), 0);
     vkCmdFillBuffer(cmd, solidBlocks_.get(), 0, blockCount * sizeof(uint32_t), 0);
     vkCmdFillBuffer(cmd, solidBits_.get(), 0, VK_WHOLE_SIZE, 0);
@@ -490,6 +503,7 @@ void SmokeSolver::markSolids(VkCommandBuffer cmd) {
     };
     rebind(15, solidCells_);
     rebind(17, noSolidCells_);
+    rebind(9, noSolidCells_);
     if (splitSolids_) {
         rebind(7, noSolidCells_);  // the block lists stay as pass 2 left them: read at 21
         rebind(18, noSolidCells_); // and the brick lists
@@ -517,9 +531,9 @@ void SmokeSolver::markSolids(VkCommandBuffer cmd) {
 
 void SmokeSolver::makeSolidLists(VkCommandBuffer cmd,
                                  std::span<const gpu::DescriptorWrite> writes) {
-    // Pass 2: each block's and brick's word; pass 5: the lists.
+    // Pass 2: each block's word (pass 4 marked the bricks'); pass 5: the lists.
     const std::array<uint32_t, 3>& group = options_.workgroup;
-    const uint32_t items = std::max(solidBlockCount(), solidBrickCount());
+    const uint32_t items = solidBlockCount();
     gpu::Program& words = programs_.get("mark_solids", 0, 2);
     words.bind(cmd, withSolidList(writes, words, 0));
     words.push(cmd, shared::FluidDispatch{0, 0, 0, 0});
@@ -881,8 +895,8 @@ void SmokeSolver::recordStep(VkCommandBuffer cmd, gpu::GpuTimer* timer) {
 uint64_t SmokeSolver::memoryBytes() const {
     uint64_t bytes = fields_.memoryBytes() + parameters_.size + ownEmitters_.size +
                      solidsBuffer_.size + solidBoxBlocks_.size + solidCells_.size +
-                     solidHolders_.size + solidBits_.size + solidBricks_.size + solidBlocks_.size +
-                     solidLists_.size + noSolidCells_.size + noSolidList_.size;
+                     solidCorners_.size + solidHolders_.size + solidBits_.size + solidBricks_.size +
+                     solidBlocks_.size + solidLists_.size + noSolidCells_.size + noSolidList_.size;
     if (multigrid_) bytes += multigrid_->memoryBytes();
     return bytes;
 }

@@ -165,8 +165,9 @@ private:
     // ones, over the blocks away from solids and over those near them (fluid_solids.glsl).
     void dispatchStage(VkCommandBuffer cmd, const StageProgram& program,
                        std::span<const gpu::DescriptorWrite> writes, glm::uvec3 extent);
-    // `writes` and, where `program` declares binding 21, block list `list`'s window there (0: a
-    // buffer that no workgroup reads; fluid_solids.glsl).
+    // `writes` and, where `program` declares them and `writes` does not write them, block list
+    // `list`'s window at binding 21 (0: a buffer that no workgroup reads) and the stencils' solid
+    // corners at 22 (fluid_solids.glsl).
     Writes withSolidList(std::span<const gpu::DescriptorWrite> writes, const gpu::Program& program,
                          uint32_t list) const;
     // Workgroup-sized blocks over the cells + 1 (fluid_solids.glsl), and Jacobi bricks.
@@ -224,6 +225,7 @@ private:
     gpu::Buffer solidsBuffer_;               // where it records them (kMaxSolids; once solids come)
     gpu::Buffer solidBoxBlocks_;             // mark_solids' first pass's blocks (likewise)
     gpu::Buffer solidCells_;                 // a flag byte per cell (fluid_solids.glsl; likewise)
+    gpu::Buffer solidCorners_;               // a stencil's solid corners per cell (likewise)
     gpu::Buffer solidHolders_; // per cell, which solid holds it (mark_solids.comp; likewise)
     gpu::Buffer solidBits_;    // per cell, whether a solid holds it (likewise)
     gpu::Buffer solidBricks_;  // per Jacobi brick, whether solids are near; the lists (likewise)

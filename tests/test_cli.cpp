@@ -97,6 +97,35 @@ TEST(Cli, BenchSolverPrintsATableAndWritesJson) {
         EXPECT_NE(text.find(key), std::string::npos) << key << " missing from " << text;
 }
 
+// --solids both: a solver without the body and one with it, stepped by turns: two columns, the
+// steps' ratio, and the split or whole stages as asked.
+TEST(Cli, BenchSolverComparesTheBodyWithoutAndWith) {
+    const std::string json = std::string(MFX_TEST_OUTPUT_DIR) + "/cli/bench_solver_body.json";
+    std::filesystem::remove(json);
+    for (const char* lists : {"on", "off"}) {
+        const RunResult r =
+            runMotionfx(std::string("bench solver --grids 16 --steps 2 --jacobi 3 --solids both "
+                                    "--solid-lists ") +
+                        lists + " --json \"" + json + "\"");
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        EXPECT_NE(r.out.find("16x16x16 body ms"), std::string::npos) << r.out;
+        EXPECT_NE(r.out.find("the step with the body over the step without"), std::string::npos)
+            << r.out;
+        EXPECT_NE(
+            r.out.find(std::string(lists) == "on" ? "split into the blocks" : "dispatched whole"),
+            std::string::npos)
+            << r.out;
+        const nlohmann::json doc = nlohmann::json::parse(readFile(json));
+        ASSERT_EQ(doc["results"].size(), 2u);
+        EXPECT_FALSE(doc["results"][0]["body"].get<bool>());
+        EXPECT_TRUE(doc["results"][1]["body"].get<bool>());
+        EXPECT_GT(doc["results"][1]["stages"]["mark_solids"]["ms"].get<double>(), 0.0);
+        ASSERT_EQ(doc["body_step_ratios"].size(), 1u);
+        EXPECT_GT(doc["body_step_ratios"][0].get<double>(), 0.0);
+        EXPECT_EQ(doc["solid_lists"].get<bool>(), std::string(lists) == "on");
+    }
+}
+
 TEST(Cli, BenchTrajectoryPrintsATableWritesJsonAndAPlot) {
     const std::string dir = std::string(MFX_TEST_OUTPUT_DIR) + "/cli";
     const std::string json = dir + "/bench_trajectory.json", plot = dir + "/bench_trajectory.svg",
@@ -233,9 +262,11 @@ TEST(Cli, BenchAccuracyWritesTableCsvPlotAndJson) {
 }
 
 TEST(Cli, BenchSolverBadValuesAreOneLine) {
-    for (const char* args : {"--grids 0", "--grids 8x8", "--workgroups 8x8", "--workgroups 0x8x4",
-                             "--jacobi -1", "--steps 0", "--scenario nope",
-                             "--residual-in-restriction yes", "--first-sweep-in-divergence 1"}) {
+    for (const char* args :
+         {"--grids 0", "--grids 8x8", "--workgroups 8x8", "--workgroups 0x8x4", "--jacobi -1",
+          "--steps 0", "--scenario nope", "--residual-in-restriction yes",
+          "--first-sweep-in-divergence 1", "--solids legs", "--solid-lists maybe",
+          "--solids both --pressure multigrid"}) {
         const RunResult r = runMotionfx(std::string("bench solver ") + args);
         EXPECT_EQ(r.exitCode, 2) << args;
         EXPECT_EQ(lineCount(r.err), 1u) << args << ": " << r.err;

@@ -49,10 +49,11 @@ TEST(SpirvBindings, CombinedImageSamplerAndBuffers) {
 TEST(SpirvBindings, UniformBufferImagesAndBufferOfASolverStage) {
     // shaders/fluid/project.comp: the parameters uniform, its velocity component and the pressure,
     // the face buffer out, the component's image (the direct store path), the solid cells, the
-    // blocks near solids and a block list (fluid_solids.glsl); no bindings 2 and 3.
+    // blocks near solids, a block list and the stencils' solid corners (fluid_solids.glsl); no
+    // bindings 2 and 3.
     const auto bindings =
         gpu::spirvBindings(shaders::project_comp, VK_SHADER_STAGE_COMPUTE_BIT, "project");
-    ASSERT_EQ(bindings.size(), 8u);
+    ASSERT_EQ(bindings.size(), 9u);
     expectBinding(bindings[0], 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT);
     expectBinding(bindings[1], 1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT);
     expectBinding(bindings[2], 4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT);
@@ -61,6 +62,7 @@ TEST(SpirvBindings, UniformBufferImagesAndBufferOfASolverStage) {
     expectBinding(bindings[5], 15, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT);
     expectBinding(bindings[6], 19, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT);
     expectBinding(bindings[7], 21, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT);
+    expectBinding(bindings[8], 22, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT);
 }
 
 TEST(SpirvBindings, OnlyWhatTheShaderDeclares) {

@@ -40,23 +40,18 @@ vec4 fetchPigment(int field, ivec3 index) {
 // With solids near x: the trilinear sample from the fluid cells alone, the weights of solid cells
 // dropped and the rest renormalised (0 when all eight are solid), in the reference's order
 // (fluid/reference/mark_solids.cpp, sampleCellOutsideSolids), from the eight corner values the
-// plain sample read. `plain` when none of the eight is solid.
-vec4 sampleOutsideSolids(ivec3 i0, vec3 f, vec4 corners[8], vec4 plain) {
-    bool anySolid = false;
+// plain sample read and the stencil's solid corners (`solid`, nonzero).
+vec4 sampleOutsideSolids(vec3 f, vec4 corners[8], uint solid) {
     vec4 sum = vec4(0.0);
     float weight = 0.0;
     for (int corner = 0; corner < 8; ++corner) {
+        if ((solid & (1u << uint(corner))) != 0u) continue;
         ivec3 d = ivec3(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
-        if (solidCell(resolveCell(i0 + d))) {
-            anySolid = true;
-            continue;
-        }
         float w = (d.x != 0 ? f.x : 1.0 - f.x) * (d.y != 0 ? f.y : 1.0 - f.y) *
                   (d.z != 0 ? f.z : 1.0 - f.z);
         sum += w * corners[corner];
         weight += w;
     }
-    if (!anySolid) return plain;
     return weight > 0.0 ? sum / weight : vec4(0.0);
 }
 
@@ -74,7 +69,8 @@ vec4 samplePigment(int field, vec3 x) {
     vec4 c01 = lerpValue(corners[4], corners[5], f.x);
     vec4 c11 = lerpValue(corners[6], corners[7], f.x);
     vec4 plain = lerpValue(lerpValue(c00, c10, f.y), lerpValue(c01, c11, f.y), f.z);
-    return kSolids && solidInStencil(i0) ? sampleOutsideSolids(i0, f, corners, plain) : plain;
+    uint solid = solidStencilCorners(i0); // corner k at bit k
+    return solid != 0u ? sampleOutsideSolids(f, corners, solid) : plain;
 }
 
 // Per channel, the smallest and largest of the eight source values samplePigment interpolates.

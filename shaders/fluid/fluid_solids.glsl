@@ -18,6 +18,14 @@ layout(constant_id = 15) const bool kSolids = false;
 layout(std430, binding = 15) readonly buffer SolidFlags {
     uint solidFlags[];
 };
+// The trilinear stencil whose low corner is a cell: one byte per cell in the flags' layout, bit k
+// set where corner k (cell + (k & 1, (k >> 1) & 1, k >> 2), resolved as a fetch resolves it) is a
+// solid cell (mark_solids.comp writes them), so that a sample knows its solid corners from one
+// load.
+layout(std430, binding = 22) readonly buffer SolidCorners {
+    uint solidCorners[];
+};
+
 // The solids' block words (mark_solids.comp writes them):
 //   [0, T)            one word per block of the workgroup's shape over cells + 1 along each axis
 //                     (T blocks): nonzero where a cell from one before the block to its last has
@@ -101,10 +109,18 @@ bool solidCell(ivec3 q) {
     return (solidByte(q) & 1u) != 0u;
 }
 
-// Whether the trilinear stencil whose low corner is cell i0 (resolved as a fetch resolves it)
-// holds a solid cell.
-bool solidInStencil(ivec3 i0) {
-    return (solidByte(resolveCell(i0)) & 0x80u) != 0u;
+// The solid corners of the trilinear stencil whose low corner is cell i0 (resolved as a fetch
+// resolves it), corner k at bit k; 0 without solids.
+uint solidStencilCorners(ivec3 i0) {
+    if (!kSolids) return 0u;
+    ivec3 q = resolveCell(i0);
+    uint corners = (solidCorners[solidWordIndex(q.x >> 2, q.y, q.z)] >> (8 * (q.x & 3))) & 0xffu;
+    // Below cell 0 of a clamped axis both of the stencil's cells along it are cell 0, whose byte
+    // has cells 0 and 1: its low corners stand for the high ones too.
+    const uint low[3] = uint[3](0x55u, 0x33u, 0x0fu);
+    for (int a = 0; a < 3; ++a)
+        if (!periodicAxis(a) && i0[a] < 0) corners = (corners & low[a]) | ((corners & low[a]) << (1u << uint(a)));
+    return corners;
 }
 
 // The six sides' solid-neighbour bits of cell q (inside the grid), side s at bit s.

@@ -19,10 +19,9 @@
 //      blocks that its cells reach (fluid_solids.glsl), so that the other stages read them only
 //      there;
 //   then, where the stages are split (SolverOptions::solidLists), instead:
-//   4  pass 1's flags alone;
-//   2  one invocation per block and per brick: its word, from the flags over its cells (no
-//      atomics: every word is written once);
-//   5  one invocation: the block lists (fluid_solids.glsl) and the brick lists
+//   4  pass 1's flags and the bricks' marks;
+//   2  one invocation per block: its word, from the bricks' over its cells (no atomics);
+//   5  seven invocations: the block lists (fluid_solids.glsl) and the brick lists
 //      (solve_pressure.comp), with their indirect dispatches;
 //   and last
 //   3  over the box's cells and one more along each axis, or over the blocks near solids (block
@@ -57,6 +56,10 @@ layout(std430, binding = 16) buffer SolidHolders {
 // is solid (pass 0 sets them, pass 1 reads a row's six bits around a flag word in two loads).
 layout(std430, binding = 8) buffer SolidBits {
     uint solidBits[];
+};
+// The stencils' solid corners (pass 1 writes them; binding 22 is their read-only view).
+layout(std430, binding = 9) buffer SolidCornersOut {
+    uint cornersOut[];
 };
 // The flags the stages read (pass 1 writes them; binding 15 is their read-only view).
 layout(std430, binding = 17) buffer SolidFlagsOut {
@@ -182,22 +185,23 @@ bool cellBit(RowBits r, int i) {
 }
 
 // Its -x and +x neighbours as neighbourRef resolves them (none past a non-periodic face), and
-// its +x stencil corner as resolveCell resolves it (clamped: the cell itself).
+// its stencil's +x corner as resolveCell resolves it (clamped: the cell itself).
 bool minusXBit(RowBits r, int X, int i) {
     return 4 * X + i > 0 ? ((r.window >> uint(i)) & 1u) != 0u : r.last;
 }
 bool plusXBit(RowBits r, int X, int i) {
     return 4 * X + i + 1 < cellCount().x ? ((r.window >> uint(i + 2)) & 1u) != 0u : r.first;
 }
-bool stencilXBits(RowBits r, int X, int i) {
+bool stencilPlusX(RowBits r, int X, int i) {
     bool beyond = 4 * X + i + 1 >= cellCount().x;
-    return cellBit(r, i) || (beyond ? (periodicAxis(0) ? r.first : false) : plusXBit(r, X, i));
+    return beyond ? (periodicAxis(0) ? r.first : cellBit(r, i)) : plusXBit(r, X, i);
 }
 
 // The flag word of cells 4 X .. 4 X + 3 of row (y, z) (fluid_solids.glsl): each cell's own bit, a
 // bit for each side whose neighbour is a solid cell (one inside the grid, or wrapped), and
-// whether the stencil q + {0, 1}³ holds a solid; cells past the last are 0.
-uint flagWord(int X, int y, int z) {
+// whether the stencil q + {0, 1}³ holds a solid; cells past the last are 0. `corners`: the
+// cells' stencils' solid corners (fluid_solids.glsl, solidStencilCorners).
+uint flagWord(int X, int y, int z, out uint corners) {
     NeighbourRef yMinus = neighbourRef(1, y - 1), yPlus = neighbourRef(1, y + 1);
     NeighbourRef zMinus = neighbourRef(2, z - 1), zPlus = neighbourRef(2, z + 1);
     // The +y and +z rows are also the stencil's (neighbourRef's index resolves as resolveCell).
@@ -206,6 +210,7 @@ uint flagWord(int X, int y, int z) {
     RowBits back = rowBits(X, y, zMinus.index), front = rowBits(X, y, zPlus.index);
     RowBits corner = rowBits(X, yPlus.index, zPlus.index);
     uint word = 0u;
+    corners = 0u;
     for (int i = 0; i < 4 && 4 * X + i < cellCount().x; ++i) {
         uint bits = cellBit(here, i) ? 1u : 0u;
         if (minusXBit(here, X, i)) bits |= 2u;
@@ -214,86 +219,80 @@ uint flagWord(int X, int y, int z) {
         if (yPlus.value && cellBit(above, i)) bits |= 16u;
         if (zMinus.value && cellBit(back, i)) bits |= 32u;
         if (zPlus.value && cellBit(front, i)) bits |= 64u;
-        if (stencilXBits(here, X, i) || stencilXBits(above, X, i) || stencilXBits(front, X, i) ||
-            stencilXBits(corner, X, i))
-            bits |= 0x80u;
+        // Corner k: x from bit 0, the +y row from bit 1, the +z rows from bit 2.
+        uint stencil = (cellBit(here, i) ? 1u : 0u) | (stencilPlusX(here, X, i) ? 2u : 0u) |
+                       (cellBit(above, i) ? 4u : 0u) | (stencilPlusX(above, X, i) ? 8u : 0u) |
+                       (cellBit(front, i) ? 16u : 0u) | (stencilPlusX(front, X, i) ? 32u : 0u) |
+                       (cellBit(corner, i) ? 64u : 0u) | (stencilPlusX(corner, X, i) ? 128u : 0u);
+        if (stencil != 0u) bits |= 0x80u;
         word |= bits << uint(8 * i);
+        corners |= stencil << uint(8 * i);
     }
     return word;
 }
 
-// Whether any flag word of cells lo .. hi (inclusive, inside the grid; whole words along x) is
-// nonzero.
-bool anyFlag(ivec3 lo, ivec3 hi) {
-    for (int z = lo.z; z <= hi.z; ++z)
-        for (int y = lo.y; y <= hi.y; ++y)
-            for (int X = lo.x >> 2; X <= hi.x >> 2; ++X)
-                if (flagsOut[solidWordIndex(X, y, z)] != 0u) return true;
-    return false;
-}
-
-// Pass 2, invocation i: the word of block i (a flag from one cell before the block to its last)
-// and of brick i (a flag in the brick).
+// Pass 2, invocation i: the word of block i: whether a flag lies from one cell before the block
+// to its last, from the words of the Jacobi bricks over those cells (pass 4's; a brick holding a
+// flag outside them makes the block near needlessly, which only costs its stages the tests).
 void markNear(uint i) {
     ivec3 n = cellCount();
     uvec3 blocks = solidBlockGrid();
-    if (i < blocks.x * blocks.y * blocks.z) {
-        uvec3 block = uvec3(i % blocks.x, (i / blocks.x) % blocks.y, i / (blocks.x * blocks.y));
-        ivec3 first = ivec3(block * gl_WorkGroupSize);
-        ivec3 lo = max(first - 1, ivec3(0)), hi = min(first + ivec3(gl_WorkGroupSize) - 1, n - 1);
-        blocksOut[i] = all(lessThanEqual(lo, hi)) && anyFlag(lo, hi) ? 1u : 0u;
-    }
-    ivec3 bricks = (n + ivec3(3, kBrickRows - 1, kBrickLayers - 1)) / ivec3(4, kBrickRows, kBrickLayers);
-    if (i < uint(bricks.x * bricks.y * bricks.z)) {
-        ivec3 b = ivec3(i % uint(bricks.x), (i / uint(bricks.x)) % uint(bricks.y),
-                        i / uint(bricks.x * bricks.y));
-        ivec3 first = b * ivec3(4, kBrickRows, kBrickLayers);
-        ivec3 hi = min(first + ivec3(3, kBrickRows - 1, kBrickLayers - 1), n - 1);
-        solidBricks[i] = anyFlag(first, hi) ? 1u : 0u;
-    }
+    if (i >= blocks.x * blocks.y * blocks.z) return;
+    uvec3 block = uvec3(i % blocks.x, (i / blocks.x) % blocks.y, i / (blocks.x * blocks.y));
+    ivec3 first = ivec3(block * gl_WorkGroupSize);
+    ivec3 lo = max(first - 1, ivec3(0)), hi = min(first + ivec3(gl_WorkGroupSize) - 1, n - 1);
+    ivec3 brickSize = ivec3(4, kBrickRows, kBrickLayers);
+    ivec3 bricks = (n + brickSize - 1) / brickSize;
+    bool near = false;
+    if (all(lessThanEqual(lo, hi)))
+        for (int z = lo.z / brickSize.z; z <= hi.z / brickSize.z; ++z)
+            for (int y = lo.y / brickSize.y; y <= hi.y / brickSize.y; ++y)
+                for (int x = lo.x / brickSize.x; x <= hi.x / brickSize.x; ++x)
+                    near = near || solidBricks[x + bricks.x * (y + bricks.y * z)] != 0u;
+    blocksOut[i] = near ? 1u : 0u;
 }
 
-// Pass 5, one invocation: every block into the list of each extent that covers it (the near or
-// the far one), every brick into the near or the far brick list, and the lists' dispatches.
-void makeLists() {
+// Pass 5, invocation `extent` (0 to 4): every block of that extent (the cells, the faces of x, y,
+// z, the cells + 1) into its list near solids or away from them, and the two lists' dispatches;
+// invocations 5 and 6: every brick near solids, every brick away from them, into their list, and
+// its dispatch. (Seven lists built side by side: on a CPU device the seven loops run as one.)
+void makeBlockLists(uint extent) {
     uvec3 blocks = solidBlockGrid();
     uint total = blocks.x * blocks.y * blocks.z;
-    uvec3 n = uvec3(cellCount());
-    uint lengths[kSolidBlockLists];
-    for (uint list = 0u; list < kSolidBlockLists; ++list)
-        lengths[list] = 0u;
+    uvec3 size = uvec3(cellCount()) + (extent == 4u ? uvec3(1u) : uvec3(0u));
+    if (extent >= 1u && extent <= 3u) size[extent - 1u] += 1u;
+    uint near = 2u * extent, away = near + 1u; // lists L - 1
+    uint nearLength = 0u, awayLength = 0u;
     for (uint i = 0u; i < total; ++i) {
         uvec3 block = uvec3(i % blocks.x, (i / blocks.x) % blocks.y, i / (blocks.x * blocks.y));
-        uvec3 first = block * gl_WorkGroupSize;
-        uint away = blocksOut[i] != 0u ? 0u : 1u;
-        for (uint extent = 0u; extent < 5u; ++extent) {
-            uvec3 size = extent == 4u ? n + 1u : n;
-            if (extent >= 1u && extent <= 3u) size[extent - 1u] += 1u;
-            if (any(greaterThanEqual(first, size))) continue;
-            uint list = 2u * extent + away; // list L - 1
-            listsOut[MFX_SOLID_LIST_ENTRIES * list + lengths[list]] = packSolidBlock(block);
-            lengths[list] += 1u;
+        if (any(greaterThanEqual(block * gl_WorkGroupSize, size))) continue;
+        if (blocksOut[i] != 0u) {
+            listsOut[MFX_SOLID_LIST_ENTRIES * near + nearLength] = packSolidBlock(block);
+            nearLength += 1u;
+        } else {
+            listsOut[MFX_SOLID_LIST_ENTRIES * away + awayLength] = packSolidBlock(block);
+            awayLength += 1u;
         }
     }
-    for (uint list = 0u; list < kSolidBlockLists; ++list)
-        blocksOut[total + 3u * list] = lengths[list];
-    ivec3 bricks = ivec3(n + uvec3(3, kBrickRows - 1, kBrickLayers - 1)) /
+    blocksOut[total + 3u * near] = nearLength;
+    blocksOut[total + 3u * away] = awayLength;
+}
+
+void makeBrickList(uint list) { // list L - 1: 0 near solids, 1 away from them
+    ivec3 bricks = (cellCount() + ivec3(3, kBrickRows - 1, kBrickLayers - 1)) /
                    ivec3(4, kBrickRows, kBrickLayers);
     uint brickCount = uint(bricks.x * bricks.y * bricks.z);
-    uint brickLengths[2] = uint[2](0u, 0u);
+    uint length = 0u;
     for (uint i = 0u; i < brickCount; ++i) {
-        uint list = solidBricks[i] != 0u ? 0u : 1u; // list L - 1
+        if ((solidBricks[i] != 0u) != (list == 0u)) continue;
         uvec3 brick = uvec3(i % uint(bricks.x), (i / uint(bricks.x)) % uint(bricks.y),
                             i / uint(bricks.x * bricks.y));
-        solidBricks[brickCount * (list + 1u) + brickLengths[list]] =
-            brick.x | (brick.y << 10) | (brick.z << 20);
-        brickLengths[list] += 1u;
+        solidBricks[brickCount * (list + 1u) + length] = brick.x | (brick.y << 10) | (brick.z << 20);
+        length += 1u;
     }
     uint group = gl_WorkGroupSize.x * gl_WorkGroupSize.y * gl_WorkGroupSize.z;
-    for (uint list = 0u; list < 2u; ++list) {
-        solidBricks[3u * brickCount + 3u * list] = (brickLengths[list] + group - 1u) / group;
-        solidBricks[3u * brickCount + 6u + list] = brickLengths[list];
-    }
+    solidBricks[3u * brickCount + 3u * list] = (length + group - 1u) / group;
+    solidBricks[3u * brickCount + 6u + list] = length;
 }
 
 void main() {
@@ -315,7 +314,11 @@ void main() {
         return;
     }
     if (kPass == 5u) {
-        if (gl_LocalInvocationIndex == 0u) makeLists();
+        uint lane = gl_LocalInvocationIndex;
+        if (lane < 5u)
+            makeBlockLists(lane);
+        else if (lane < 7u)
+            makeBrickList(lane - 5u);
         return;
     }
     // Passes 1 and 4 run over the solids' joint box in words along x, pass 3 over its cells, from
@@ -324,12 +327,17 @@ void main() {
     if (kPass == 1u || kPass == 4u) {
         int texel = q.x;
         if (4 * texel >= n.x || q.y >= n.y || q.z >= n.z) return;
-        uint word = flagWord(texel, q.y, q.z);
+        uint corners;
+        uint word = flagWord(texel, q.y, q.z, corners);
         flagsOut[solidWordIndex(texel, q.y, q.z)] = word;
-        if (kPass == 1u && word != 0u) {
-            // The blocks its cells reach (markBlocks; the whole word: a block marked near
-            // needlessly only reads its flags) and its brick.
-            markBlocks(ivec3(4 * texel, q.y, q.z), ivec3(min(4 * texel + 3, n.x - 1), q.y, q.z));
+        cornersOut[solidWordIndex(texel, q.y, q.z)] = corners;
+        if (word != 0u) {
+            // Pass 1: the blocks its cells reach (markBlocks; the whole word: a block marked near
+            // needlessly only reads its flags; pass 2 marks them from the bricks instead); and
+            // its brick.
+            if (kPass == 1u)
+                markBlocks(ivec3(4 * texel, q.y, q.z),
+                           ivec3(min(4 * texel + 3, n.x - 1), q.y, q.z));
             ivec3 bricks = (n + ivec3(3, kBrickRows - 1, kBrickLayers - 1)) /
                            ivec3(4, kBrickRows, kBrickLayers);
             int brick = texel + bricks.x * (q.y / kBrickRows + bricks.y * (q.z / kBrickLayers));
