@@ -48,14 +48,19 @@ gpu)
     "$MOTIONFX" bench solver --grids 256,128,64 --steps 20 --store buffer --markdown "$out"
     "$MOTIONFX" bench solver --grids 256,128,64 --steps 20 --first-sweep-in-divergence off \
         --markdown "$out"
-    # The fighter's body as solids (docs/performance.md, "What solids cost").
-    "$MOTIONFX" bench solver --grids 128,48 --steps 20 --solids body --markdown "$out"
+    # The fighter's body as solids (docs/performance.md, "What solids cost"): without and with it,
+    # stepped by turns, the stages whole (a GPU's default) and split.
+    "$MOTIONFX" bench solver --grids 128,48 --steps 20 --solids both --markdown "$out"
+    "$MOTIONFX" bench solver --grids 128,48 --steps 20 --solids both --solid-lists on \
+        --markdown "$out"
     ;;
 lavapipe)
     "$MOTIONFX" bench solver --grids 32,64,96,128 --markdown "$out" \
         --plot "$plots/bench_solver_roofline_lavapipe.svg"
     "$MOTIONFX" bench frame --frames 20 --markdown "$out"
-    "$MOTIONFX" bench solver --grids 48 --steps 20 --solids body --markdown "$out"
+    "$MOTIONFX" bench solver --grids 48 --steps 20 --solids both --markdown "$out"
+    "$MOTIONFX" bench solver --grids 48 --steps 20 --solids both --solid-lists off \
+        --markdown "$out"
     ;;
 *)
     echo "usage: docs/performance.sh [gpu|lavapipe] [path/to/motionfx]" >&2

@@ -7,6 +7,7 @@
 //             neighbour inside the grid, or across a periodic face)
 //   bit 7     one of the eight cells q + {0, 1}³ (each resolved as a fetch resolves it, clamped or
 //             wrapped) is solid: a trilinear sample whose stencil starts at q touches a solid
+//             (which of the eight: solidStencilCorners)
 // so that a row of four cells is one load, and whether a face is solid is one byte. Twin:
 // fluid/reference/mark_solids.cpp. Without solids (kSolids false, constant id 15) every test below
 // folds to false and a stage is the one it was before solids existed.
