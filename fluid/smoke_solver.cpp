@@ -84,8 +84,7 @@ SmokeSolver::SmokeSolver(const gpu::Context& ctx, const SolverOptions& options)
       splitSolids_(fluid::splitsSolids(options.solidLists, ctx)) {
     // A block list packs a block's coordinates into 11, 11 and 10 bits (fluid_solids.glsl), a
     // brick list a brick's into 10 each (at most 4096 cells along an axis: 1024 bricks).
-    const glm::uvec3 size(options.workgroup[0], options.workgroup[1], options.workgroup[2]);
-    const glm::uvec3 blocks = (fields_.cells + 1u + size - 1u) / size;
+    const glm::uvec3 blocks = solidBlockGrid();
     if (blocks.x > 2048 || blocks.y > 2048 || blocks.z > 1024 ||
         blocks.x * blocks.y * blocks.z > kSolidListEntries ||
         ctx.limits().maxUniformBufferRange < kSolidListBytes)
@@ -196,21 +195,37 @@ Status SmokeSolver::setSolids(std::span<const shared::FluidSolid> solids) {
     return Ok{};
 }
 
-uint32_t SmokeSolver::solidBlockCount() const {
-    const GridShape& g = options_.grid;
+glm::uvec3 SmokeSolver::solidBlockGrid() const {
     const std::array<uint32_t, 3>& w = options_.workgroup;
-    return gpu::groupCount(g.cellsX + 1, w[0]) * gpu::groupCount(g.cellsY + 1, w[1]) *
-           gpu::groupCount(g.cellsZ + 1, w[2]);
+    const glm::uvec3 size(w[0], w[1], w[2]);
+    return (fields_.cells + 1u + size - 1u) / size;
+}
+
+glm::uvec3 SmokeSolver::solidBrickGrid() const {
+    const glm::uvec3 brick(kPressureBrickX, kPressureRows, kPressureLayers);
+    return (fields_.cells + brick - 1u) / brick;
+}
+
+uint32_t SmokeSolver::solidBlockCount() const {
+    const glm::uvec3 g = solidBlockGrid();
+    return g.x * g.y * g.z;
 }
 
 uint32_t SmokeSolver::solidBrickCount() const {
-    const GridShape& g = options_.grid;
-    return ((g.cellsX + kPressureBrickX - 1) / kPressureBrickX) *
-           ((g.cellsY + kPressureRows - 1) / kPressureRows) *
-           ((g.cellsZ + kPressureLayers - 1) / kPressureLayers);
+    const glm::uvec3 g = solidBrickGrid();
+    return g.x * g.y * g.z;
 }
 
 namespace {
+
+// A block list's entry and a brick list's: the coordinates packed as fluid_solids.glsl's
+// packSolidBlock and solve_pressure.comp unpack them.
+uint32_t packSolidBlock(glm::uvec3 block) {
+    return block.x | block.y << 11 | block.z << 22;
+}
+uint32_t packSolidBrick(glm::uvec3 brick) {
+    return brick.x | brick.y << 10 | brick.z << 20;
+}
 
 // The extents a split stage dispatches over (fluid_solids.glsl's block lists (L - 1) / 2).
 std::array<glm::uvec3, 5> splitExtents(glm::uvec3 cells) {
@@ -223,7 +238,7 @@ std::array<glm::uvec3, 5> splitExtents(glm::uvec3 cells) {
 void SmokeSolver::uploadEmptySolidLists() {
     const std::array<uint32_t, 3>& w = options_.workgroup;
     const glm::uvec3 size(w[0], w[1], w[2]);
-    const glm::uvec3 blocks = (fields_.cells + 1u + size - 1u) / size;
+    const glm::uvec3 blocks = solidBlockGrid();
     const uint32_t total = solidBlockCount();
     std::vector<uint32_t> words(size_t(total) + 3 * kSolidBlockLists, 0);
     std::vector<uint32_t> lists(size_t(kSolidBlockLists) * kSolidListEntries, 0);
@@ -235,8 +250,7 @@ void SmokeSolver::uploadEmptySolidLists() {
             const glm::uvec3 block(i % blocks.x, (i / blocks.x) % blocks.y,
                                    i / (blocks.x * blocks.y));
             if (glm::all(glm::lessThan(block * size, extents[extent])))
-                lists[size_t(kSolidListEntries) * (away - 1) + length++] =
-                    block.x | block.y << 11 | block.z << 22;
+                lists[size_t(kSolidListEntries) * (away - 1) + length++] = packSolidBlock(block);
         }
         const size_t near = size_t(total) + 3 * (away - 2);
         words[near + 0] = 0, words[near + 1] = 1, words[near + 2] = 1;
@@ -246,13 +260,10 @@ void SmokeSolver::uploadEmptySolidLists() {
     gpu::uploadBuffer(ctx_, solidLists_, std::span<const uint32_t>(lists));
     const uint32_t bricks = solidBrickCount(), group = w[0] * w[1] * w[2];
     std::vector<uint32_t> brickWords(3 * size_t(bricks) + 8, 0);
-    const glm::uvec3 brickGrid((fields_.cells.x + kPressureBrickX - 1) / kPressureBrickX,
-                               (fields_.cells.y + kPressureRows - 1) / kPressureRows,
-                               (fields_.cells.z + kPressureLayers - 1) / kPressureLayers);
+    const glm::uvec3 brickGrid = solidBrickGrid();
     for (uint32_t i = 0; i < bricks; ++i) // the far list
-        brickWords[2 * size_t(bricks) + i] = i % brickGrid.x |
-                                             (i / brickGrid.x) % brickGrid.y << 10 |
-                                             i / (brickGrid.x * brickGrid.y) << 20;
+        brickWords[2 * size_t(bricks) + i] = packSolidBrick(
+            {i % brickGrid.x, (i / brickGrid.x) % brickGrid.y, i / (brickGrid.x * brickGrid.y)});
     const size_t args = 3 * size_t(bricks);
     brickWords[args + 1] = brickWords[args + 2] = 1;     // near: no group
     brickWords[args + 3] = (bricks + group - 1) / group; // far: every brick
@@ -261,41 +272,40 @@ void SmokeSolver::uploadEmptySolidLists() {
     gpu::uploadBuffer(ctx_, solidBricks_, std::span<const uint32_t>(brickWords));
 }
 
-gpu::DescriptorWrite SmokeSolver::solidBlocksWrite() const {
-    return gpu::bindBuffer(19, solidBlocks_.get() != VK_NULL_HANDLE ? solidBlocks_ : noSolidCells_);
-}
-
-gpu::DescriptorWrite SmokeSolver::solidCellsWrite() const {
-    return gpu::bindBuffer(15, solidCells_.get() != VK_NULL_HANDLE ? solidCells_ : noSolidCells_);
-}
-
 void SmokeSolver::writeParameters() {
     const shared::FluidParameters parameters = makeParameters(options_, emitterCount_);
     std::memcpy(parameters_.mapped, &parameters, sizeof(parameters));
 }
 
-SmokeSolver::Writes SmokeSolver::withSolidList(std::span<const gpu::DescriptorWrite> writes,
-                                               const gpu::Program& program, uint32_t list) const {
+SmokeSolver::Writes SmokeSolver::withSolidBindings(std::span<const gpu::DescriptorWrite> writes,
+                                                   const gpu::Program& program,
+                                                   uint32_t list) const {
     Writes all(writes.begin(), writes.end());
     auto written = [&](uint32_t binding) {
         return std::any_of(writes.begin(), writes.end(),
                            [&](const gpu::DescriptorWrite& w) { return w.binding == binding; });
     };
+    auto orNone = [&](const gpu::Buffer& buffer) -> const gpu::Buffer& {
+        return buffer.get() != VK_NULL_HANDLE ? buffer : noSolidCells_;
+    };
     for (const gpu::BindingDesc& b : program.bindings()) {
+        if (b.binding == 15 && !written(15))
+            all.push_back(gpu::bindBuffer(15, orNone(solidCells_)));
+        if (b.binding == 19 && !written(19))
+            all.push_back(gpu::bindBuffer(19, orNone(solidBlocks_)));
         if (b.binding == 21 && !written(21))
             all.push_back(list == 0 ? gpu::bindBuffer(21, noSolidList_)
                                     : gpu::bindBuffer(21, solidLists_, (list - 1) * kSolidListBytes,
                                                       kSolidListBytes));
         if (b.binding == 22 && !written(22))
-            all.push_back(gpu::bindBuffer(
-                22, solidCorners_.get() != VK_NULL_HANDLE ? solidCorners_ : noSolidCells_));
+            all.push_back(gpu::bindBuffer(22, orNone(solidCorners_)));
     }
     return all;
 }
 
 void SmokeSolver::dispatch(VkCommandBuffer cmd, gpu::Program& program,
                            std::span<const gpu::DescriptorWrite> writes, glm::uvec3 extent) const {
-    program.bind(cmd, withSolidList(writes, program, 0));
+    program.bind(cmd, withSolidBindings(writes, program, 0));
     program.push(cmd, shared::FluidDispatch{0, 0, 0, 0});
     ++dispatches_;
     const std::array<uint32_t, 3>& group = options_.workgroup;
@@ -322,7 +332,7 @@ void SmokeSolver::dispatchStage(VkCommandBuffer cmd, const StageProgram& p,
     for (uint32_t list : {2 * kind + 2, 2 * kind + 1}) {
         if (list % 2 == 1) fieldBarrier(cmd);
         gpu::Program& program = programs_.get(p.name, p.target, p.variant, p.direct, list);
-        program.bind(cmd, withSolidList(writes, program, list));
+        program.bind(cmd, withSolidBindings(writes, program, list));
         program.push(cmd, shared::FluidDispatch{0, 0, 0, 0});
         ++dispatches_;
         vkCmdDispatchIndirect(cmd, solidBlocks_.get(),
@@ -394,8 +404,8 @@ void SmokeSolver::markSolids(VkCommandBuffer cmd) {
                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_UNIFORM_READ_BIT);
     SmokeFields& f = fields_;
     const auto& v = f.velocity[size_t(f.currentVelocity)];
-    // The flags are written through binding 17 (passes 0 and 1) and read through 15 (pass 2):
-    // never the same buffer at both in one dispatch.
+    // The flags and corners are written through bindings 17 and 9 (passes 1 and 4) and the flags
+    // read through 15 (pass 3): never the same buffer at both in one dispatch.
     Writes writes = {
         gpu::bindBuffer(0, parameters_),
         gpu::bindBuffer(1, solidsBuffer_),
@@ -415,10 +425,9 @@ void SmokeSolver::markSolids(VkCommandBuffer cmd) {
         gpu::bindBuffer(20, solidBlocks_),
         gpu::bindBuffer(22, noSolidCells_), // written at 9
     };
-    // Every cell air and without flags, then each solid over the cells of its bounding box (one
-    // cell wider: the box is found in fp32), then the flags and the faces and pigment, over the
-    // solids' joint box two cells wider (a flag's neighbour and stencil bits reach a cell beyond;
-    // the whole axis where it is periodic: they wrap).
+    // Every cell air and without flags, then the solids' boxes, then the flags over the solids'
+    // joint box two cells wider (a flag's neighbour and stencil bits reach a cell beyond; the
+    // whole axis where it is periodic: they wrap), the lists, the faces and pigment.
     const uint32_t blockCount = solidBlockCount(), brickCount = solidBrickCount();
     vkCmdFillBuffer(cmd, solidHolders_.get(), 0, VK_WHOLE_SIZE, 0);
     vkCmdFillBuffer(cmd, solidCells_.get(), 0, VK_WHOLE_SIZE, 0);
@@ -465,7 +474,7 @@ void SmokeSolver::markSolids(VkCommandBuffer cmd) {
         gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
                            VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                            VK_ACCESS_2_UNIFORM_READ_BIT);
-        cells.bind(cmd, withSolidList(writes, cells, 0));
+        cells.bind(cmd, withSolidBindings(writes, cells, 0));
         cells.push(cmd, shared::FluidDispatch{0, 0, 0, 0});
         ++dispatches_;
         vkCmdDispatch(cmd, uint32_t(count), 1, 1);
@@ -486,7 +495,7 @@ void SmokeSolver::markSolids(VkCommandBuffer cmd) {
                            uint32_t(jointHigh.y - jointLow.y + 1),
                            uint32_t(jointHigh.z - jointLow.z + 1));
     gpu::Program& flags = programs_.get("mark_solids", 0, splitSolids_ ? 4 : 1);
-    flags.bind(cmd, withSolidList(writes, flags, 0));
+    flags.bind(cmd, withSolidBindings(writes, flags, 0));
     flags.push(cmd, shared::FluidDispatch{0, uint32_t(firstWord.x), uint32_t(firstWord.y),
                                           uint32_t(firstWord.z)});
     ++dispatches_;
@@ -511,14 +520,14 @@ void SmokeSolver::markSolids(VkCommandBuffer cmd) {
         rebind(20, noSolidCells_);
         const uint32_t list = 2 * 4 + 1;
         gpu::Program& faces = programs_.get("mark_solids", 0, 3, false, list);
-        faces.bind(cmd, withSolidList(writes, faces, list));
+        faces.bind(cmd, withSolidBindings(writes, faces, list));
         faces.push(cmd, shared::FluidDispatch{0, 0, 0, 0});
         ++dispatches_;
         vkCmdDispatchIndirect(cmd, solidBlocks_.get(),
                               (VkDeviceSize(blockCount) + 3 * (list - 1)) * sizeof(uint32_t));
     } else {
         gpu::Program& faces = programs_.get("mark_solids", 0, 3);
-        faces.bind(cmd, withSolidList(writes, faces, 0));
+        faces.bind(cmd, withSolidBindings(writes, faces, 0));
         faces.push(cmd, shared::FluidDispatch{0, uint32_t(jointLow.x), uint32_t(jointLow.y),
                                               uint32_t(jointLow.z)});
         ++dispatches_;
@@ -535,13 +544,13 @@ void SmokeSolver::makeSolidLists(VkCommandBuffer cmd,
     const std::array<uint32_t, 3>& group = options_.workgroup;
     const uint32_t items = solidBlockCount();
     gpu::Program& words = programs_.get("mark_solids", 0, 2);
-    words.bind(cmd, withSolidList(writes, words, 0));
+    words.bind(cmd, withSolidBindings(writes, words, 0));
     words.push(cmd, shared::FluidDispatch{0, 0, 0, 0});
     ++dispatches_;
     vkCmdDispatch(cmd, gpu::groupCount(items, group[0] * group[1] * group[2]), 1, 1);
     fieldBarrier(cmd);
     gpu::Program& lists = programs_.get("mark_solids", 0, 5);
-    lists.bind(cmd, withSolidList(writes, lists, 0));
+    lists.bind(cmd, withSolidBindings(writes, lists, 0));
     lists.push(cmd, shared::FluidDispatch{0, 0, 0, 0});
     ++dispatches_;
     vkCmdDispatch(cmd, 1, 1, 1);
@@ -578,12 +587,10 @@ void SmokeSolver::splatImpulses(VkCommandBuffer cmd) {
         storage(4, v[2]),
         storage(5, f.pigment[size_t(f.currentPigment)]),
         gpu::bindBuffer(6, splatRegions_),
-        solidCellsWrite(),
-        solidBlocksWrite(),
     };
     for (uint32_t target = 0; target < 4; ++target) {
         gpu::Program& prog = programs_.get("splat_impulses", target);
-        prog.bind(cmd, withSolidList(writes, prog, 0));
+        prog.bind(cmd, withSolidBindings(writes, prog, 0));
         prog.push(cmd, shared::FluidDispatch{0, 0, 0, 0});
         ++dispatches_;
         vkCmdDispatchIndirect(cmd, splatRegions_.get(), target * sizeof(shared::SplatRegion));
@@ -620,8 +627,6 @@ void SmokeSolver::advectVelocity(VkCommandBuffer cmd) {
             w.push_back(gpu::bindBuffer(4, f.scratch[c]));
             w.push_back(storage(5, out[c]));
             w.push_back(storage(6, out[c]));
-            w.push_back(solidCellsWrite());
-            w.push_back(solidBlocksWrite());
             dispatchStage(cmd, {"advect_velocity", c, pass, direct}, w,
                           faceExtent(options_.grid, int(c)));
         }
@@ -642,8 +647,6 @@ void SmokeSolver::advectPigment(VkCommandBuffer cmd) {
         w.push_back(gpu::bindBuffer(5, f.scratch[0]));
         w.push_back(storage(6, f.pigment[size_t(to)]));
         w.push_back(storage(7, f.pigment[size_t(to)]));
-        w.push_back(solidCellsWrite());
-        w.push_back(solidBlocksWrite());
         dispatchStage(cmd, {"advect_pigment", MFX_TARGET_PIGMENT, pass, direct}, w, f.cells);
         storeFields(cmd, direct, {{&f.scratch[0], &f.pigment[size_t(to)]}});
     }
@@ -654,13 +657,9 @@ void SmokeSolver::applyBuoyancy(VkCommandBuffer cmd) {
     if (options_.buoyancy == 0.0f) return;
     SmokeFields& f = fields_;
     gpu::Image& velocityY = f.velocity[size_t(f.currentVelocity)][1];
-    const gpu::DescriptorWrite writes[] = {gpu::bindBuffer(0, parameters_),
-                                           storage(1, velocityY),
+    const gpu::DescriptorWrite writes[] = {gpu::bindBuffer(0, parameters_), storage(1, velocityY),
                                            storage(2, f.pigment[size_t(f.currentPigment)]),
-                                           gpu::bindBuffer(3, f.scratch[1]),
-                                           storage(4, velocityY),
-                                           solidCellsWrite(),
-                                           solidBlocksWrite()};
+                                           gpu::bindBuffer(3, f.scratch[1]), storage(4, velocityY)};
     dispatchStage(cmd, {"apply_buoyancy", MFX_TARGET_VELOCITY_Y, 0, direct_}, writes,
                   faceExtent(options_.grid, 1));
     storeFields(cmd, direct_, {{&f.scratch[1], &velocityY}});
@@ -702,8 +701,6 @@ void SmokeSolver::applyVorticityForce(VkCommandBuffer cmd) {
         apply.push_back(gpu::bindBuffer(5 + c, f.scratch[c]));
     for (uint32_t c = 0; c < 3; ++c)
         apply.push_back(storage(8 + c, v[c]));
-    apply.push_back(solidCellsWrite());
-    apply.push_back(solidBlocksWrite());
     dispatchStage(cmd, {"apply_vorticity_force", 0, 0, direct_}, apply, f.cells + glm::uvec3(1));
     storeFields(cmd, direct_,
                 {{&f.scratch[0], &v[0]}, {&f.scratch[1], &v[1]}, {&f.scratch[2], &v[2]}});
@@ -723,8 +720,6 @@ void SmokeSolver::diffuseViscosity(VkCommandBuffer cmd) {
             w.push_back(storage(4 + c, f.velocity[size_t(in)][c]));
         for (uint32_t c = 0; c < 3; ++c)
             w.push_back(storage(7 + c, f.velocity[size_t(out)][c]));
-        w.push_back(solidCellsWrite());
-        w.push_back(solidBlocksWrite());
         for (uint32_t c = 0; c < 3; ++c)
             dispatchStage(cmd, {"diffuse_viscosity", c}, w, faceExtent(options_.grid, int(c)));
         fieldBarrier(cmd);
@@ -757,8 +752,6 @@ void SmokeSolver::computeDivergence(VkCommandBuffer cmd) {
     w.push_back(gpu::bindBuffer(6, f.packedDivergence));
     w.push_back(gpu::bindBuffer(7, f.packedPressure[1]));
     w.push_back(storage(8, f.pressure[size_t(1 - f.currentPressure)]));
-    w.push_back(solidCellsWrite());
-    w.push_back(solidBlocksWrite());
     dispatchStage(cmd, {"compute_divergence", 0, firstSweep, direct_}, w, f.cells);
     // Either path's barriers (the copy's carry a global memory barrier) cover the sweep's output.
     storeFields(cmd, direct_, {{&f.scratch[0], &f.divergence}});
@@ -811,8 +804,6 @@ void SmokeSolver::solvePressure(VkCommandBuffer cmd) {
             gpu::bindBuffer(6, f.packedPressure[packedOut]),
             gpu::bindBuffer(7, f.packedPressure[packedIn]),
             gpu::bindBuffer(8, solidBricks_.get() != VK_NULL_HANDLE ? solidBricks_ : noSolidCells_),
-            solidCellsWrite(),
-            solidBlocksWrite(),
         };
         if (splitSolids_ && !solids_.empty()) {
             // The bricks away from solids, then those near them (solve_pressure.comp's lists).
@@ -820,7 +811,7 @@ void SmokeSolver::solvePressure(VkCommandBuffer cmd) {
             for (uint32_t list : {2u, 1u}) {
                 if (list == 1u) fieldBarrier(cmd); // as dispatchStage's
                 gpu::Program& program = programs_.get("solve_pressure", 0, mode, false, list);
-                program.bind(cmd, withSolidList(writes, program, 0));
+                program.bind(cmd, withSolidBindings(writes, program, 0));
                 program.push(cmd, shared::FluidDispatch{0, 0, 0, 0});
                 ++dispatches_;
                 vkCmdDispatchIndirect(cmd, solidBricks_.get(),
@@ -841,13 +832,9 @@ void SmokeSolver::project(VkCommandBuffer cmd) {
     SmokeFields& f = fields_;
     auto& v = f.velocity[size_t(f.currentVelocity)];
     for (uint32_t c = 0; c < 3; ++c) {
-        const gpu::DescriptorWrite w[] = {gpu::bindBuffer(0, parameters_),
-                                          storage(1, v[c]),
+        const gpu::DescriptorWrite w[] = {gpu::bindBuffer(0, parameters_), storage(1, v[c]),
                                           storage(4, f.pressure[size_t(f.currentPressure)]),
-                                          gpu::bindBuffer(5, f.scratch[c]),
-                                          storage(6, v[c]),
-                                          solidCellsWrite(),
-                                          solidBlocksWrite()};
+                                          gpu::bindBuffer(5, f.scratch[c]), storage(6, v[c])};
         dispatchStage(cmd, {"project", c, 0, direct_}, w, faceExtent(options_.grid, int(c)));
     }
     storeFields(cmd, direct_,

@@ -165,12 +165,16 @@ private:
     // ones, over the blocks away from solids and over those near them (fluid_solids.glsl).
     void dispatchStage(VkCommandBuffer cmd, const StageProgram& program,
                        std::span<const gpu::DescriptorWrite> writes, glm::uvec3 extent);
-    // `writes` and, where `program` declares them and `writes` does not write them, block list
-    // `list`'s window at binding 21 (0: a buffer that no workgroup reads) and the stencils' solid
-    // corners at 22 (fluid_solids.glsl).
-    Writes withSolidList(std::span<const gpu::DescriptorWrite> writes, const gpu::Program& program,
-                         uint32_t list) const;
-    // Workgroup-sized blocks over the cells + 1 (fluid_solids.glsl), and Jacobi bricks.
+    // `writes` and, for each binding of shaders/fluid/fluid_solids.glsl that `program` declares
+    // and `writes` does not write: the flags (15), the blocks' words (19), block list `list`'s
+    // window (21; 0: a buffer that no workgroup reads) and the stencils' solid corners (22), or
+    // before any solid a small buffer in their place. Every bind of a program that includes
+    // fluid_solids.glsl goes through it.
+    Writes withSolidBindings(std::span<const gpu::DescriptorWrite> writes,
+                             const gpu::Program& program, uint32_t list) const;
+    // Workgroup-sized blocks over the cells + 1 (fluid_solids.glsl), and Jacobi bricks, per axis.
+    glm::uvec3 solidBlockGrid() const;
+    glm::uvec3 solidBrickGrid() const;
     uint32_t solidBlockCount() const;
     uint32_t solidBrickCount() const;
     // The block lists and brick lists as if no cell were near a solid (before the first mark).
@@ -178,11 +182,6 @@ private:
     // The parameters uniform at binding 0, then the three components of velocity image set `set`
     // at bindings 1-3 (the layout of most stages).
     Writes withVelocity(int set) const;
-
-    // The solid cells (binding 15 of the stages that read them: shaders/fluid/fluid_solids.glsl).
-    gpu::DescriptorWrite solidCellsWrite() const;
-    // The blocks near solids (binding 19: fluid_solids.glsl).
-    gpu::DescriptorWrite solidBlocksWrite() const;
 
     void markSolids(VkCommandBuffer cmd);
     // mark_solids' passes 2 and 5: the blocks' and bricks' words from the flags, then their lists.

@@ -6,6 +6,8 @@
 #include "fluid/reference/reference_solver.h"
 #include "tests/fluid_test_util.h"
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -20,6 +22,15 @@ inline shared::FluidSolid solidCapsule(glm::vec3 a, glm::vec3 b, float radius, g
 inline shared::FluidSolid solidSphere(glm::vec3 centre, float radius,
                                       glm::vec3 velocity = glm::vec3(0.0f)) {
     return solidCapsule(centre, centre, radius, velocity, velocity);
+}
+
+// The same bits in every field of two states.
+inline void expectSameBits(const fluid::FieldState& a, const fluid::FieldState& b) {
+    EXPECT_EQ(a.velocityX, b.velocityX);
+    EXPECT_EQ(a.velocityY, b.velocityY);
+    EXPECT_EQ(a.velocityZ, b.velocityZ);
+    EXPECT_EQ(a.pigment, b.pigment);
+    EXPECT_EQ(a.pressure, b.pressure);
 }
 
 inline constexpr fluid::GridShape kStreamGrid{32, 16, 16, 1.0f / 16.0f}; // 2 x 1 x 1 world units

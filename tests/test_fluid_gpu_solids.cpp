@@ -224,11 +224,7 @@ TEST_F(GpuSolidsTest, BothStorePathsStoreTheSameBitsWithSolids) {
     sweptCapsuleSideBySide(
         ctx(), 10, [](SolverOptions& o) { o.storePath = fluid::StorePath::Direct; }, direct);
     if (HasFatalFailure()) return;
-    EXPECT_EQ(buffer.gpu.velocityX, direct.gpu.velocityX);
-    EXPECT_EQ(buffer.gpu.velocityY, direct.gpu.velocityY);
-    EXPECT_EQ(buffer.gpu.velocityZ, direct.gpu.velocityZ);
-    EXPECT_EQ(buffer.gpu.pigment, direct.gpu.pigment);
-    EXPECT_EQ(buffer.gpu.pressure, direct.gpu.pressure);
+    expectSameBits(buffer.gpu, direct.gpu);
 }
 
 // The stages split into the workgroup blocks away from the solids and those near them
@@ -254,11 +250,7 @@ TEST_F(GpuSolidsTest, SplitStagesStoreTheSameBitsAsWholeOnes) {
         if (HasFatalFailure()) return;
         sweptCapsuleSideBySide(ctx(), 5, adjust(fluid::ByDevice::Off), whole);
         if (HasFatalFailure()) return;
-        EXPECT_EQ(split.gpu.velocityX, whole.gpu.velocityX);
-        EXPECT_EQ(split.gpu.velocityY, whole.gpu.velocityY);
-        EXPECT_EQ(split.gpu.velocityZ, whole.gpu.velocityZ);
-        EXPECT_EQ(split.gpu.pigment, whole.gpu.pigment);
-        EXPECT_EQ(split.gpu.pressure, whole.gpu.pressure);
+        expectSameBits(split.gpu, whole.gpu);
         // And in the closed box both are the solver the 100-step comparison checks (its bound;
         // the mixed case's stages are checked one by one above).
         if (!mixed) {
