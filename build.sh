@@ -127,7 +127,7 @@ SANITIZER_EXCLUDED=(
     # bindings): GpuSolids/GpuSolidsStageTest's fp32 stages, GpuSolidsTest.RemovedSolids...,
     # .BadSolids... and .TheStagesAreSplit...
     '^GpuSolids/GpuSolidsHardCaseTest' '^GpuSolids/GpuSolidsStageTest[.].*(_fp16|maccormack|bfecc)'
-    '^GpuSolidsTest[.](HundredSteps|BothStorePaths|SplitStages|TheKick|AMovingSphere|AStillSphere)'
+    '^GpuSolidsTest[.](HundredSteps|EveryPressureSolver|BothStorePaths|SplitStages|TheKick|AMovingSphere|AStillSphere)'
     # a scene's kick with and without collision, 36 frames each; the scene's solids' set-up and
     # steps: SceneCollideTest.CollideBones...
     '^SceneCollideTest[.]TheKicks'

@@ -331,11 +331,6 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
                                     : solidsName == "both" ? BenchSolids::Both
                                                            : BenchSolids::None;
     const bool bodySolids = benchSolids != BenchSolids::None;
-    if (bodySolids && *pressure != fluid::PressureSolver::Jacobi) {
-        printError(std::string("--solids body: the pressure solver \"") +
-                   fluid::pressureSolverName(*pressure) + "\" does not take solids yet");
-        return kExitUsage;
-    }
     const std::string scenarioName = parsed.value("scenario", "puff");
     if (!fluid::makeScenario(scenarioName, {2, 2, 2})) {
         printError(fluid::makeScenario(scenarioName, {2, 2, 2}).error().message);

@@ -73,7 +73,7 @@ bool residualInRestriction(const SolverOptions& options, const gpu::Context& ctx
 // --- Programs and dispatches ---------------------------------------------------------------------
 
 gpu::Program& GpuMultigrid::program(Kernel kernel) {
-    gpu::Program& slot = programs_[size_t(kernel)];
+    gpu::Program& slot = programs_[solids_ ? 1 : 0][size_t(kernel)];
     if (slot.pipeline() != VK_NULL_HANDLE) return slot;
     using namespace mfx::shaders;
     struct Source {
@@ -103,7 +103,7 @@ gpu::Program& GpuMultigrid::program(Kernel kernel) {
     desc.pushConstantSize = sizeof(shared::PressureDispatch);
     // Ids 0-2: the workgroup shape; 3-4: a brick's rows and layers; 5-7: the transfers' slots;
     // 8: the V-cycle's kind (MGPCG's symmetric one, or the multigrid solver's); 9: the residual
-    // computed by the restriction.
+    // computed by the restriction; 15: solids (kSolids, level 0's stencils read their flags).
     const bool fused = kernel == CycleCoarseLevels;
     desc.specialization = {fused ? coarseGroup() : options_.workgroup[0],
                            fused ? 1u : options_.workgroup[1],
@@ -115,6 +115,8 @@ gpu::Program& GpuMultigrid::program(Kernel kernel) {
                            uint32_t(restrictSlotsYZ_),
                            options_.pressureSolver == PressureSolver::MultigridPcg ? 1u : 0u,
                            residualInRestriction(options_, ctx_) ? 1u : 0u};
+    desc.specialization.resize(15, 0u); // ids 10-14: none
+    desc.specialization.push_back(solids_ ? 1u : 0u);
     slot = gpu::createComputeProgram(ctx_, desc);
     return slot;
 }
@@ -181,6 +183,7 @@ void GpuMultigrid::run(VkCommandBuffer cmd, Kernel kernel,
             gpu::bindImage(9, *divergence_, VK_IMAGE_LAYOUT_GENERAL),
             gpu::bindImage(10, *pressure_, VK_IMAGE_LAYOUT_GENERAL),
             gpu::bindBuffer(11, *out_),
+            gpu::bindBuffer(15, *solidFlags_),
         };
         prog.bind(cmd, writes);
         resourcesPushed_ = true;
@@ -219,7 +222,13 @@ void GpuMultigrid::finish(VkCommandBuffer cmd, uint32_t step, uint32_t slot, uin
 // ------------------------------------------------------------------------------------
 
 uint32_t GpuMultigrid::record(VkCommandBuffer cmd, const gpu::Image& divergence,
-                              const gpu::Image& pressure, const gpu::Buffer& out) {
+                              const gpu::Image& pressure, const gpu::Buffer& out,
+                              const gpu::Buffer& solidFlags, bool solids) {
+    if (solids && options_.pressureSolver != PressureSolver::RedBlackGaussSeidel &&
+        levels_.size() < 2)
+        throw std::logic_error("multigrid: solids need a coarse level (validateSolidOptions)");
+    solids_ = solids;
+    solidFlags_ = &solidFlags;
     divergence_ = &divergence;
     pressure_ = &pressure;
     out_ = &out;
@@ -329,7 +338,9 @@ void GpuMultigrid::loadSystem(VkCommandBuffer cmd, int x, uint32_t sumsFlags) {
     load.flags = (options_.warmStart ? MFX_PRESSURE_WARM_START : 0u) |
                  (singular_ ? MFX_PRESSURE_PARTIAL_SUMS : 0u);
     run(cmd, LoadPressureSystem, load, Grid::Level, false);
-    if (singular_) finish(cmd, MFX_REDUCE_MEAN, kSlotRhsSum, 0, false);
+    // The mean of b, over the cells load_pressure_system counted (the fluid ones, with solids),
+    // which the later means are over too.
+    if (singular_) finish(cmd, MFX_REDUCE_MEAN, kSlotRhsSum, MFX_PRESSURE_COUNT_CELLS, false);
     if (singular_ || sumsFlags != 0) {
         shared::PressureDispatch center = push(0);
         center.result = level.b;

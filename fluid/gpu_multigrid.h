@@ -67,10 +67,13 @@ public:
 
     // Records the whole pressure solve: b = -h² div from `divergence`, the start from `pressure`
     // (warm start) or 0, the solution written one float per cell, x-fastest, into `out` (the
-    // caller copies it into the pressure image). Every dispatch is followed by a barrier. Returns
-    // the number of dispatches recorded.
+    // caller copies it into the pressure image). With `solids`, `solidFlags` holds the solid flag
+    // bytes (shaders/fluid/fluid_solids.glsl) that level 0's stencils read: a solid cell has no
+    // unknown and stays 0, a solid neighbour is not counted (fluid/reference/pressure_equation.h);
+    // without, it is bound but not read (any storage buffer). Every dispatch is followed by a
+    // barrier. Returns the number of dispatches recorded.
     uint32_t record(VkCommandBuffer cmd, const gpu::Image& divergence, const gpu::Image& pressure,
-                    const gpu::Buffer& out);
+                    const gpu::Buffer& out, const gpu::Buffer& solidFlags, bool solids);
 
     // Sweeps, V-cycles or CG iterations of the last solve; for MGPCG read back from the GPU (the
     // solve must have finished).
@@ -174,7 +177,10 @@ private:
     gpu::Buffer arguments_;         // indirect dispatches of the CG loop: one per level and one
     gpu::Buffer argumentsTemplate_; // workgroup; copied in at each solve
 
-    std::array<gpu::Program, KernelCount> programs_;
+    // Per kernel, without and with solids (specialization constant 15, kSolids).
+    std::array<std::array<gpu::Program, KernelCount>, 2> programs_;
+    bool solids_ = false; // this record()'s
+    const gpu::Buffer* solidFlags_ = nullptr;
     const gpu::Image* divergence_ = nullptr;
     const gpu::Image* pressure_ = nullptr;
     const gpu::Buffer* out_ = nullptr;

@@ -144,10 +144,7 @@ void SmokeSolver::setEmitterBuffer(const gpu::Buffer& buffer, uint32_t count) {
 
 Status SmokeSolver::setSolids(std::span<const shared::FluidSolid> solids) {
     if (Status valid = validateSolids(solids); !valid) return valid;
-    if (!solids.empty() && options_.pressureSolver != PressureSolver::Jacobi)
-        return Error{std::string("solids: the pressure solver \"") +
-                     pressureSolverName(options_.pressureSolver) +
-                     "\" does not take solids yet (use \"jacobi\")"};
+    if (Status ok = validateSolidOptions(options_); !solids.empty() && !ok) return ok;
     if (solids.size() > kMaxSolids)
         return Error{"solids: " + std::to_string(solids.size()) + " solids, at most " +
                      std::to_string(kMaxSolids) + " a step"};
@@ -763,7 +760,9 @@ void SmokeSolver::solvePressure(VkCommandBuffer cmd) {
     if (multigrid_) {
         // The other solvers write the solution x-fastest into a buffer, copied over the live image.
         gpu::Image& pressure = f.pressure[size_t(f.currentPressure)];
-        dispatches_ += multigrid_->record(cmd, f.divergence, pressure, f.scratch[0]);
+        const bool solids = !solids_.empty();
+        dispatches_ += multigrid_->record(cmd, f.divergence, pressure, f.scratch[0],
+                                          solids ? solidCells_ : noSolidCells_, solids);
         storeFields(cmd, false, {{&f.scratch[0], &pressure}});
         return;
     }

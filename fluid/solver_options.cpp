@@ -186,6 +186,18 @@ Status validateSolids(std::span<const shared::FluidSolid> solids) {
     return Ok{};
 }
 
+Status validateSolidOptions(const SolverOptions& o) {
+    if (o.pressureSolver != PressureSolver::Multigrid &&
+        o.pressureSolver != PressureSolver::MultigridPcg)
+        return Ok{};
+    const bool halves = o.grid.cellsX >= 3 || o.grid.cellsY >= 3 || o.grid.cellsZ >= 3;
+    if (o.multigrid.levels == 1 || !halves)
+        return Error{std::string("solids: the pressure solver \"") +
+                     pressureSolverName(o.pressureSolver) +
+                     "\" takes solids only with two multigrid levels or more"};
+    return Ok{};
+}
+
 shared::FluidParameters makeParameters(const SolverOptions& o, uint32_t emitterCount) {
     shared::FluidParameters p{};
     p.size = glm::uvec4(o.grid.cellsX, o.grid.cellsY, o.grid.cellsZ, emitterCount);

@@ -167,6 +167,10 @@ Status validateSparseOptions(const SolverOptions& options, uint32_t maxDimension
 Status validateEmitters(std::span<const shared::FluidEmitter> emitters);
 // Every solid's ends, radius and velocities finite, its radius > 0; the error names the solid.
 Status validateSolids(std::span<const shared::FluidSolid> solids);
+// Whether a dense solver with `options` takes solids: every pressure solver does, multigrid and
+// MGPCG only with a hierarchy of two levels or more (their coarse levels do not see the solids,
+// so the simulation grid cannot be the coarsest; docs/fluid.md, "Solids").
+Status validateSolidOptions(const SolverOptions& options);
 
 // The uniform block of one sub-step.
 shared::FluidParameters makeParameters(const SolverOptions& options, uint32_t emitterCount);

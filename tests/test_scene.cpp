@@ -238,13 +238,6 @@ const BadScene kBadScenes[] = {
      "effects[0].follow: only for \"domain\": \"dense\""},
     {"SparseColliding", R"({"effects": [{"type": "smoke", "domain": "sparse", "collide": true}]})",
      "effects[0].collide: only for \"domain\": \"dense\""},
-    {"CollidingWithMultigrid",
-     R"({"effects": [{"type": "smoke", "pressure": "multigrid", "collide": true}]})",
-     "effects[0].collide: only with \"pressure\": \"jacobi\" (the other pressure solvers do not "
-     "take solids yet)"},
-    {"CollideThicknessWithMgpcg",
-     R"({"effects": [{"type": "smoke", "pressure": "mgpcg", "collide_thickness": 0.1}]})",
-     "effects[0].collide_thickness: only with \"pressure\": \"jacobi\""},
     {"NegativeCollideThickness",
      R"({"effects": [{"type": "smoke", "collide": true, "collide_thickness": -1}]})",
      "effects[0].collide_thickness: -1 is outside"},

@@ -41,10 +41,8 @@ void ReferenceSolver::setSolids(std::span<const shared::FluidSolid> solids) {
     if (Status ok = validateSolids(solids); !ok) throw std::invalid_argument(ok.error().message);
     if (!solids.empty() && !activeCells_.empty())
         throw std::invalid_argument("solids: not yet on the sparse domain");
-    if (!solids.empty() && options_.pressureSolver != PressureSolver::Jacobi)
-        throw std::invalid_argument(std::string("solids: the pressure solver \"") +
-                                    pressureSolverName(options_.pressureSolver) +
-                                    "\" does not take solids yet (use \"jacobi\")");
+    if (Status ok = validateSolidOptions(options_); !solids.empty() && !ok)
+        throw std::invalid_argument(ok.error().message);
     solids_.assign(solids.begin(), solids.end());
     markSolids();
 }

@@ -21,7 +21,8 @@ namespace mfx::fluid {
 void ReferenceSolver::solvePressureMgpcg() {
     if (!options_.warmStart) pressure_.setZero();
     pressureIterations_ = 0;
-    const PressureGrid grid = PressureGrid::finest(cells_, options_.boundaries);
+    const PressureGrid grid = PressureGrid::finest(cells_, options_.boundaries, solidCells_);
+    pressure_ = grid.withoutSolids(std::move(pressure_));
     const Eigen::ArrayXd b = consistentRightHandSide(grid, -(h_ * h_) * divergence_);
     const double bNorm = b.matrix().norm();
     if (bNorm == 0.0) {

@@ -34,6 +34,7 @@
 #include "fluid/reference/reference_solver.h"
 
 #include <cmath>
+#include <stdexcept>
 
 namespace mfx::fluid {
 
@@ -131,6 +132,9 @@ Multigrid::Multigrid(const PressureGrid& finest, uint32_t levels) {
     }
 
     const PressureGrid& coarsest = levels_.back();
+    if (coarsest.hasSolids())
+        throw std::invalid_argument("multigrid: solids need a coarse level (levels >= 2 and an "
+                                    "axis of 3 cells or more)");
     Eigen::SparseMatrix<double> matrix = coarsest.matrix();
     if (coarsest.singular()) {
         matrix.prune([](const Eigen::Index& row, const Eigen::Index& col, const double&) {
@@ -228,7 +232,7 @@ void Multigrid::cycle(size_t l, Eigen::ArrayXd& x, const Eigen::ArrayXd& b, uint
         kind == Cycle::Symmetric ? restrictTranspose(l, residual) : restrictSum(l, residual);
     Eigen::ArrayXd coarseX = Eigen::ArrayXd::Zero(coarseB.size());
     cycle(l + 1, coarseX, coarseB, preSmooth, postSmooth, kind);
-    x += prolong(l, coarseX);
+    x += grid.withoutSolids(prolong(l, coarseX)); // no unknown in a solid cell
     grid.redBlackSweeps(x, b, postSmooth, kind == Cycle::Symmetric);
 }
 
@@ -241,7 +245,8 @@ void Multigrid::vCycle(Eigen::ArrayXd& x, const Eigen::ArrayXd& b, uint32_t preS
 // right-hand side when no face is open.
 void ReferenceSolver::solvePressureMultigrid() {
     if (!options_.warmStart) pressure_.setZero();
-    const PressureGrid grid = PressureGrid::finest(cells_, options_.boundaries);
+    const PressureGrid grid = PressureGrid::finest(cells_, options_.boundaries, solidCells_);
+    pressure_ = grid.withoutSolids(std::move(pressure_));
     const Eigen::ArrayXd b = consistentRightHandSide(grid, -(h_ * h_) * divergence_);
     const Multigrid multigrid(grid, options_.multigrid.levels);
     recordResidual();

@@ -5,6 +5,7 @@
 // ch. 2: rediscretisation of the coarse-grid operator).
 #include "fluid/reference/pressure_equation.h"
 
+#include <stdexcept>
 #include <vector>
 
 namespace mfx::fluid {
@@ -51,14 +52,25 @@ PressureGrid::PressureGrid(std::array<std::vector<double>, 3> widths,
     }
 }
 
-PressureGrid PressureGrid::finest(glm::ivec3 cells, const std::array<FaceBoundary, 6>& faces) {
+PressureGrid PressureGrid::finest(glm::ivec3 cells, const std::array<FaceBoundary, 6>& faces,
+                                  std::vector<uint8_t> solid) {
     std::array<std::vector<double>, 3> widths;
     for (int a = 0; a < 3; ++a)
         widths[a].assign(size_t(cells[a]), 1.0);
     std::array<Boundary, 6> kinds;
     for (size_t f = 0; f < 6; ++f)
         kinds[f] = faces[f].kind;
-    return PressureGrid(std::move(widths), kinds);
+    PressureGrid grid(std::move(widths), kinds);
+    if (!solid.empty() && solid.size() != size_t(grid.size()))
+        throw std::invalid_argument("pressure grid: a solid byte per cell expected");
+    grid.solid_ = std::move(solid);
+    return grid;
+}
+
+Eigen::ArrayXd PressureGrid::withoutSolids(Eigen::ArrayXd v) const {
+    for (size_t i = 0; i < solid_.size(); ++i)
+        if (solid_[i] != 0) v[Eigen::Index(i)] = 0.0;
+    return v;
 }
 
 void PressureGrid::neighbourSums(const Eigen::ArrayXd& p, glm::ivec3 q, double& weighted,
@@ -66,15 +78,17 @@ void PressureGrid::neighbourSums(const Eigen::ArrayXd& p, glm::ivec3 q, double& 
     weighted = 0.0;
     total = 0.0;
     const Eigen::Index here = Eigen::Index(index(q));
+    if (solidCell(size_t(here))) return; // no unknown: nothing counted
     // Sides in the order -x, +x, -y, +y, -z, +z, as the Jacobi sweep sums them.
     for (int a = 0; a < 3; ++a)
         for (int high = 0; high < 2; ++high) {
             const Side& side = sides_[a][size_t(high)][size_t(q[a])];
             if (side.inverseDistance == 0.0) continue;
+            const Eigen::Index neighbour = here + Eigen::Index(side.neighbour - q[a]) * stride_[a];
+            if (side.neighbour >= 0 && solidCell(size_t(neighbour))) continue; // as a wall
             const double c = side.inverseDistance * area(a, q);
             total += c;
-            if (side.neighbour >= 0)
-                weighted += c * p[here + Eigen::Index(side.neighbour - q[a]) * stride_[a]];
+            if (side.neighbour >= 0) weighted += c * p[neighbour];
         }
 }
 
@@ -104,15 +118,17 @@ Eigen::SparseMatrix<double> PressureGrid::matrix() const {
             for (int i = 0; i < cells_.x; ++i) {
                 const glm::ivec3 q(i, j, k);
                 const Eigen::Index row = Eigen::Index(index(q));
+                if (solidCell(size_t(row))) continue; // a zero row, as apply() has it
                 for (int a = 0; a < 3; ++a)
                     for (int high = 0; high < 2; ++high) {
                         const Side& side = sides_[a][size_t(high)][size_t(q[a])];
                         if (side.inverseDistance == 0.0) continue;
+                        glm::ivec3 n = q;
+                        n[a] = side.neighbour;
+                        if (side.neighbour >= 0 && solidCell(index(n))) continue;
                         const double c = side.inverseDistance * area(a, q);
                         entries.emplace_back(row, row, c);
                         if (side.neighbour < 0) continue;
-                        glm::ivec3 n = q;
-                        n[a] = side.neighbour;
                         entries.emplace_back(row, Eigen::Index(index(n)), -c);
                     }
             }
@@ -122,6 +138,22 @@ Eigen::SparseMatrix<double> PressureGrid::matrix() const {
 }
 
 Eigen::ArrayXd consistentRightHandSide(const PressureGrid& grid, Eigen::ArrayXd b) {
+    if (grid.hasSolids()) {
+        b = grid.withoutSolids(std::move(b));
+        if (!grid.singular()) return b;
+        double sum = 0.0;
+        Eigen::Index fluid = 0;
+        for (Eigen::Index i = 0; i < b.size(); ++i)
+            if (!grid.solidCell(size_t(i))) {
+                sum += b[i];
+                ++fluid;
+            }
+        if (fluid == 0) return b;
+        const double mean = sum / double(fluid);
+        for (Eigen::Index i = 0; i < b.size(); ++i)
+            if (!grid.solidCell(size_t(i))) b[i] -= mean;
+        return b;
+    }
     if (grid.singular() && b.size() > 0) b -= b.mean();
     return b;
 }

@@ -13,6 +13,13 @@
 // where the neighbour n(s) is the cell across the side, wraps on a periodic axis, is a ghost with
 // p = 0 half a finest cell beyond an open face (distance (w_q + 1) / 2), and does not exist across
 // a wall (c_s = 0). On the finest grid every counted c_s is 1: A p = count p - sum p_n.
+//
+// Solids (docs/fluid.md, "Solids"), on the finest grid only: a solid cell has no unknown (its row
+// of A is 0 and its p stays 0) and a side towards a solid cell is not counted (c_s = 0: zero
+// normal gradient, as at a wall), the equation the Jacobi sweep solves. The coarse levels of the
+// multigrid hierarchy do not see the solids (their operators are the solid-free ones): the V-cycle
+// stays a symmetric positive definite preconditioner, which is all MGPCG needs, and converges more
+// slowly next to solids; prolonged corrections are set to 0 in the solid cells.
 #pragma once
 
 #include "fluid/solver_options.h"
@@ -35,8 +42,10 @@ public:
     // A grid whose cells along axis a have widths[a] (in finest cells), with the six domain faces
     // of the simulation (-x, +x, -y, +y, -z, +z).
     PressureGrid(std::array<std::vector<double>, 3> widths, std::array<Boundary, 6> boundaries);
-    // The simulation grid: `cells` cells of width 1.
-    static PressureGrid finest(glm::ivec3 cells, const std::array<FaceBoundary, 6>& boundaries);
+    // The simulation grid: `cells` cells of width 1; `solid` one byte per cell (x-fastest,
+    // nonzero: solid), or empty without solids.
+    static PressureGrid finest(glm::ivec3 cells, const std::array<FaceBoundary, 6>& boundaries,
+                               std::vector<uint8_t> solid = {});
 
     glm::ivec3 cells() const { return cells_; }
     Eigen::Index size() const { return Eigen::Index(cells_.x) * cells_.y * cells_.z; }
@@ -45,6 +54,10 @@ public:
     // No open face: A is singular, with the constants as its null space; A p = b has a solution
     // exactly when b sums to 0.
     bool singular() const { return singular_; }
+    bool hasSolids() const { return !solid_.empty(); }
+    bool solidCell(size_t index) const { return !solid_.empty() && solid_[index] != 0; }
+    // v with its solid cells set to 0.
+    Eigen::ArrayXd withoutSolids(Eigen::ArrayXd v) const;
     size_t index(glm::ivec3 q) const {
         return size_t(q.x) + size_t(cells_.x) * (size_t(q.y) + size_t(cells_.y) * size_t(q.z));
     }
@@ -90,9 +103,11 @@ private:
     bool singular_ = true;
     std::array<std::array<std::vector<Side>, 2>, 3> sides_; // [axis][low, high][index along axis]
     glm::ivec3 stride_;
+    std::vector<uint8_t> solid_; // per cell, empty without solids
 };
 
-// b with its mean removed when the grid is singular (its part in the range of A), else b.
+// b with its mean removed when the grid is singular (its part in the range of A), else b; with
+// solids, the mean over the fluid cells removed from them and the solid cells 0.
 Eigen::ArrayXd consistentRightHandSide(const PressureGrid& grid, Eigen::ArrayXd b);
 
 // The multigrid hierarchy of a pressure grid and its V-cycle (multigrid.cpp).

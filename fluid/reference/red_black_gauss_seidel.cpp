@@ -39,8 +39,9 @@ void PressureGrid::redBlackSweeps(Eigen::ArrayXd& p, const Eigen::ArrayXd& b, ui
 // Jacobi sweep takes it (not made mean-free: like Jacobi, a pure smoother).
 void ReferenceSolver::solvePressureRedBlack() {
     if (!options_.warmStart) pressure_.setZero();
-    const PressureGrid grid = PressureGrid::finest(cells_, options_.boundaries);
-    const Eigen::ArrayXd b = -(h_ * h_) * divergence_;
+    const PressureGrid grid = PressureGrid::finest(cells_, options_.boundaries, solidCells_);
+    pressure_ = grid.withoutSolids(std::move(pressure_));
+    const Eigen::ArrayXd b = grid.withoutSolids(-(h_ * h_) * divergence_);
     recordResidual();
     for (uint32_t sweep = 0; sweep < options_.jacobiIterations; ++sweep) {
         grid.redBlackSweeps(pressure_, b, 1);

@@ -9,7 +9,7 @@
 // entries are set to no workgroups: the iterations recorded after it then do nothing.
 //
 // One workgroup. pc: step, slot, partials, scale = tolerance, limit, flags: MFX_PRESSURE_SINGULAR,
-// MFX_PRESSURE_FIRST.
+// MFX_PRESSURE_FIRST, MFX_PRESSURE_COUNT_CELLS.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_basic : require
@@ -45,7 +45,10 @@ void main() {
         first += subgroupSums[0][i];
         second += subgroupSums[1][i];
     }
-    float cells = float(levels[0].axisCells.w);
+    // The cells a mean is over (all, or the fluid ones with solids), counted by
+    // load_pressure_system and kept by the mean of b.
+    if (pc.step == MFX_REDUCE_MEAN && hasFlag(MFX_PRESSURE_COUNT_CELLS)) scalars.fluidCells = first.y;
+    float cells = scalars.fluidCells;
     bool singular = hasFlag(MFX_PRESSURE_SINGULAR);
     float tolerance = pc.scale;
 

@@ -306,7 +306,8 @@ float slotWeight(int s, int parent, int side, vec2 weights) {
 // Prolongation: level `level`'s p (`result`) += P e, e level `level` + 1's correction
 // (`source`): trilinear interpolation at each fine cell centre, along each axis between the two
 // nearest coarse centres (beyond the last one: a wall repeats it, an open face interpolates
-// towards 0 at its ghost, a periodic axis wraps; the weights are the reference's). Separably:
+// towards 0 at its ghost, a periodic axis wraps; the weights are the reference's); nothing added
+// to a solid cell. Separably:
 // each coarse row interpolated along x once, then along y and z into every fine row of the brick.
 void prolongBrick(int level, int source, int result, ivec3 origin) {
     ivec4 cells = levels[level].cells;
@@ -380,8 +381,11 @@ void prolongBrick(int level, int source, int result, ivec3 origin) {
     for (int l = 0; l < kBrickLayers; ++l)
         for (int r = 0; r < kBrickRows; ++r) {
             ivec3 q = origin + ivec3(0, r, l);
-            if (q.y < cells.y && q.z < cells.z)
-                vectors[result + elementIndex(cells, q.x, q.y, q.z)] += correction[l][r];
+            if (q.y >= cells.y || q.z >= cells.z) continue;
+            int element = elementIndex(cells, q.x, q.y, q.z);
+            // No unknown in a solid cell (level 0 with solids): it stays 0.
+            vec4 add = mix(correction[l][r], vec4(0.0), solidCells(level, element));
+            vectors[result + element] += add;
         }
 }
 

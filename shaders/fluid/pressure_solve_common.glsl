@@ -57,6 +57,28 @@ layout(std430, binding = 11) writeonly buffer PressureOut {
     float pressureOut[];
 };
 
+// Solids (constant id 15; docs/fluid.md, "Solids"): the solid flag bytes of level 0, one per
+// cell in its vectors' layout (element X + L (y + ny z) is the word of cells 4X .. 4X + 3 of row
+// (y, z); bit 0 the cell is solid, bit 1 + s its neighbour on side s is; written by
+// mark_solids.comp, fluid_solids.glsl). On level 0 a solid cell has no unknown (its row of A is 0,
+// its value stays 0) and a side towards a solid cell is not counted; the coarse levels do not see
+// them (fluid/reference/pressure_equation.h).
+layout(constant_id = 15) const bool kSolids = false;
+layout(std430, binding = 15) readonly buffer SolidFlags {
+    uint solidFlags[];
+};
+
+// The four flag bytes of level `level`'s element `element` (0 without solids, or off level 0).
+uvec4 solidBytes(int level, int element) {
+    if (!kSolids || level != 0) return uvec4(0u);
+    return (uvec4(solidFlags[element]) >> uvec4(0u, 8u, 16u, 24u)) & 0xffu;
+}
+
+// Which of the element's four cells are solid.
+bvec4 solidCells(int level, int element) {
+    return notEqual(solidBytes(level, element) & 1u, uvec4(0u));
+}
+
 layout(push_constant) uniform Dispatch {
     PressureDispatch pc;
 };
@@ -169,6 +191,17 @@ void stencilBrick(int level, int base, ivec3 origin, bool zero) {
             vec4 cLowX = inverseLowX * areaX, cHighX = inverseHighX * areaX;
             vec4 cLowY = cy.y * areaY, cHighY = cy.z * areaY;
             vec4 cLowZ = coefficientsZ.y * areaZ, cHighZ = coefficientsZ.z * areaZ;
+            if (kSolids && level == 0) {
+                // A solid cell counts no side; a fluid one no side towards a solid cell (bit 0
+                // or bit 1 + s).
+                uvec4 bytes = solidBytes(0, elementIndex(cells, x, y, z));
+                cLowX = mix(cLowX, vec4(0.0), notEqual(bytes & 3u, uvec4(0u)));
+                cHighX = mix(cHighX, vec4(0.0), notEqual(bytes & 5u, uvec4(0u)));
+                cLowY = mix(cLowY, vec4(0.0), notEqual(bytes & 9u, uvec4(0u)));
+                cHighY = mix(cHighY, vec4(0.0), notEqual(bytes & 17u, uvec4(0u)));
+                cLowZ = mix(cLowZ, vec4(0.0), notEqual(bytes & 33u, uvec4(0u)));
+                cHighZ = mix(cHighZ, vec4(0.0), notEqual(bytes & 65u, uvec4(0u)));
+            }
             vec4 total = cLowX + cHighX + cLowY + cHighY + cLowZ + cHighZ;
             vec4 weighted = vec4(0.0);
             vec4 p = centre[r + 1];

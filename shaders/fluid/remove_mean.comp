@@ -1,4 +1,4 @@
-// removeMean: v <- v - mean over the cells of level 0 (when the pressure equation is singular,
+// removeMean: v <- v - mean over the (fluid) cells of level 0, in those cells (when the pressure equation is singular,
 // i.e. no face is open: the part of v in the range of A), and the partial sums of v², for its
 // norm. Without an open face A's null space is the constants and A p = b is solvable only for a
 // mean-free b (docs/fluid.md, "Accuracy options"). Twin: consistentRightHandSide in
@@ -26,7 +26,9 @@ void main() {
                 int element = pc.result + elementIndex(cells, q.x, q.y, q.z);
                 vec4 v = vectors[element];
                 if (subtract) {
-                    v = mix(v, v - mean, inside); // the padding stays 0
+                    // The padding and solid cells stay 0.
+                    bvec4 fluid = not(solidCells(0, element - pc.result));
+                    v = mix(v, v - mean, bvec4(uvec4(inside) & uvec4(fluid)));
                     vectors[element] = v;
                 }
                 squares += dot(v, v);

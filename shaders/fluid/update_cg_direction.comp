@@ -20,7 +20,10 @@ void main() {
             ivec3 q = origin + ivec3(0, row, layer);
             if (q.y >= cells.y || q.z >= cells.z) continue;
             int element = elementIndex(cells, q.x, q.y, q.z);
-            vec4 d = mix(vec4(0.0), vectors[pc.source + element] - mean, inside);
+            // z's mean is over the fluid cells: a solid cell's z (0) stays 0.
+            bvec4 fluid = not(solidCells(0, element));
+            vec4 d = mix(vec4(0.0), vectors[pc.source + element] - mean,
+                         bvec4(uvec4(inside) & uvec4(fluid)));
             if (!first) d += beta * vectors[pc.result + element];
             vectors[pc.result + element] = d;
         }

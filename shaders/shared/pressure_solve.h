@@ -20,9 +20,10 @@
 #define MFX_PRESSURE_SINGULAR 16u     // finish_reduction: no open face (A is singular)
 #define MFX_PRESSURE_FIRST 32u        // finish_reduction / update_cg_direction: the first direction
 #define MFX_PRESSURE_ZERO_IF_NO_RHS 64u // store_pressure: 0 when PressureScalars.zeroSolution
+#define MFX_PRESSURE_COUNT_CELLS 128u   // finish_reduction (mean): the slot's y is the cell count
 
 // Steps of finish_reduction (PressureDispatch.step).
-#define MFX_REDUCE_MEAN 0u     // mean = sum / cells
+#define MFX_REDUCE_MEAN 0u     // mean = sum / cells (the fluid cells, with solids)
 #define MFX_REDUCE_CG_START 1u // ||b||, the first relative residual; stop at once if small enough
 #define MFX_REDUCE_CG_ALPHA 2u // alpha = (r, z) / (d, A d); stop unless (d, A d) > 0
 #define MFX_REDUCE_CG_CHECK 3u // one more iteration; the relative residual; stop if small enough
@@ -92,7 +93,9 @@ struct PressureScalars {
     uint iterations;   // CG iterations run
     uint done;         // 1 once CG has stopped (its indirect dispatches are then all empty)
     uint zeroSolution; // b = 0: the solution is 0
-    uint pad0;
+    // The cells a mean is over: all of level 0's, or with solids its fluid ones (counted by
+    // load_pressure_system, kept by finish_reduction's mean with MFX_PRESSURE_COUNT_CELLS).
+    float fluidCells;
     uint pad1;
 };
 
@@ -118,6 +121,7 @@ MFX_CHECK_SIZE(PressureScalars, 48);
 MFX_CHECK_LAYOUT(PressureScalars, iterations, 28);
 MFX_CHECK_LAYOUT(PressureScalars, done, 32);
 MFX_CHECK_LAYOUT(PressureScalars, zeroSolution, 36);
+MFX_CHECK_LAYOUT(PressureScalars, fluidCells, 40);
 #endif
 
 #endif
