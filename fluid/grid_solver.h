@@ -36,7 +36,8 @@ struct PigmentVolume {
     uint64_t bytes = 0;
 };
 
-// When a grid counts as settled: pigment alpha at most alphaThreshold and speed at most
+// When a grid counts as settled: pigment alpha at most alphaThreshold and (unless it has solids,
+// which keep stirring its air while they move) speed at most
 // settleSpeed (world units a second) everywhere. The sparse domain keeps a brick while a cell of
 // it has alpha above alphaThreshold or moves faster than liveSpeed.
 struct SettleRules {

@@ -914,7 +914,10 @@ SolverActivity SmokeSolver::finishFrame(const gpu::Buffer& activity, bool measur
     std::memcpy(bits, activity.mapped, sizeof bits);
     std::memcpy(&a.largestAlpha, &bits[0], 4);
     std::memcpy(&a.largestSpeed, &bits[1], 4);
-    a.settled = a.largestAlpha < rules.alphaThreshold && a.largestSpeed < rules.settleSpeed;
+    // With solids (a scene's "collide") the body keeps the air moving as long as it moves, and air
+    // without pigment shows nothing: the pigment alone decides.
+    a.settled = a.largestAlpha < rules.alphaThreshold &&
+                (a.largestSpeed < rules.settleSpeed || !solids_.empty());
     return a;
 }
 

@@ -124,6 +124,21 @@ TEST(SceneFile, SmokeAsksForTheSparseDomain) {
     EXPECT_FALSE(a == c); // a sparse and a dense effect never share a grid
 }
 
+// A dense grid's smoke collides with the character unless "collide": false; the sparse domain
+// has no solids.
+TEST(SceneFile, SmokeCollidesByDefaultOnADenseGrid) {
+    const scene::Scene s = parse(R"({"effects": [
+        {"type": "smoke", "name": "a"},
+        {"type": "smoke", "name": "b", "collide": false},
+        {"type": "smoke", "name": "c", "pressure": "mgpcg"},
+        {"type": "smoke", "name": "d", "domain": "sparse"}]})");
+    ASSERT_EQ(s.effects.size(), 4u);
+    EXPECT_TRUE(s.effects[0].as<scene::SmokeSpec>()->grid.collide);
+    EXPECT_FALSE(s.effects[1].as<scene::SmokeSpec>()->grid.collide);
+    EXPECT_TRUE(s.effects[2].as<scene::SmokeSpec>()->grid.collide);
+    EXPECT_FALSE(s.effects[3].as<scene::SmokeSpec>()->grid.collide);
+}
+
 // The built-in default is docs/scenes/hero.json: the combo, toon, its three effects, post on.
 TEST(SceneFile, DefaultSceneIsTheHeroCombo) {
     const scene::Scene s = scene::defaultScene();

@@ -1,7 +1,7 @@
-// A scene's smoke colliding with its character ("collide", docs/fluid.md "Solids"): the fighter's
-// body capsules become each step's solids in the grid's coordinates; off, the grid has none and
-// steps as before, bit for bit; "collide_bones" picks capsules by bone entries; bad bone entries
-// are refused naming the entry.
+// A scene's smoke colliding with its character ("collide", on by default; docs/fluid.md "Solids"):
+// the fighter's body capsules become each step's solids in the grid's coordinates; off, the grid
+// has none and steps as before, bit for bit; "collide_bones" picks capsules by bone entries; bad
+// bone entries are refused naming the entry.
 #include "core/anim/fighter.h"
 #include "fluid/reference/reference_solver.h"
 #include "sim/scene_simulation.h"
@@ -49,8 +49,8 @@ double pigmentInside(const sim::SceneSimulation::SmokeGrid& grid, uint64_t* soli
 // the pigment in the body's cells over the frames after the sixth, with and without.
 void kickInAndOut(const gpu::Context& ctx, uint32_t frames, const std::string& extra) {
     const anim::Character fighter = anim::makeFighter();
-    auto with = simulate(ctx, kickScene(R"(, "collide": true)" + extra, frames), fighter);
-    auto without = simulate(ctx, kickScene(extra, frames), fighter);
+    auto with = simulate(ctx, kickScene(extra, frames), fighter); // on by default
+    auto without = simulate(ctx, kickScene(R"(, "collide": false)" + extra, frames), fighter);
     ASSERT_TRUE(with && without);
     ASSERT_FALSE(with->smokeGrids()[0].capsules.empty());
     EXPECT_TRUE(without->smokeGrids()[0].capsules.empty());

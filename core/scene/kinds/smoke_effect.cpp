@@ -91,12 +91,14 @@ std::unique_ptr<EffectKindSpec> SmokeSpec::parse(const Object& o) {
     g.drag = float(o.number("drag", g.drag, 0.0, 100.0));
     g.stepsPerSecond = float(o.number("steps_per_second", g.stepsPerSecond, 1.0, 1000.0));
     if (!sparse) g.follow = o.boolean("follow", g.follow);
-    // Solids, with every pressure solver of the dense grid. The bones and thickness are read beside
-    // "collide" and used when it is true.
+    // Solids, with every pressure solver of the dense grid, on unless "collide": false. The bones
+    // and thickness are read beside "collide" and used when it is true.
     if (!sparse) {
         g.collide = o.boolean("collide", g.collide);
         g.collideBones = o.strings("collide_bones");
         g.collideThickness = float(o.number("collide_thickness", g.collideThickness, 0.0, 10.0));
+    } else {
+        g.collide = false;
     }
     g.buoyancy = float(o.number("buoyancy", g.buoyancy, -100.0, 100.0));
     if (!sparse) g.vorticity = float(o.number("vorticity", g.vorticity, 0.0, 100.0));

@@ -58,9 +58,9 @@ struct SmokeGridSpec {
     std::optional<glm::vec3> origin;
     // The character as a moving solid the smoke flows around (docs/fluid.md, "Solids"): its body
     // capsules (core/anim/body_capsules.h), those of `collideBones` (entries as an effect's
-    // "bones"; empty: every one), each at least `collideThickness` across. Dense grids with the
-    // jacobi pressure solver.
-    bool collide = false;
+    // "bones"; empty: every one), each at least `collideThickness` across. On by default on a
+    // dense grid; the sparse domain has no solids (always false there).
+    bool collide = true;
     std::vector<std::string> collideBones;
     float collideThickness = 0.0f;
     bool sparse() const { return domain == "sparse"; }
