@@ -77,11 +77,22 @@ fluid::SmokeGridSettings gridSettings(std::span<const scene::SmokeSpec* const> e
     return settings;
 }
 
-// The body capsules of "collide_bones" (entries as an effect's "bones"; none: every capsule).
+// The body capsules of "collide_bones" (entries as an effect's "bones"); none given: every capsule
+// but those of `emitting`, the bones the grid's smoke comes from (smoke born inside a solid would
+// be cleared where it is born), and none at all where `wholeBody` emits.
 Result<std::vector<anim::BodyCapsule>> collisionCapsules(const anim::Character& character,
-                                                         const std::vector<std::string>& bones) {
+                                                         const std::vector<std::string>& bones,
+                                                         const std::vector<std::string>& emitting,
+                                                         bool wholeBody) {
     std::vector<anim::BodyCapsule> all = anim::fitBodyCapsules(character);
-    if (bones.empty()) return all;
+    if (bones.empty()) {
+        if (wholeBody) return std::vector<anim::BodyCapsule>{};
+        std::erase_if(all, [&](const anim::BodyCapsule& capsule) {
+            return std::find(emitting.begin(), emitting.end(),
+                             character.nodes[size_t(capsule.node)].name) != emitting.end();
+        });
+        return all;
+    }
     std::vector<std::string> names;
     for (const std::string& entry : bones) {
         auto resolved = anim::resolveBoneEntry(character, entry);
@@ -183,7 +194,14 @@ Result<std::unique_ptr<SceneSimulation>> SceneSimulation::create(const gpu::Cont
         sim->grids_.back().effects = effects;
         const scene::SmokeGridSpec& spec = specs.front()->grid;
         if (spec.collide) {
-            auto capsules = collisionCapsules(character, spec.collideBones);
+            std::vector<std::string> emitting;
+            bool wholeBody = false;
+            for (size_t i : effects) {
+                const std::vector<std::string>& bones = sim->trajectories_[i].spec->bones;
+                wholeBody = wholeBody || bones.empty();
+                emitting.insert(emitting.end(), bones.begin(), bones.end());
+            }
+            auto capsules = collisionCapsules(character, spec.collideBones, emitting, wholeBody);
             if (!capsules)
                 return Error{sim->scene_.file + ": " + name + ": " + capsules.error().message};
             sim->grids_.back().capsules = std::move(capsules).value();
