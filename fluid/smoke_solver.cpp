@@ -454,11 +454,28 @@ void SmokeSolver::markSolids(VkCommandBuffer cmd) {
         if (glm::any(glm::greaterThan(low, high))) continue; // wholly outside the grid
         jointLow = glm::min(jointLow, low);
         jointHigh = glm::max(jointHigh, high);
+        // The box's blocks, less those none of whose cell centres can lie within the radius of
+        // the axis: the distance from the centres' bounding sphere to the axis beyond the radius
+        // by a cell (far beyond fp32's error), which leaves out most of the box of a limb that
+        // lies across it.
         const glm::ivec3 first = low / size, end = high / size;
+        const glm::vec3 ab = b - a;
+        const float length2 = glm::dot(ab, ab);
         for (int z = first.z; z <= end.z; ++z)
             for (int y = first.y; y <= end.y; ++y)
-                for (int x = first.x; x <= end.x; ++x)
+                for (int x = first.x; x <= end.x; ++x) {
+                    const glm::ivec3 block(x, y, z);
+                    const glm::vec3 lo = (glm::vec3(block * size) + 0.5f) * h;
+                    const glm::vec3 hi =
+                        (glm::vec3(glm::min(block * size + size - 1, last)) + 0.5f) * h;
+                    const glm::vec3 centre = 0.5f * (lo + hi);
+                    const float t = length2 > 0.0f
+                                        ? glm::clamp(glm::dot(centre - a, ab) / length2, 0.0f, 1.0f)
+                                        : 0.0f;
+                    const float distance = glm::length(centre - (a + t * ab));
+                    if (distance > r + 0.5f * glm::length(hi - lo) + h) continue;
                     boxBlocks.emplace_back(uint32_t(i), uint32_t(x), uint32_t(y), uint32_t(z));
+                }
     }
     gpu::Program& cells = programs_.get("mark_solids", 0, 0);
     for (size_t done = 0; done < boxBlocks.size(); done += kBoxBlocksAPass) {
