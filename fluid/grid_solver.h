@@ -37,9 +37,9 @@ struct PigmentVolume {
 };
 
 // When a grid counts as settled: pigment alpha at most alphaThreshold and (unless it has solids,
-// which keep stirring its air while they move) speed at most
-// settleSpeed (world units a second) everywhere. The sparse domain keeps a brick while a cell of
-// it has alpha above alphaThreshold or moves faster than liveSpeed.
+// which keep stirring its air while they move) speed at most settleSpeed (world units a second)
+// everywhere. The sparse domain keeps a brick while a cell of it has alpha above alphaThreshold
+// or moves faster than liveSpeed.
 struct SettleRules {
     float alphaThreshold = 1e-4f;
     float settleSpeed = 0.0f;

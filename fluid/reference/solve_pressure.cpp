@@ -40,32 +40,10 @@ void ReferenceSolver::solvePressure() {
 }
 
 double ReferenceSolver::pressureResidual() const {
-    if (hasSolids()) {
-        // The equation over the fluid cells (solid neighbours not counted), as the Jacobi sweep
-        // has it; without an open face b is made mean-free over the fluid cells.
-        std::vector<glm::ivec3> fluidCells;
-        bool anyOpen = false;
-        for (int a = 0; a < 6; ++a)
-            anyOpen = anyOpen || options_.boundaries[a].kind == Boundary::Open;
-        for (int k = 0; k < cells_.z; ++k)
-            for (int j = 0; j < cells_.y; ++j)
-                for (int i = 0; i < cells_.x; ++i)
-                    if (!solidCell({i, j, k})) fluidCells.emplace_back(i, j, k);
-        Eigen::ArrayXd b(Eigen::Index(fluidCells.size()));
-        for (size_t n = 0; n < fluidCells.size(); ++n)
-            b[Eigen::Index(n)] = -(h_ * h_) * divergence_[Eigen::Index(cellIndex(fluidCells[n]))];
-        if (!anyOpen && b.size() > 0) b -= b.mean();
-        const double norm = b.matrix().norm();
-        if (norm == 0.0) return 0.0;
-        double squares = 0.0;
-        for (size_t n = 0; n < fluidCells.size(); ++n) {
-            const auto [sum, count] = countedNeighbours(pressure_, fluidCells[n]);
-            const double ap = count * pressure_[Eigen::Index(cellIndex(fluidCells[n]))] - sum;
-            squares += (b[Eigen::Index(n)] - ap) * (b[Eigen::Index(n)] - ap);
-        }
-        return std::sqrt(squares) / norm;
-    }
-    const PressureGrid grid = PressureGrid::finest(cells_, options_.boundaries);
+    // With solids, the equation over the fluid cells as the Jacobi sweep has it (PressureGrid:
+    // solid neighbours not counted, solid rows 0; without an open face b mean-free over the
+    // fluid cells).
+    const PressureGrid grid = PressureGrid::finest(cells_, options_.boundaries, solidCells_);
     const Eigen::ArrayXd b = consistentRightHandSide(grid, -(h_ * h_) * divergence_);
     const double norm = b.matrix().norm();
     if (norm == 0.0) return 0.0;

@@ -47,7 +47,8 @@ void main() {
     }
     // The cells a mean is over (all, or the fluid ones with solids), counted by
     // load_pressure_system and kept by the mean of b.
-    if (pc.step == MFX_REDUCE_MEAN && hasFlag(MFX_PRESSURE_COUNT_CELLS)) scalars.fluidCells = first.y;
+    if (pc.step == MFX_REDUCE_MEAN && hasFlag(MFX_PRESSURE_COUNT_CELLS))
+        scalars.fluidCells = first.y;
     float cells = scalars.fluidCells;
     bool singular = hasFlag(MFX_PRESSURE_SINGULAR);
     float tolerance = pc.scale;

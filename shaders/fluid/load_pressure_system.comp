@@ -1,7 +1,8 @@
 // loadPressureSystem: the right-hand side b = -h² div of the pressure equation A p = b and the
 // starting pressure (the last step's with a warm start, else 0), packed four cells per vec4 into
 // level 0's vectors (shaders/shared/pressure_solve.h); optionally the partial sums of b, for its
-// mean, with the cells it is over (the fluid ones, with solids: a solid cell's b and x are 0). Twin: the set-up of solvePressureRedBlack / solvePressureMultigrid / solvePressureMgpcg in
+// mean, with the cells it is over (the fluid ones, with solids: a solid cell's b and x are 0).
+// Twin: the set-up of solvePressureRedBlack / solvePressureMultigrid / solvePressureMgpcg in
 // fluid/reference/ (docs/fluid.md, "Accuracy options").
 //
 // pc: result = x, rhs = b, scale = -h², flags: MFX_PRESSURE_WARM_START, MFX_PRESSURE_PARTIAL_SUMS

@@ -307,8 +307,8 @@ float slotWeight(int s, int parent, int side, vec2 weights) {
 // (`source`): trilinear interpolation at each fine cell centre, along each axis between the two
 // nearest coarse centres (beyond the last one: a wall repeats it, an open face interpolates
 // towards 0 at its ghost, a periodic axis wraps; the weights are the reference's); nothing added
-// to a solid cell. Separably:
-// each coarse row interpolated along x once, then along y and z into every fine row of the brick.
+// to a solid cell. Separably: each coarse row interpolated along x once, then along y and z into
+// every fine row of the brick.
 void prolongBrick(int level, int source, int result, ivec3 origin) {
     ivec4 cells = levels[level].cells;
     ivec4 axes = levels[level].axisCells;

@@ -1,8 +1,8 @@
-// removeMean: v <- v - mean over the (fluid) cells of level 0, in those cells (when the pressure equation is singular,
-// i.e. no face is open: the part of v in the range of A), and the partial sums of v², for its
-// norm. Without an open face A's null space is the constants and A p = b is solvable only for a
-// mean-free b (docs/fluid.md, "Accuracy options"). Twin: consistentRightHandSide in
-// fluid/reference/pressure_equation.cpp.
+// removeMean: v <- v - mean over the (fluid) cells of level 0, in those cells (when the pressure
+// equation is singular, i.e. no face is open: the part of v in the range of A), and the partial
+// sums of v², for its norm. Without an open face A's null space is the constants and A p = b is
+// solvable only for a mean-free b (docs/fluid.md, "Accuracy options"). Twin:
+// consistentRightHandSide in fluid/reference/pressure_equation.cpp.
 //
 // pc: result = v (in place), flags: MFX_PRESSURE_SUBTRACT_MEAN (PressureScalars.mean, from
 // finish_reduction), MFX_PRESSURE_PARTIAL_SUMS.
