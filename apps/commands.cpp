@@ -199,9 +199,13 @@ Status writeFrameVdbs(sim::SceneSimulation& sim, uint32_t frame, VdbOutput& out)
         const fluid::FieldState state = g.grid.state();
         const std::vector<uint8_t> stored =
             g.grid.sparse() ? g.grid.storedCells() : std::vector<uint8_t>{};
-        const std::vector<uint8_t> solid = g.lastSolids.empty()
-                                               ? std::vector<uint8_t>{}
-                                               : fluid::solidCellMask(state.grid, g.lastSolids);
+        std::vector<uint8_t> solid = g.lastSolids.empty()
+                                         ? std::vector<uint8_t>{}
+                                         : fluid::solidCellMask(state.grid, g.lastSolids);
+        // On the sparse domain only stored cells are solid (what is not stored is air).
+        if (!stored.empty())
+            for (size_t cell = 0; cell < solid.size(); ++cell)
+                solid[cell] &= stored[cell];
         fluid::VdbFrame vdb;
         vdb.state = &state;
         vdb.storedCells = stored.empty() ? nullptr : &stored;

@@ -1,6 +1,7 @@
 #include "fluid/body_solids.h"
 
 #include <algorithm>
+#include <limits>
 
 namespace mfx::fluid {
 
@@ -24,19 +25,29 @@ std::vector<shared::FluidSolid> bodySolids(std::span<const anim::BodyCapsule> ca
     return solids;
 }
 
-std::vector<uint8_t> solidCellMask(const GridShape& grid,
-                                   std::span<const shared::FluidSolid> solids) {
+namespace {
+
+// The cells of `grid` whose centres a capsule's bounding box holds (low > high on an axis: none).
+void capsuleBox(const GridShape& grid, const shared::FluidSolid& s, glm::ivec3& low,
+                glm::ivec3& high) {
     const glm::ivec3 n(grid.cellsX, grid.cellsY, grid.cellsZ);
     const float h = grid.cellSize;
-    std::vector<uint8_t> solid(grid.cellCount(), 0);
+    const glm::vec3 a(s.endA), b(s.endB);
+    const float r = s.endA.w;
+    low = glm::max(glm::ivec3(glm::floor((glm::min(a, b) - r) / h - 0.5f)), glm::ivec3(0));
+    high = glm::min(glm::ivec3(glm::ceil((glm::max(a, b) + r) / h - 0.5f)), n - 1);
+}
+
+// Calls mark(cell) for every cell of `grid` whose centre lies inside one of `solids`.
+template <typename Mark>
+void forEachSolidCell(const GridShape& grid, std::span<const shared::FluidSolid> solids,
+                      Mark mark) {
+    const float h = grid.cellSize;
     for (const shared::FluidSolid& s : solids) {
         const glm::vec3 a(s.endA), b(s.endB);
         const float r = s.endA.w;
-        // The cells whose centres the capsule's bounding box holds.
-        const glm::ivec3 low =
-            glm::max(glm::ivec3(glm::floor((glm::min(a, b) - r) / h - 0.5f)), glm::ivec3(0));
-        const glm::ivec3 high =
-            glm::min(glm::ivec3(glm::ceil((glm::max(a, b) + r) / h - 0.5f)), n - 1);
+        glm::ivec3 low, high;
+        capsuleBox(grid, s, low, high);
         const glm::vec3 ab = b - a;
         const float length2 = glm::dot(ab, ab);
         for (int k = low.z; k <= high.z; ++k)
@@ -47,18 +58,43 @@ std::vector<uint8_t> solidCellMask(const GridShape& grid,
                                         ? std::clamp(glm::dot(x - a, ab) / length2, 0.0f, 1.0f)
                                         : 0.0f;
                     const glm::vec3 d = x - (a + t * ab);
-                    if (glm::dot(d, d) < r * r)
-                        solid[grid.index(uint32_t(i), uint32_t(j), uint32_t(k))] = 1;
+                    if (glm::dot(d, d) < r * r) mark(glm::ivec3(i, j, k));
                 }
     }
+}
+
+} // namespace
+
+std::vector<uint8_t> solidCellMask(const GridShape& grid,
+                                   std::span<const shared::FluidSolid> solids) {
+    std::vector<uint8_t> solid(grid.cellCount(), 0);
+    forEachSolidCell(grid, solids, [&](glm::ivec3 q) {
+        solid[grid.index(uint32_t(q.x), uint32_t(q.y), uint32_t(q.z))] = 1;
+    });
     return solid;
 }
 
 uint64_t countSolidCells(const GridShape& grid, std::span<const shared::FluidSolid> solids) {
-    if (solids.empty()) return 0;
+    // A mask over the solids' joint box alone (a sparse domain is far larger than the body).
+    glm::ivec3 low(std::numeric_limits<int>::max()), high(std::numeric_limits<int>::min());
+    for (const shared::FluidSolid& s : solids) {
+        glm::ivec3 lo, hi;
+        capsuleBox(grid, s, lo, hi);
+        if (glm::any(glm::greaterThan(lo, hi))) continue;
+        low = glm::min(low, lo);
+        high = glm::max(high, hi);
+    }
+    if (glm::any(glm::greaterThan(low, high))) return 0;
+    const glm::ivec3 size = high - low + 1;
+    std::vector<uint8_t> solid(size_t(size.x) * size_t(size.y) * size_t(size.z), 0);
     uint64_t count = 0;
-    for (uint8_t cell : solidCellMask(grid, solids))
-        count += cell;
+    forEachSolidCell(grid, solids, [&](glm::ivec3 q) {
+        const glm::ivec3 l = q - low;
+        uint8_t& cell =
+            solid[size_t(l.x) + size_t(size.x) * (size_t(l.y) + size_t(size.y) * size_t(l.z))];
+        count += cell == 0 ? 1 : 0;
+        cell = 1;
+    });
     return count;
 }
 

@@ -143,15 +143,9 @@ void SmokeSolver::setEmitterBuffer(const gpu::Buffer& buffer, uint32_t count) {
 }
 
 Status SmokeSolver::setSolids(std::span<const shared::FluidSolid> solids) {
-    if (Status valid = validateSolids(solids); !valid) return valid;
+    if (Status valid = validateGpuSolids(solids, ctx_.limits().maxUniformBufferRange); !valid)
+        return valid;
     if (Status ok = validateSolidOptions(options_); !solids.empty() && !ok) return ok;
-    if (solids.size() > kMaxSolids)
-        return Error{"solids: " + std::to_string(solids.size()) + " solids, at most " +
-                     std::to_string(kMaxSolids) + " a step"};
-    if (!solids.empty() && ctx_.limits().maxUniformBufferRange < kSolidUniformBytes)
-        return Error{"solids: the device's uniform buffers hold " +
-                     std::to_string(ctx_.limits().maxUniformBufferRange) + " bytes, solids need " +
-                     std::to_string(kSolidUniformBytes)};
     // Made once, at their largest, and never replaced: a recording in flight (several steps
     // recorded together, solids set between them) may name them.
     if (!solids.empty() && solidsBuffer_.get() == VK_NULL_HANDLE) {

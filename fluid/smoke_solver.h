@@ -83,14 +83,14 @@ public:
     // validation; an empty list removes them. Each sub-step's mark_solids stage puts them into
     // the grid (so the fields show them after the next step, or runStage(Stage::MarkSolids)); the
     // solids are copied into each recording, so steps recorded one after another may each have
-    // their own. The Jacobi pressure solver only, for now (others refused naming why).
+    // their own. Refused naming why as validateGpuSolids and validateSolidOptions refuse them.
     Status setSolids(std::span<const shared::FluidSolid> solids) override;
     bool hasSolids() const { return !solids_.empty(); }
     // Whether the stages that read solids are dispatched split into the blocks away from and near
     // them (SolverOptions::solidLists resolved for the device, with solids set).
     bool splitsSolidStages() const { return splitSolids_ && !solids_.empty(); }
-    // The most solids a step takes (they travel in the command buffer: vkCmdUpdateBuffer's 64 KiB).
-    static constexpr size_t kMaxSolids = 65536 / sizeof(shared::FluidSolid);
+    // The most solids a step takes.
+    static constexpr size_t kMaxSolids = kMaxGpuSolids;
 
     // Records one whole step (all sub-steps) into `cmd`. With a timer, each stage is a pass
     // named after it (stageName()), once per sub-step. The parameters uniform is written now,

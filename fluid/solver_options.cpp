@@ -186,6 +186,20 @@ Status validateSolids(std::span<const shared::FluidSolid> solids) {
     return Ok{};
 }
 
+Status validateGpuSolids(std::span<const shared::FluidSolid> solids,
+                         uint32_t maxUniformBufferRange) {
+    if (Status valid = validateSolids(solids); !valid) return valid;
+    if (solids.size() > kMaxGpuSolids)
+        return Error{"solids: " + std::to_string(solids.size()) + " solids, at most " +
+                     std::to_string(kMaxGpuSolids) + " a step"};
+    const size_t bytes = kMaxGpuSolids * sizeof(shared::FluidSolid);
+    if (!solids.empty() && maxUniformBufferRange < bytes)
+        return Error{"solids: the device's uniform buffers hold " +
+                     std::to_string(maxUniformBufferRange) + " bytes, solids need " +
+                     std::to_string(bytes)};
+    return Ok{};
+}
+
 Status validateSolidOptions(const SolverOptions& o) {
     if (o.pressureSolver != PressureSolver::Multigrid &&
         o.pressureSolver != PressureSolver::MultigridPcg)

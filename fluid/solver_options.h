@@ -167,6 +167,13 @@ Status validateSparseOptions(const SolverOptions& options, uint32_t maxDimension
 Status validateEmitters(std::span<const shared::FluidEmitter> emitters);
 // Every solid's ends, radius and velocities finite, its radius > 0; the error names the solid.
 Status validateSolids(std::span<const shared::FluidSolid> solids);
+// The most solids a GPU solver takes a step: they travel in the command buffer (vkCmdUpdateBuffer's
+// 64 KiB) into a uniform buffer the shaders index (shaders/fluid/mark_solids.comp's 1024).
+inline constexpr size_t kMaxGpuSolids = 65536 / sizeof(shared::FluidSolid);
+// validateSolids, at most kMaxGpuSolids, and uniform buffers of `maxUniformBufferRange` bytes
+// that hold them.
+Status validateGpuSolids(std::span<const shared::FluidSolid> solids,
+                         uint32_t maxUniformBufferRange);
 // Whether a dense solver with `options` takes solids: every pressure solver does, multigrid and
 // MGPCG only with a hierarchy of two levels or more (their coarse levels do not see the solids,
 // so the simulation grid cannot be the coarsest; docs/fluid.md, "Solids").

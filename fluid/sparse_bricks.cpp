@@ -71,6 +71,33 @@ void SparseBricks::wantSphere(glm::vec3 centre, float radius) {
             }
 }
 
+void SparseBricks::wantCapsule(glm::vec3 a, glm::vec3 b, float radius) {
+    for (int axis = 0; axis < 3; ++axis)
+        if (!std::isfinite(a[axis]) || !std::isfinite(b[axis])) return;
+    if (!std::isfinite(radius) || radius < 0.0f) return;
+    const float size = float(kBrickSize);
+    const float reach = radius + 3.5f * std::sqrt(3.0f) + 0.01f;
+    const glm::vec3 low = glm::min(a, b) - reach, high = glm::max(a, b) + reach;
+    const glm::vec3 extent = glm::vec3(bricks_) * size;
+    for (int axis = 0; axis < 3; ++axis)
+        if (high[axis] < 0.0f || low[axis] >= extent[axis]) return;
+    const glm::vec3 top = glm::vec3(bricks_) - 1.0f;
+    const glm::ivec3 first(glm::clamp(glm::floor(low / size), glm::vec3(0.0f), top));
+    const glm::ivec3 last(glm::clamp(glm::floor(high / size), glm::vec3(0.0f), top));
+    const glm::vec3 ab = b - a;
+    const float length2 = glm::dot(ab, ab);
+    for (int z = first.z; z <= last.z; ++z)
+        for (int y = first.y; y <= last.y; ++y)
+            for (int x = first.x; x <= last.x; ++x) {
+                const glm::vec3 centre = glm::vec3(x, y, z) * size + 0.5f * size;
+                const float t = length2 > 0.0f
+                                    ? std::clamp(glm::dot(centre - a, ab) / length2, 0.0f, 1.0f)
+                                    : 0.0f;
+                const glm::vec3 d = centre - (a + t * ab);
+                if (glm::dot(d, d) <= reach * reach) wanted_[index({x, y, z})] = 1;
+            }
+}
+
 void SparseBricks::dilate(uint32_t cells) {
     const int reach = int((cells + kBrickSize - 1) / kBrickSize);
     if (reach == 0) return;

@@ -56,6 +56,11 @@ public:
     // An emitter's footprint: every brick a sphere (centre and radius in cells) touches; the part
     // outside the domain is cut off.
     void wantSphere(glm::vec3 centre, float radius);
+    // A moving solid's footprint: every brick whose cell centres' bounding sphere (its centre,
+    // 3.5 √3 cells wide, and a hundredth of a cell for fp32's error) meets the capsule of axis
+    // a-b and `radius`, all in cells (a cell's centre is at its index + 0.5); the part outside
+    // the domain is cut off. Non-finite or negative values want nothing.
+    void wantCapsule(glm::vec3 a, glm::vec3 b, float radius);
     // A cell above the sleep threshold.
     void wantCell(glm::ivec3 cell);
     // Every brick within `cells` cells of a wanted brick (the advection's reach), inside the

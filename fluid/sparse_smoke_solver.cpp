@@ -26,6 +26,8 @@ std::span<const uint32_t> kernel(const std::string& name) {
     using namespace mfx::shaders;
     static const std::pair<const char*, std::span<const uint32_t>> kernels[] = {
         {"sparse_activate_bricks", sparse_activate_bricks_comp},
+        {"sparse_mark_solids", sparse_mark_solids_comp},
+        {"sparse_mark_solid_bricks", sparse_mark_solid_bricks_comp},
         {"sparse_splat_impulses", sparse_splat_impulses_comp},
         {"sparse_advect_velocity", sparse_advect_velocity_comp},
         {"sparse_advect_pigment", sparse_advect_pigment_comp},
@@ -159,13 +161,16 @@ SparseSmokeSolver::SparseSmokeSolver(const gpu::Context& ctx, const SolverOption
         *b = gpu::createBuffer(
             ctx, perBrick, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
             gpu::MemoryUsage::DeviceLocal, "sparse brick marks");
-    refused_ = gpu::createBuffer(ctx, sizeof(uint32_t), kFieldUsage, gpu::MemoryUsage::DeviceLocal,
-                                 "sparse refused bricks");
-    counters_ = gpu::createBuffer(ctx, 4 * sizeof(uint32_t), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+    // The refused bricks and the half-bricks with live pigment.
+    refused_ = gpu::createBuffer(ctx, 2 * sizeof(uint32_t), kFieldUsage,
+                                 gpu::MemoryUsage::DeviceLocal, "sparse rebuild counts");
+    counters_ = gpu::createBuffer(ctx, 5 * sizeof(uint32_t), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                   gpu::MemoryUsage::Readback, "sparse rebuild counts");
     rebuildParameters_ = gpu::createBuffer(ctx, sizeof(shared::SparseRebuildParameters),
                                            VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                            gpu::MemoryUsage::Upload, "sparse rebuild parameters");
+    noSolids_ = gpu::createBuffer(ctx, 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                  gpu::MemoryUsage::DeviceLocal, "sparse no solids");
     allocateAtlas(layout_.capacity());
     uploadList(active_, {});
     uploadList(activated_, {});
@@ -173,20 +178,23 @@ SparseSmokeSolver::SparseSmokeSolver(const gpu::Context& ctx, const SolverOption
 }
 
 gpu::Program& SparseSmokeSolver::program(const char* name, uint32_t target, uint32_t variant) {
-    gpu::Program& slot = programs_[{name, target, variant}];
+    const bool solids = !solids_.empty();
+    gpu::Program& slot = programs_[{name, target, variant, solids}];
     if (slot.pipeline() != VK_NULL_HANDLE) return slot;
     gpu::ComputeProgramDesc desc;
     desc.name = name;
     desc.spirv = kernel(name);
     desc.pushConstantSize = sizeof(shared::FluidDispatch);
     // Constant ids as in shaders/fluid/fluid_common.glsl: the target, the six boundary kinds, the
-    // integrator, the workgroup (8x8x4: half a brick), then the kernel's variant.
+    // integrator, the workgroup (8x8x4: half a brick), the kernel's variant, then whether solids
+    // are set (shaders/fluid/sparse_solids.glsl).
     desc.specialization = {target};
     for (const FaceBoundary& face : options_.boundaries)
         desc.specialization.push_back(uint32_t(face.kind));
     desc.specialization.push_back(uint32_t(options_.integrator));
-    desc.specialization.insert(desc.specialization.end(),
-                               {kBrickSize, kBrickSize, kBrickSize / kGroupsPerBrick, variant});
+    desc.specialization.insert(
+        desc.specialization.end(),
+        {kBrickSize, kBrickSize, kBrickSize / kGroupsPerBrick, variant, solids ? 1u : 0u});
     slot = gpu::createComputeProgram(ctx_, desc);
     return slot;
 }
@@ -206,6 +214,8 @@ void SparseSmokeSolver::allocateAtlas(uint32_t slots) {
         pressure[set] = make(cells, "sparse pressure");
     }
     gpu::Buffer divergence = make(cells, "sparse divergence");
+    // The holders need not be kept: every sub-step marks them before a stage reads them.
+    if (solidHolders_.get() != VK_NULL_HANDLE) solidHolders_ = make(cells, "sparse solid holders");
     const VkDeviceSize listBytes = sizeof(shared::BrickListHeader) + VkDeviceSize(slots) * 4;
     auto makeList = [&](const char* name) {
         return gpu::createBuffer(ctx_, listBytes,
@@ -279,8 +289,15 @@ SparseBricks::Update SparseSmokeSolver::commitActive() {
     for (uint32_t index : update.activated)
         states[index] = MFX_BRICK_WANTED | MFX_BRICK_FRESH;
     uploadBuffer(ctx_, brickState_, std::span<const uint32_t>(states));
-    if (!update.activated.empty())
-        gpu::submitOneShot(ctx_, [&](VkCommandBuffer cmd) { recordActivation(cmd); });
+    if (!update.activated.empty() || !solids_.empty())
+        gpu::submitOneShot(ctx_, [&](VkCommandBuffer cmd) {
+            if (!update.activated.empty()) recordActivation(cmd);
+            // The solids in the new set of cells, as the reference's setActiveCells marks them.
+            if (!solids_.empty()) {
+                listBarrier(cmd);
+                markSolids(cmd);
+            }
+        });
     return update;
 }
 
@@ -319,7 +336,8 @@ void SparseSmokeSolver::recordRebuild(VkCommandBuffer cmd, float alphaThreshold,
     const uint32_t bricks = uint32_t(layout_.table().size());
     shared::SparseRebuildParameters rebuild{};
     rebuild.thresholds = glm::vec4(alphaThreshold, speedThreshold, 0.0f, 0.0f);
-    rebuild.counts = glm::uvec4((reachCells + kBrickSize - 1) / kBrickSize, bricks, slots_, 0);
+    rebuild.counts = glm::uvec4((reachCells + kBrickSize - 1) / kBrickSize, bricks, slots_,
+                                uint32_t(solids_.size()));
     std::memcpy(rebuildParameters_.mapped, &rebuild, sizeof rebuild);
     writeParameters(); // the emitter count
     listBarrier(cmd);
@@ -334,6 +352,7 @@ void SparseSmokeSolver::recordRebuild(VkCommandBuffer cmd, float alphaThreshold,
             w.push_back(gpu::bindBuffer(4 + c, velocity_[currentVelocity_[c]][c]));
         w.push_back(gpu::bindBuffer(7, pigment_[currentPigment_]));
         w.push_back(gpu::bindBuffer(8, wantedScratch_));
+        w.push_back(gpu::bindBuffer(9, refused_));
         dispatch(cmd, program("sparse_mark_live_bricks"), w, active_);
     }
     const Writes rebuildCommon = {gpu::bindBuffer(0, parameters_),
@@ -349,6 +368,12 @@ void SparseSmokeSolver::recordRebuild(VkCommandBuffer cmd, float alphaThreshold,
     if (emitterCount_ > 0)
         flat("sparse_mark_emitter_bricks", 0, {emitterWrite(2), gpu::bindBuffer(3, wantedScratch_)},
              emitterCount_);
+    if (!solids_.empty()) {
+        recordSolidsUpload(cmd);
+        flat("sparse_mark_solid_bricks", 0,
+             {gpu::bindBuffer(2, solidsBuffer_), gpu::bindBuffer(3, wantedScratch_)},
+             uint32_t(solids_.size()));
+    }
     listBarrier(cmd);
     // The lists are rebuilt from here on: empty them.
     for (const gpu::Buffer* list : {&active_, &activated_}) {
@@ -378,8 +403,9 @@ void SparseSmokeSolver::recordRebuild(VkCommandBuffer cmd, float alphaThreshold,
          bricks);
     recordActivation(cmd);
     // The counts, for finishRebuild.
-    const VkBufferCopy counts[4] = {{0, 0, 4}, {12, 4, 4}, {12, 8, 4}, {0, 12, 4}};
+    const VkBufferCopy counts[5] = {{0, 0, 4}, {12, 4, 4}, {12, 8, 4}, {0, 12, 4}, {4, 16, 4}};
     vkCmdCopyBuffer(cmd, refused_.get(), counters_.get(), 1, &counts[0]);
+    vkCmdCopyBuffer(cmd, refused_.get(), counters_.get(), 1, &counts[4]);
     vkCmdCopyBuffer(cmd, active_.get(), counters_.get(), 1, &counts[1]);
     vkCmdCopyBuffer(cmd, activated_.get(), counters_.get(), 1, &counts[2]);
     vkCmdCopyBuffer(cmd, freeSlots_.get(), counters_.get(), 1, &counts[3]);
@@ -390,10 +416,11 @@ void SparseSmokeSolver::recordRebuild(VkCommandBuffer cmd, float alphaThreshold,
 }
 
 SparseSmokeSolver::RebuildCounts SparseSmokeSolver::finishRebuild() {
-    uint32_t words[4];
+    uint32_t words[5];
     std::memcpy(words, counters_.mapped, sizeof words);
     RebuildCounts counts;
     counts.refused = words[0];
+    counts.livePigment = words[4];
     counts.active = words[1];
     activeCount_ = counts.active;
     counts.activated = words[2];
@@ -533,11 +560,65 @@ void SparseSmokeSolver::dispatch(VkCommandBuffer cmd, gpu::Program& prog, const 
     ++dispatches_;
 }
 
+// --- Solids -------------------------------------------------------------------------------------
+
+Status SparseSmokeSolver::setSolids(std::span<const shared::FluidSolid> solids) {
+    if (Status valid = validateGpuSolids(solids, ctx_.limits().maxUniformBufferRange); !valid)
+        return valid;
+    // Made once and never replaced: a recording in flight may name them.
+    if (!solids.empty() && solidsBuffer_.get() == VK_NULL_HANDLE) {
+        solidsBuffer_ =
+            gpu::createBuffer(ctx_, kMaxGpuSolids * sizeof(shared::FluidSolid),
+                              VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                              gpu::MemoryUsage::DeviceLocal, "sparse solids");
+        solidHolders_ =
+            gpu::createBuffer(ctx_, VkDeviceSize(slots_) * MFX_BRICK_CELLS * sizeof(uint32_t),
+                              kFieldUsage, gpu::MemoryUsage::DeviceLocal, "sparse solid holders");
+    }
+    solids_.assign(solids.begin(), solids.end());
+    return Ok{};
+}
+
+void SparseSmokeSolver::recordSolidsUpload(VkCommandBuffer cmd) {
+    // Into the command buffer itself: steps recorded one after another each mark their own.
+    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_UNIFORM_READ_BIT,
+                       VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    vkCmdUpdateBuffer(cmd, solidsBuffer_.get(), 0, solids_.size() * sizeof(shared::FluidSolid),
+                      solids_.data());
+    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_UNIFORM_READ_BIT);
+}
+
+gpu::DescriptorWrite SparseSmokeSolver::solidWrite() const {
+    return gpu::bindBuffer(14, solids_.empty() ? noSolids_ : solidHolders_);
+}
+
+void SparseSmokeSolver::markSolids(VkCommandBuffer cmd) {
+    if (solids_.empty()) return;
+    recordSolidsUpload(cmd);
+    Writes w = common(active_);
+    for (uint32_t c = 0; c < 3; ++c)
+        w.push_back(gpu::bindBuffer(3 + c, velocity_[currentVelocity_[c]][c]));
+    w.push_back(gpu::bindBuffer(6, pigment_[currentPigment_]));
+    w.push_back(gpu::bindBuffer(13, solidsBuffer_));
+    w.push_back(solidWrite());
+    const shared::FluidDispatch count{uint32_t(solids_.size()), 0, 0, 0};
+    for (uint32_t pass = 0; pass < 2; ++pass) { // the holders, then the faces and pigment
+        gpu::Program& prog = program("sparse_mark_solids", 0, pass);
+        prog.bind(cmd, w);
+        prog.push(cmd, count);
+        vkCmdDispatchIndirect(cmd, active_.get(), 0);
+        ++dispatches_;
+        fieldBarrier(cmd);
+    }
+}
+
 // --- Stages -------------------------------------------------------------------------------------
 
 void SparseSmokeSolver::splatImpulses(VkCommandBuffer cmd) {
     if (emitterCount_ == 0) return;
     Writes w = common(active_);
+    w.push_back(solidWrite());
     w.push_back(emitterWrite(3));
     for (uint32_t c = 0; c < 3; ++c)
         w.push_back(gpu::bindBuffer(4 + c, velocity_[currentVelocity_[c]][c]));
@@ -550,6 +631,7 @@ void SparseSmokeSolver::splatImpulses(VkCommandBuffer cmd) {
 void SparseSmokeSolver::advectVelocity(VkCommandBuffer cmd) {
     for (uint32_t c = 0; c < 3; ++c) {
         Writes w = common(active_);
+        w.push_back(solidWrite());
         for (uint32_t d = 0; d < 3; ++d)
             w.push_back(gpu::bindBuffer(3 + d, velocity_[currentVelocity_[d]][d]));
         w.push_back(gpu::bindBuffer(6, velocity_[1 - currentVelocity_[c]][c]));
@@ -562,6 +644,7 @@ void SparseSmokeSolver::advectVelocity(VkCommandBuffer cmd) {
 
 void SparseSmokeSolver::advectPigment(VkCommandBuffer cmd) {
     Writes w = common(active_);
+    w.push_back(solidWrite());
     for (uint32_t d = 0; d < 3; ++d)
         w.push_back(gpu::bindBuffer(3 + d, velocity_[currentVelocity_[d]][d]));
     w.push_back(gpu::bindBuffer(6, pigment_[currentPigment_]));
@@ -574,6 +657,7 @@ void SparseSmokeSolver::advectPigment(VkCommandBuffer cmd) {
 void SparseSmokeSolver::applyBuoyancy(VkCommandBuffer cmd) {
     if (options_.buoyancy == 0.0f) return;
     Writes w = common(active_);
+    w.push_back(solidWrite());
     w.push_back(gpu::bindBuffer(3, velocity_[currentVelocity_[1]][1]));
     w.push_back(gpu::bindBuffer(4, pigment_[currentPigment_]));
     w.push_back(gpu::bindBuffer(5, velocity_[1 - currentVelocity_[1]][1]));
@@ -601,6 +685,7 @@ void SparseSmokeSolver::applyBoundaries(VkCommandBuffer cmd) {
 
 void SparseSmokeSolver::computeDivergence(VkCommandBuffer cmd) {
     Writes w = common(active_);
+    w.push_back(solidWrite());
     for (uint32_t d = 0; d < 3; ++d)
         w.push_back(gpu::bindBuffer(3 + d, velocity_[currentVelocity_[d]][d]));
     w.push_back(gpu::bindBuffer(6, divergence_));
@@ -616,6 +701,7 @@ void SparseSmokeSolver::solvePressure(VkCommandBuffer cmd) {
     }
     for (uint32_t sweep = 0; sweep < options_.jacobiIterations; ++sweep) {
         Writes w = common(active_);
+        w.push_back(solidWrite());
         w.push_back(gpu::bindBuffer(3, divergence_));
         w.push_back(gpu::bindBuffer(4, pressure_[currentPressure_]));
         w.push_back(gpu::bindBuffer(5, pressure_[1 - currentPressure_]));
@@ -628,6 +714,7 @@ void SparseSmokeSolver::solvePressure(VkCommandBuffer cmd) {
 void SparseSmokeSolver::project(VkCommandBuffer cmd) {
     for (uint32_t c = 0; c < 3; ++c) {
         Writes w = common(active_);
+        w.push_back(solidWrite());
         for (uint32_t d = 0; d < 3; ++d)
             w.push_back(gpu::bindBuffer(3 + d, velocity_[currentVelocity_[d]][d]));
         w.push_back(gpu::bindBuffer(6, pressure_[currentPressure_]));
@@ -693,7 +780,10 @@ SolverActivity SparseSmokeSolver::finishFrame(const gpu::Buffer&, bool measured,
     a.activeBricks = counts.active;
     a.refusedBricks = counts.refused;
     a.budgetError = counts.error;
-    a.settled = measured && counts.active == 0 && counts.refused == 0;
+    // With solids the body's bricks stay active and its air stirred as long as it moves, and air
+    // without pigment shows nothing: the pigment alone decides, as on a dense grid.
+    a.settled = measured && (solids_.empty() ? counts.active == 0 && counts.refused == 0
+                                             : counts.livePigment == 0);
     return a;
 }
 
@@ -718,7 +808,8 @@ void SparseSmokeSolver::runStage(Stage stage) {
 uint64_t SparseSmokeSolver::memoryBytes() const {
     uint64_t bytes = divergence_.size + table_.size + active_.size + activated_.size +
                      parameters_.size + ownEmitters_.size + brickState_.size + wantedScratch_.size +
-                     freeSlots_.size + refused_.size + counters_.size + rebuildParameters_.size;
+                     freeSlots_.size + refused_.size + counters_.size + rebuildParameters_.size +
+                     noSolids_.size + solidHolders_.size + solidsBuffer_.size;
     for (int set = 0; set < 2; ++set) {
         for (const gpu::Buffer& b : velocity_[set])
             bytes += b.size;

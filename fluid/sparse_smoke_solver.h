@@ -14,6 +14,11 @@
 // bricks active before, which keep their values. The atlas doubles when it runs out of slots, up
 // to the budget of bricks given at creation; past it, wanted bricks are refused (counted), never a
 // crash, and the simulation goes on with the bricks it has.
+//
+// Moving solids (setSolids; docs/fluid.md, "Solids") are marked into the stored cells at the start
+// of each sub-step (shaders/fluid/sparse_mark_solids.comp), with the dense grid's rules; the
+// rebuild wants every brick they may reach, so the body's cells are stored and the air it pushes
+// is simulated.
 #pragma once
 
 #include "core/gpu/program.h"
@@ -60,18 +65,21 @@ public:
     // Records the active set's rebuild on the GPU (shaders/fluid/sparse_*_bricks.comp): wanted
     // are the active bricks with a cell whose pigment alpha exceeds `alphaThreshold` or whose
     // cell-centre speed exceeds `speedThreshold` (NaN counts), and the bricks the emitters'
-    // spheres reach; then every brick within `reachCells` cells (rounded up to bricks) of a wanted
+    // spheres reach, and those the solids may reach (SparseBricks::wantCapsule, at the solids set
+    // now); then every brick within `reachCells` cells (rounded up to bricks) of a wanted
     // one. Unwanted bricks are freed, wanted ones given slots and started at rest. recordStep
     // does not call it: record it before the step.
     void recordRebuild(VkCommandBuffer cmd, float alphaThreshold, float speedThreshold,
                        uint32_t reachCells);
     struct RebuildCounts {
-        uint32_t active = 0;    // bricks active after it
-        uint32_t activated = 0; // of which new
-        uint32_t refused = 0;   // wanted bricks left inactive: no free slot
-        bool grown = false;     // the atlas grew for the refused bricks (active at the next
-                                // rebuild)
-        std::string error;      // why it could not grow, when it could not (budget, memory)
+        uint32_t active = 0;      // bricks active after it
+        uint32_t activated = 0;   // of which new
+        uint32_t refused = 0;     // wanted bricks left inactive: no free slot
+        uint32_t livePigment = 0; // half-bricks (8x8x4 cells) of the active set before it with a
+                                  // cell whose pigment alpha exceeds the threshold (or NaN, Inf)
+        bool grown = false;       // the atlas grew for the refused bricks (active at the next
+                                  // rebuild)
+        std::string error;        // why it could not grow, when it could not (budget, memory)
     };
     // Once the submission of the last recordRebuild has finished: its counts. If bricks were
     // refused, the atlas grows (doubling, at least to what was wanted, at most to the budget) so
@@ -98,11 +106,12 @@ public:
     // e.g. by SegmentEmitters) are the next rebuild's and step's emitters. The buffer must outlive
     // their recording.
     void setEmitterBuffer(const gpu::Buffer& buffer, uint32_t count) override;
-    // Solids are not on the sparse domain yet: refused unless the list is empty.
-    Status setSolids(std::span<const shared::FluidSolid> solids) override {
-        if (solids.empty()) return Ok{};
-        return Error{"solids: not yet on the sparse domain"};
-    }
+    // As SmokeSolver::setSolids: the moving solids of the sub-steps from now on (each sub-step's
+    // mark_solids stage puts them into the stored cells, so the fields show them after the next
+    // step, or runStage(Stage::MarkSolids)); copied into each recording; an empty list removes
+    // them. Refused naming why as validateGpuSolids refuses them.
+    Status setSolids(std::span<const shared::FluidSolid> solids) override;
+    bool hasSolids() const { return !solids_.empty(); }
     // The stages of the last recordStep with their dispatch counts, in order (as SmokeSolver's).
     const StageDispatches& lastStepDispatches() const { return lastStepDispatches_; }
     // For drawing the smoke (render/smoke_pass.h): the live pigment atlas (vec4 per cell, slot s
@@ -133,7 +142,8 @@ public:
         return 0;
     }
     // The last rebuild's counts (finishRebuild); settled when no effect was live (`measured`)
-    // and no brick is active or refused.
+    // and no brick is active or refused; with solids, which keep the bricks around the body
+    // active and its air stirred, when no effect was live and no brick held live pigment.
     SolverActivity finishFrame(const gpu::Buffer& activity, bool measured, bool stepped,
                                const SettleRules& rules) override;
     // The sparse domain stands still over the stage.
@@ -151,6 +161,7 @@ private:
 
     SparseSmokeSolver(const gpu::Context& ctx, const SolverOptions& options, uint32_t maxBricks,
                       uint32_t initialSlots);
+    // A stage's program; with the solids' tests compiled in while solids are set (constant 12).
     gpu::Program& program(const char* name, uint32_t target = 0, uint32_t variant = 0);
     void allocateAtlas(uint32_t slots); // keeps what the old atlas held
     void startGpuLayout();
@@ -166,6 +177,11 @@ private:
     gpu::DescriptorWrite emitterWrite(uint32_t binding) const;
     void recordStageOnly(VkCommandBuffer cmd, Stage stage, gpu::GpuTimer* timer);
 
+    void markSolids(VkCommandBuffer cmd);
+    // The solids into their uniform buffer, in the command buffer (vkCmdUpdateBuffer).
+    void recordSolidsUpload(VkCommandBuffer cmd);
+    // The holders at binding 14 (or a stand-in without solids).
+    gpu::DescriptorWrite solidWrite() const;
     void splatImpulses(VkCommandBuffer cmd);
     void advectVelocity(VkCommandBuffer cmd);
     void advectPigment(VkCommandBuffer cmd);
@@ -178,7 +194,7 @@ private:
     const gpu::Context& ctx_;
     SolverOptions options_;
     SparseBricks layout_;
-    std::map<std::tuple<std::string, uint32_t, uint32_t>, gpu::Program> programs_;
+    std::map<std::tuple<std::string, uint32_t, uint32_t, bool>, gpu::Program> programs_;
 
     // The atlas: velocity[set][component], pigment[set] and pressure[set] ping-pong; current*
     // says which set is live (per component for velocity).
@@ -187,6 +203,11 @@ private:
     std::array<gpu::Buffer, 2> pigment_;
     std::array<gpu::Buffer, 2> pressure_;
     gpu::Buffer divergence_;
+    gpu::Buffer solidHolders_; // per stored cell (sparse_solids.glsl); made once solids come
+
+    std::vector<shared::FluidSolid> solids_;
+    gpu::Buffer solidsBuffer_; // kMaxGpuSolids of room (a uniform buffer); once solids come
+    gpu::Buffer noSolids_;     // bound at binding 14 without solids
     std::array<int, 3> currentVelocity_{0, 0, 0};
     int currentPigment_ = 0;
     int currentPressure_ = 0;

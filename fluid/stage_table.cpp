@@ -199,7 +199,8 @@ void referenceSplat(ReferenceSolver& solver, Emitters emitters) {
 // A friend of the three solvers: the table names their private stage functions.
 std::span<const StageEntry> stageTable() {
     static const StageEntry table[] = {
-        {Stage::MarkSolids, "mark_solids", "mark_solids", "", &SmokeSolver::markSolids, nullptr,
+        {Stage::MarkSolids, "mark_solids", "mark_solids", "sparse_mark_solids",
+         &SmokeSolver::markSolids, &SparseSmokeSolver::markSolids,
          referenceStage<&ReferenceSolver::markSolids>, markSolidsBytes,
          "each cell's holder (a word) cleared and read once, its flag byte written", true},
         {Stage::SplatImpulses, "splat_impulses", "emitter_bounds splat_impulses",

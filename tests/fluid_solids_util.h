@@ -10,6 +10,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <span>
+#include <vector>
 
 namespace mfx::test {
 
@@ -31,6 +34,38 @@ inline void expectSameBits(const fluid::FieldState& a, const fluid::FieldState& 
     EXPECT_EQ(a.velocityZ, b.velocityZ);
     EXPECT_EQ(a.pigment, b.pigment);
     EXPECT_EQ(a.pressure, b.pressure);
+}
+
+// A moving sphere and a moving, turning capsule inside `g`'s box.
+inline std::vector<shared::FluidSolid> twoSolids(const fluid::GridShape& g) {
+    const glm::vec3 size = glm::vec3(g.cellsX, g.cellsY, g.cellsZ) * g.cellSize;
+    const float across = std::min(size.x, std::min(size.y, size.z));
+    return {solidSphere(size * glm::vec3(0.32f, 0.41f, 0.47f), 0.23f * across, {1.2f, 0.4f, -0.3f}),
+            solidCapsule(size * glm::vec3(0.61f, 0.31f, 0.33f),
+                         size * glm::vec3(0.79f, 0.74f, 0.61f), 0.13f * across, {0.8f, -0.3f, 0.2f},
+                         {-0.4f, 0.6f, 0.1f})};
+}
+
+// How far the nearest cell centre lies from any solid's surface, relative to its radius: the GPU
+// decides inside or outside in fp32, the reference in fp64, so a comparison needs every centre
+// clearly on one side (fp32 distances here are good to ~1e-7 of the unit box; 1e-5 of a radius of
+// 0.1 is 1e-6).
+inline double surfaceMargin(const fluid::GridShape& g, std::span<const shared::FluidSolid> solids) {
+    double margin = std::numeric_limits<double>::infinity();
+    for (uint32_t k = 0; k < g.cellsZ; ++k)
+        for (uint32_t j = 0; j < g.cellsY; ++j)
+            for (uint32_t i = 0; i < g.cellsX; ++i) {
+                const glm::dvec3 x = (glm::dvec3(i, j, k) + 0.5) * double(g.cellSize);
+                for (const shared::FluidSolid& s : solids) {
+                    const glm::dvec3 a(s.endA), ab = glm::dvec3(s.endB) - a;
+                    const double l2 = glm::dot(ab, ab);
+                    const double t =
+                        l2 > 0.0 ? std::clamp(glm::dot(x - a, ab) / l2, 0.0, 1.0) : 0.0;
+                    const double r = s.endA.w;
+                    margin = std::min(margin, std::abs(glm::length(x - (a + t * ab)) - r) / r);
+                }
+            }
+    return margin;
 }
 
 inline constexpr fluid::GridShape kStreamGrid{32, 16, 16, 1.0f / 16.0f}; // 2 x 1 x 1 world units

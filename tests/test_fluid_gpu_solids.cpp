@@ -14,6 +14,7 @@
 #include "tests/fluid_side_by_side.h"
 #include "tests/fluid_solids_util.h"
 #include "tests/gpu_test.h"
+#include "tests/kick_band_util.h"
 
 #include <algorithm>
 #include <cmath>
@@ -40,37 +41,6 @@ shared::FluidSolid capsule(glm::vec3 a, glm::vec3 b, float radius, glm::vec3 vel
 
 shared::FluidSolid sphere(glm::vec3 centre, float radius, glm::vec3 velocity = glm::vec3(0.0f)) {
     return solidSphere(centre, radius, velocity);
-}
-
-// A moving sphere and a moving, turning capsule inside `g`'s box.
-std::vector<shared::FluidSolid> twoSolids(const fluid::GridShape& g) {
-    const glm::vec3 size = glm::vec3(g.cellsX, g.cellsY, g.cellsZ) * g.cellSize;
-    const float across = std::min(size.x, std::min(size.y, size.z));
-    return {sphere(size * glm::vec3(0.32f, 0.41f, 0.47f), 0.23f * across, {1.2f, 0.4f, -0.3f}),
-            capsule(size * glm::vec3(0.61f, 0.31f, 0.33f), size * glm::vec3(0.79f, 0.74f, 0.61f),
-                    0.13f * across, {0.8f, -0.3f, 0.2f}, {-0.4f, 0.6f, 0.1f})};
-}
-
-// How far the nearest cell centre lies from any solid's surface, relative to its radius: the GPU
-// decides inside or outside in fp32, the reference in fp64, so a comparison needs every centre
-// clearly on one side (fp32 distances here are good to ~1e-7 of the unit box; 1e-5 of a radius of
-// 0.1 is 1e-6).
-double surfaceMargin(const fluid::GridShape& g, std::span<const shared::FluidSolid> solids) {
-    double margin = std::numeric_limits<double>::infinity();
-    for (uint32_t k = 0; k < g.cellsZ; ++k)
-        for (uint32_t j = 0; j < g.cellsY; ++j)
-            for (uint32_t i = 0; i < g.cellsX; ++i) {
-                const glm::dvec3 x = (glm::dvec3(i, j, k) + 0.5) * double(g.cellSize);
-                for (const shared::FluidSolid& s : solids) {
-                    const glm::dvec3 a(s.endA), ab = glm::dvec3(s.endB) - a;
-                    const double l2 = glm::dot(ab, ab);
-                    const double t =
-                        l2 > 0.0 ? std::clamp(glm::dot(x - a, ab) / l2, 0.0, 1.0) : 0.0;
-                    const double r = s.endA.w;
-                    margin = std::min(margin, std::abs(glm::length(x - (a + t * ab)) - r) / r);
-                }
-            }
-    return margin;
 }
 
 struct SolidStageCase {
@@ -477,63 +447,26 @@ TEST_F(GpuSolidsTest, BadSolidsAndSolversWithoutSolidsAreRefusedInOneLine) {
 // as the reference's test (test_fluid_solids.cpp) on the GPU: at most 1% of the pigment in the
 // body's solid cells after every step (none, by the solid rules), and the band's air set moving.
 TEST_F(GpuSolidsTest, TheKickThroughACloudPushesItAndNeverHoldsPigmentInside) {
-    const anim::Character fighter = anim::makeFighter();
-    const anim::Clip* kick = fighter.findClip("roundhouse_kick");
-    ASSERT_NE(kick, nullptr);
-    const std::vector<anim::BodyCapsule> capsules = anim::fitBodyCapsules(fighter);
-    constexpr uint32_t kN = 24, kBandLow = 10, kBandHigh = 17; // the band: y 0.83 to 1.42 m
-    SolverOptions options;
-    options.grid = {kN, kN, kN, 2.0f / kN};
-    options.dt = 1.0f / 60.0f;
-    options.jacobiIterations = 40;
-    for (int face = 0; face < 6; ++face)
-        options.boundaries[face].kind =
-            face == fluid::FaceLowY ? fluid::Boundary::WallFreeSlip : fluid::Boundary::Open;
-    const glm::vec3 origin(-1.0f, 0.0f, -1.0f);
-    FieldState cloud = FieldState::zero(options.grid);
-    for (uint32_t k = 0; k < kN; ++k)
-        for (uint32_t j = kBandLow; j < kBandHigh; ++j)
-            for (uint32_t i = 0; i < kN; ++i)
-                for (int channel = 0; channel < 4; ++channel)
-                    cloud.pigment[options.grid.index(i, j, k) * 4 + size_t(channel)] = 0.6f;
+    const SolverOptions options = kickBandOptions();
     auto with = SmokeSolver::create(ctx(), options).value();
     auto without = SmokeSolver::create(ctx(), options).value();
-    with->setState(cloud);
-    without->setState(cloud);
-    ReferenceSolver marks(options);
-    double largestInside = 0.0;
-    for (float t = 0.2f; t < 0.7f; t += options.dt) {
-        const std::vector<shared::FluidSolid> solids =
-            fluid::bodySolids(capsules, anim::samplePose(fighter, kick, t),
-                              anim::samplePose(fighter, kick, t + options.dt), options.dt, origin);
-        ASSERT_TRUE(with->setSolids(solids).ok());
-        marks.setSolids(solids);
-        with->step();
-        without->step();
-        const FieldState state = with->state();
-        double inside = 0.0, total = 0.0;
-        for (int k = 0; k < int(kN); ++k)
-            for (int j = 0; j < int(kN); ++j)
-                for (int i = 0; i < int(kN); ++i) {
-                    const double alpha = state.pigment[options.grid.index(i, j, k) * 4 + 3];
-                    total += alpha;
-                    if (marks.solidCell({i, j, k})) inside += alpha;
-                }
-        ASSERT_GT(total, 0.0);
-        largestInside = std::max(largestInside, inside / total);
-    }
-    // The mean speed of the band's fluid cells after the kick.
-    auto meanSpeed = [&](const FieldState& state) {
-        return meanFluidSpeed(state, marks, int(kBandLow), int(kBandHigh));
-    };
-    const double speed = meanSpeed(with->state()), stillSpeed = meanSpeed(without->state());
+    with->setState(kickBandCloud(options.grid));
+    without->setState(kickBandCloud(options.grid));
+    const KickBandRun run = runKickThroughBand(
+        options,
+        [&](const std::vector<shared::FluidSolid>& solids) {
+            ASSERT_TRUE(with->setSolids(solids).ok());
+            with->step();
+            without->step();
+        },
+        [&] { return with->state(); }, [&] { return without->state(); });
     std::printf(
         "GPU kick through a band of smoke: at most %.2g of the pigment inside the body; the "
         "band's air at %.3f m/s (%.3f without the body)\n",
-        largestInside, speed, stillSpeed);
-    EXPECT_LE(largestInside, 0.01);
-    EXPECT_GT(speed, 0.05);
-    EXPECT_LT(stillSpeed, 1e-6);
+        run.largestInside, run.speed, run.stillSpeed);
+    EXPECT_LE(run.largestInside, 0.01);
+    EXPECT_GT(run.speed, 0.05);
+    EXPECT_LT(run.stillSpeed, 1e-6);
 }
 
 } // namespace

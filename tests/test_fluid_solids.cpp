@@ -7,6 +7,7 @@
 #include "fluid/body_solids.h"
 #include "fluid/reference/reference_solver.h"
 #include "tests/fluid_solids_util.h"
+#include "tests/kick_band_util.h"
 
 #include <gtest/gtest.h>
 
@@ -176,62 +177,24 @@ TEST(FluidSolids, ASolidTouchingTheDomainsEdgeKeepsTheWall) {
 // body's solid cells, and the air of the cloud moves (pushed by the leg; without the body, and
 // with no emitter, it stays still).
 TEST(FluidSolids, TheKickThroughACloudPushesItAndNeverHoldsPigmentInside) {
-    const anim::Character fighter = anim::makeFighter();
-    const anim::Clip* kick = fighter.findClip("roundhouse_kick");
-    ASSERT_NE(kick, nullptr);
-    const std::vector<anim::BodyCapsule> capsules = anim::fitBodyCapsules(fighter);
-    constexpr uint32_t kN = 24, kBandLow = 10, kBandHigh = 17; // the band: y 0.83 to 1.42 m
-    SolverOptions options;
-    options.grid = {kN, kN, kN, 2.0f / kN};
-    options.dt = 1.0f / 60.0f;
-    options.jacobiIterations = 40;
-    for (int face = 0; face < 6; ++face)
-        options.boundaries[face].kind =
-            face == fluid::FaceLowY ? fluid::Boundary::WallFreeSlip : fluid::Boundary::Open;
-    const glm::vec3 origin(-1.0f, 0.0f, -1.0f);
-    fluid::FieldState cloud = fluid::FieldState::zero(options.grid);
-    for (uint32_t k = 0; k < kN; ++k)
-        for (uint32_t j = kBandLow; j < kBandHigh; ++j)
-            for (uint32_t i = 0; i < kN; ++i)
-                for (int channel = 0; channel < 4; ++channel)
-                    cloud.pigment[options.grid.index(i, j, k) * 4 + size_t(channel)] = 0.6f;
+    const SolverOptions options = kickBandOptions();
     ReferenceSolver with(options), without(options);
-    with.setState(cloud);
-    without.setState(cloud);
-    double largestInside = 0.0, speed = 0.0, stillSpeed = 0.0;
-    int steps = 0;
-    for (float t = 0.2f; t < 0.7f; t += options.dt, ++steps) {
-        const anim::Pose before = anim::samplePose(fighter, kick, t);
-        const anim::Pose now = anim::samplePose(fighter, kick, t + options.dt);
-        const std::vector<shared::FluidSolid> solids =
-            fluid::bodySolids(capsules, before, now, options.dt, origin);
-        with.setSolids(solids);
-        with.step({});
-        without.step({});
-        const fluid::FieldState state = with.state();
-        double inside = 0.0, total = 0.0;
-        for (int k = 0; k < int(kN); ++k)
-            for (int j = 0; j < int(kN); ++j)
-                for (int i = 0; i < int(kN); ++i) {
-                    const double alpha = state.pigment[options.grid.index(i, j, k) * 4 + 3];
-                    total += alpha;
-                    if (with.solidCell({i, j, k})) inside += alpha;
-                }
-        ASSERT_GT(total, 0.0);
-        largestInside = std::max(largestInside, inside / total);
-    }
-    // The mean speed of the fluid cells of the band, after the kick.
-    auto meanSpeed = [&](const ReferenceSolver& s) {
-        return meanFluidSpeed(s.state(), s, int(kBandLow), int(kBandHigh));
-    };
-    speed = meanSpeed(with);
-    stillSpeed = meanSpeed(without);
+    with.setState(kickBandCloud(options.grid));
+    without.setState(kickBandCloud(options.grid));
+    const KickBandRun run = runKickThroughBand(
+        options,
+        [&](const std::vector<shared::FluidSolid>& solids) {
+            with.setSolids(solids);
+            with.step({});
+            without.step({});
+        },
+        [&] { return with.state(); }, [&] { return without.state(); });
     std::printf("%d steps: pigment inside the body at most %.3g of the total; the band's mean "
                 "speed %.3f m/s with the body, %.3f without\n",
-                steps, largestInside, speed, stillSpeed);
-    EXPECT_LE(largestInside, 0.01);
-    EXPECT_GT(speed, 0.05);
-    EXPECT_EQ(stillSpeed, 0.0);
+                run.steps, run.largestInside, run.speed, run.stillSpeed);
+    EXPECT_LE(run.largestInside, 0.01);
+    EXPECT_GT(run.speed, 0.05);
+    EXPECT_EQ(run.stillSpeed, 0.0);
 }
 
 TEST(FluidSolids, BadSolidsAreRefusedNamingTheSolid) {

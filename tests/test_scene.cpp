@@ -124,19 +124,25 @@ TEST(SceneFile, SmokeAsksForTheSparseDomain) {
     EXPECT_FALSE(a == c); // a sparse and a dense effect never share a grid
 }
 
-// A dense grid's smoke collides with the character unless "collide": false; the sparse domain
-// has no solids.
-TEST(SceneFile, SmokeCollidesByDefaultOnADenseGrid) {
+// Smoke collides with the character unless "collide": false, on either domain.
+TEST(SceneFile, SmokeCollidesByDefault) {
     const scene::Scene s = parse(R"({"effects": [
         {"type": "smoke", "name": "a"},
         {"type": "smoke", "name": "b", "collide": false},
         {"type": "smoke", "name": "c", "pressure": "mgpcg"},
-        {"type": "smoke", "name": "d", "domain": "sparse"}]})");
-    ASSERT_EQ(s.effects.size(), 4u);
+        {"type": "smoke", "name": "d", "domain": "sparse"},
+        {"type": "smoke", "name": "e", "domain": "sparse", "collide": false,
+         "collide_bones": ["foot_r"], "collide_thickness": 0.1}]})");
+    ASSERT_EQ(s.effects.size(), 5u);
     EXPECT_TRUE(s.effects[0].as<scene::SmokeSpec>()->grid.collide);
     EXPECT_FALSE(s.effects[1].as<scene::SmokeSpec>()->grid.collide);
     EXPECT_TRUE(s.effects[2].as<scene::SmokeSpec>()->grid.collide);
-    EXPECT_FALSE(s.effects[3].as<scene::SmokeSpec>()->grid.collide);
+    EXPECT_TRUE(s.effects[3].as<scene::SmokeSpec>()->grid.collide);
+    const scene::SmokeGridSpec& e = s.effects[4].as<scene::SmokeSpec>()->grid;
+    EXPECT_TRUE(e.sparse());
+    EXPECT_FALSE(e.collide);
+    EXPECT_EQ(e.collideBones, std::vector<std::string>{"foot_r"});
+    EXPECT_FLOAT_EQ(e.collideThickness, 0.1f);
 }
 
 // The built-in default is docs/scenes/hero.json: the combo, toon, its three effects, post on.
@@ -251,8 +257,6 @@ const BadScene kBadScenes[] = {
      "effects[0].vorticity: only for \"domain\": \"dense\""},
     {"SparseFollowing", R"({"effects": [{"type": "smoke", "domain": "sparse", "follow": true}]})",
      "effects[0].follow: only for \"domain\": \"dense\""},
-    {"SparseColliding", R"({"effects": [{"type": "smoke", "domain": "sparse", "collide": true}]})",
-     "effects[0].collide: only for \"domain\": \"dense\""},
     {"NegativeCollideThickness",
      R"({"effects": [{"type": "smoke", "collide": true, "collide_thickness": -1}]})",
      "effects[0].collide_thickness: -1 is outside"},

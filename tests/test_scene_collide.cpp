@@ -89,6 +89,11 @@ TEST_F(SceneCollideTest, TheKicksSmokeStaysOutOfTheBodyInEveryFrame) {
     kickInAndOut(ctx(), 36, "");
 }
 
+// On the sparse domain: the rebuild keeps the body's bricks active, the stages the same rules.
+TEST_F(SceneCollideTest, TheKicksSmokeStaysOutOfTheBodyOnTheSparseDomain) {
+    kickInAndOut(ctx(), 24, R"(, "domain": "sparse")");
+}
+
 // The same with MGPCG, whose level 0 reads the solids and whose coarse levels do not.
 TEST_F(SceneCollideTest, TheKicksSmokeStaysOutOfTheBodyWithMgpcg) {
     kickInAndOut(ctx(), 20, R"(, "pressure": "mgpcg")");

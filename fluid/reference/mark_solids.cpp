@@ -7,7 +7,8 @@
 // ends over the step. A cell is solid when its centre lies inside a capsule; a face is solid when
 // a cell beside it is, and takes the solid's velocity at the face (the first capsule, in list
 // order, holding the solid cell below the face, else the one above). Solid faces keep that
-// velocity and solid cells hold no pigment through every stage (each stage's file says how).
+// velocity and solid cells hold no pigment through every stage (each stage's file says how). On
+// the sparse domain only stored cells are solid: what is not stored is air at rest.
 #include "fluid/reference/reference_solver.h"
 
 #include <algorithm>
@@ -39,8 +40,6 @@ glm::dvec3 solidVelocityAt(const shared::FluidSolid& s, glm::dvec3 x) {
 
 void ReferenceSolver::setSolids(std::span<const shared::FluidSolid> solids) {
     if (Status ok = validateSolids(solids); !ok) throw std::invalid_argument(ok.error().message);
-    if (!solids.empty() && !activeCells_.empty())
-        throw std::invalid_argument("solids: not yet on the sparse domain");
     if (Status ok = validateSolidOptions(options_); !solids.empty() && !ok)
         throw std::invalid_argument(ok.error().message);
     solids_.assign(solids.begin(), solids.end());
@@ -59,6 +58,7 @@ void ReferenceSolver::markSolids() {
         for (int j = 0; j < cells_.y; ++j)
             for (int i = 0; i < cells_.x; ++i) {
                 const glm::ivec3 q(i, j, k);
+                if (!cellActive(q)) continue; // not stored: air (sparse_solids.glsl)
                 const glm::dvec3 x = cellCentre(q);
                 for (size_t s = 0; s < solids_.size(); ++s)
                     if (inside(solids_[s], x)) {

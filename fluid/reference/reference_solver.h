@@ -76,7 +76,8 @@ public:
     // inactive cell; setState, setActiveCells and each stage run by runStage or step leave them
     // 0, and the Jacobi pressure sweeps hold inactive cells at p = 0. When the active cells
     // change, a face keeps its value only if a cell beside it is active before and after (the
-    // sparse grid's activation). The options must pass
+    // sparse grid's activation), and the solids are marked again in the new cells (only stored
+    // cells are solid). The options must pass
     // validateSparseOptions (std::invalid_argument otherwise, or when the size is wrong).
     void setActiveCells(std::vector<uint8_t> activeCells);
     // Whether cell q (inside the grid) is active, and whether face q of component c is stored.
@@ -86,8 +87,8 @@ public:
     // --- Solids (mark_solids.cpp; docs/fluid.md, "Solids") ------------------------------------
     // The moving solids of the steps from now on (each a capsule where the steps end, with its
     // ends' velocities; empty: none, the solver exactly as without). Marked at once and again at
-    // the start of every sub-step of step(). std::invalid_argument when validateSolids refuses
-    // them, on the sparse domain, and with a pressure solver other than Jacobi (not yet).
+    // the start of every sub-step of step(). std::invalid_argument when validateSolids or
+    // validateSolidOptions refuses them.
     void setSolids(std::span<const shared::FluidSolid> solids);
     // The solid cells and faces of the current solids; solid faces set to the solids' velocity
     // and solid cells' pigment to 0.

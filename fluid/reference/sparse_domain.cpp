@@ -36,6 +36,7 @@ void ReferenceSolver::setActiveCells(std::vector<uint8_t> activeCells) {
     }
     activeCells_ = std::move(activeCells);
     clearInactive();
+    markSolids(); // the solids in the new set of cells
 }
 
 bool ReferenceSolver::cellActive(glm::ivec3 q) const {

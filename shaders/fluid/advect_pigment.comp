@@ -8,6 +8,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "fluid_common.glsl"
 #include "fluid_solids.glsl"
+#include "solid_common.glsl"
 
 layout(binding = 1, MFX_VELOCITY_FORMAT) uniform readonly image3D velocityX;
 layout(binding = 2, MFX_VELOCITY_FORMAT) uniform readonly image3D velocityY;
@@ -35,24 +36,6 @@ const int kWorkPigment = 1;
 vec4 fetchPigment(int field, ivec3 index) {
     ivec3 cell = resolveCell(index);
     return field == kWorkPigment ? imageLoad(work, cell) : imageLoad(pigmentIn, cell);
-}
-
-// With solids near x: the trilinear sample from the fluid cells alone, the weights of solid cells
-// dropped and the rest renormalised (0 when all eight are solid), in the reference's order
-// (fluid/reference/mark_solids.cpp, sampleCellOutsideSolids), from the eight corner values the
-// plain sample read and the stencil's solid corners (`solid`, nonzero).
-vec4 sampleOutsideSolids(vec3 f, vec4 corners[8], uint solid) {
-    vec4 sum = vec4(0.0);
-    float weight = 0.0;
-    for (int corner = 0; corner < 8; ++corner) {
-        if ((solid & (1u << uint(corner))) != 0u) continue;
-        ivec3 d = ivec3(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
-        float w = (d.x != 0 ? f.x : 1.0 - f.x) * (d.y != 0 ? f.y : 1.0 - f.y) *
-                  (d.z != 0 ? f.z : 1.0 - f.z);
-        sum += w * corners[corner];
-        weight += w;
-    }
-    return weight > 0.0 ? sum / weight : vec4(0.0);
 }
 
 vec4 samplePigment(int field, vec3 x) {

@@ -33,6 +33,7 @@
 #include "fluid_common.glsl"
 #include "fluid_solids.glsl"
 #include "jacobi_neighbours.glsl"
+#include "solid_common.glsl"
 
 // The sub-step's solids (kMaxSolids of room; the first dispatchInfo.target are this step's), and
 // pass 0's blocks: entry i is (a solid's index, a workgroup-sized block of the grid its bounding
@@ -99,19 +100,6 @@ const int kBrickLayers = 4;
 // SmokeSolver::kMaxSolids.
 const uint kMaxSolids = 1024u;
 
-// Where the point of the axis closest to x lies along it: 0 at end A, 1 at end B.
-float axisParameter(FluidSolid s, vec3 x) {
-    vec3 ab = s.endB.xyz - s.endA.xyz;
-    float length2 = dot(ab, ab);
-    return length2 > 0.0 ? clamp(dot(x - s.endA.xyz, ab) / length2, 0.0, 1.0) : 0.0;
-}
-
-bool insideSolid(FluidSolid s, vec3 x) {
-    vec3 closest = mix(s.endA.xyz, s.endB.xyz, axisParameter(s, x));
-    vec3 d = x - closest;
-    return dot(d, d) < s.endA.w * s.endA.w;
-}
-
 // The holder of cell q, as the index of its solid + 1; 0 for air.
 uint holderOf(ivec3 q) {
     uint h = holders[cellElement(q)];
@@ -137,7 +125,7 @@ void markFace(int c, ivec3 q) {
     uint holder = faceHolder(c, q);
     if (holder == 0u) return;
     FluidSolid s = solids[holder - 1u];
-    float v = mix(s.velocityA.xyz, s.velocityB.xyz, axisParameter(s, facePosition(c, q)))[c];
+    float v = solidVelocityAt(s, facePosition(c, q), c);
     if (c == 0)
         imageStore(velocityX, q, vec4(MFX_STORED(v)));
     else if (c == 1)

@@ -1,10 +1,10 @@
 // applyBuoyancy on the sparse grid: v += dt * buoyancy * mean pigment alpha of the two cells
 // beside each stored y face of the listed bricks (docs/fluid.md, "Sparse domain": a cell that is
-// not stored has no pigment). The dense stage's formula (apply_buoyancy.comp).
+// not stored has no pigment); solid faces keep the solid's velocity. The dense stage's formula (apply_buoyancy.comp).
 // Twin: fluid/reference/apply_buoyancy.cpp with the reference's active cells.
 #version 450
 #extension GL_GOOGLE_include_directive : require
-#include "sparse_common.glsl"
+#include "sparse_solids.glsl"
 
 layout(std430, binding = 3) readonly buffer VelocityY {
     float velocityY[];
@@ -25,7 +25,7 @@ void buoyFace(BrickCell at, ivec3 l) {
     ivec3 q = at.brick * kBrick + l;
     int element = faceElementIn(at.slot, 1, l);
     float v = velocityY[element];
-    if (!wallNormalFace(1, q)) {
+    if (!wallNormalFace(1, q) && !sparseSolidFace(1, q)) {
         float density = 0.5 * (alphaAt(q - ivec3(0, 1, 0)) + alphaAt(q));
         v += timeStep() * params.rates.y * density;
     }

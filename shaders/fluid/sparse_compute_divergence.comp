@@ -3,7 +3,7 @@
 // Twin: fluid/reference/compute_divergence.cpp with the reference's active cells.
 #version 450
 #extension GL_GOOGLE_include_directive : require
-#include "sparse_common.glsl"
+#include "sparse_solids.glsl"
 
 layout(std430, binding = 3) readonly buffer VelocityX {
     float velocityX[];
@@ -25,5 +25,7 @@ void main() {
     float sum = (velocityX[faceElementIn(s, 0, l + ivec3(1, 0, 0))] - velocityX[faceElementIn(s, 0, l)]) +
                 (velocityY[faceElementIn(s, 1, l + ivec3(0, 1, 0))] - velocityY[faceElementIn(s, 1, l)]) +
                 (velocityZ[faceElementIn(s, 2, l + ivec3(0, 0, 1))] - velocityZ[faceElementIn(s, 2, l)]);
-    divergence[cellElementIn(s, l)] = sum / cellSize();
+    int e = cellElementIn(s, l);
+    // A solid cell has no pressure unknown, and so no divergence to remove.
+    divergence[e] = solidElement(e) ? 0.0 : sum / cellSize();
 }

@@ -1,10 +1,10 @@
 // project on the sparse grid: u -= (p_high - p_low) / h on every stored face of component kTarget
 // of the listed bricks that is not on a wall; p = 0 across open sides of the domain and in
-// inactive cells (docs/fluid.md, "Sparse domain"). Twin: fluid/reference/project.cpp with the
+// inactive cells (docs/fluid.md, "Sparse domain"); solid faces are left as they are. Twin: fluid/reference/project.cpp with the
 // reference's active cells.
 #version 450
 #extension GL_GOOGLE_include_directive : require
-#include "sparse_common.glsl"
+#include "sparse_solids.glsl"
 
 layout(std430, binding = 3) readonly buffer VelocityX {
     float velocityX[];
@@ -32,7 +32,7 @@ void projectFace(BrickCell at, int c, ivec3 l) {
     ivec3 q = at.brick * kBrick + l;
     int element = faceElementIn(at.slot, c, l);
     float value = c == 0 ? velocityX[element] : (c == 1 ? velocityY[element] : velocityZ[element]);
-    if (!wallNormalFace(c, q)) {
+    if (!wallNormalFace(c, q) && !sparseSolidFace(c, q)) { // u·n = u_solid·n kept
         ivec3 below = q;
         below[c] -= 1;
         value -= (pressureAt(q, c) - pressureAt(below, c)) * inverseCellSize();

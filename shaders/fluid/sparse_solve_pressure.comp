@@ -2,11 +2,12 @@
 //   p <- (sum of counted neighbour pressures - h² div) / count
 // as the dense solve (docs/fluid.md, step 9): a neighbour across a wall is not counted, one across
 // an open side of the domain is counted with p = 0, and so is an inactive neighbour inside the
-// domain (docs/fluid.md, "Sparse domain": open air at p = 0). Twin:
+// domain (docs/fluid.md, "Sparse domain": open air at p = 0); a solid neighbour is not counted
+// and a solid cell holds p = 0 (docs/fluid.md, "Solids"). Twin:
 // fluid/reference/solve_pressure.cpp (solvePressureJacobi) with the reference's active cells.
 #version 450
 #extension GL_GOOGLE_include_directive : require
-#include "sparse_common.glsl"
+#include "sparse_solids.glsl"
 
 layout(std430, binding = 3) readonly buffer Divergence {
     float divergence[];
@@ -32,6 +33,7 @@ void main() {
         ivec3 neighbour = q + step;
         if (neighbour[axis] >= 0 && neighbour[axis] < n[axis]) {
             int e = nearbyCellElement(at, at.local + step, neighbour);
+            if (solidElement(e)) continue; // zero normal gradient, as at a wall
             sum += e < 0 ? 0.0 : pressureIn[e];
             count += 1.0;
         } else if (boundaryKind(axis, high) == MFX_BOUNDARY_OPEN) {
@@ -40,5 +42,8 @@ void main() {
     }
     int element = cellElementIn(at.slot, at.local);
     float h = cellSize();
-    pressureOut[element] = count > 0.0 ? (sum - h * h * divergence[element]) / count : 0.0;
+    // No unknown inside a solid: p = 0.
+    pressureOut[element] = count > 0.0 && !solidElement(element)
+                               ? (sum - h * h * divergence[element]) / count
+                               : 0.0;
 }

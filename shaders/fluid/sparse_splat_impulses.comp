@@ -1,11 +1,12 @@
 // splatImpulses on the sparse grid: emitters pull the stored values of one target (velocity x,
 // y, z or pigment; kTarget) of the listed bricks towards their own (docs/fluid.md). The dense
 // stage's formula (splat_impulses.comp), the emitters tested against each brick's box first.
-// In place: each invocation writes only its own values. Twin: fluid/reference/splat_impulses.cpp
+// Solid faces and cells are left alone (docs/fluid.md, "Solids"). In place: each invocation writes
+// only its own values. Twin: fluid/reference/splat_impulses.cpp
 // with the reference's active cells.
 #version 450
 #extension GL_GOOGLE_include_directive : require
-#include "sparse_common.glsl"
+#include "sparse_solids.glsl"
 
 layout(std430, binding = 3) readonly buffer Emitters {
     FluidEmitter emitters[];
@@ -82,7 +83,7 @@ vec4 pulled(vec4 value, vec3 x, int c, uint masked, uint count) {
 
 void splatFace(BrickCell at, int c, ivec3 l, uint masked, uint count) {
     ivec3 q = at.brick * kBrick + l;
-    if (wallNormalFace(c, q)) return;
+    if (wallNormalFace(c, q) || sparseSolidFace(c, q)) return; // solid faces keep the solid's
     int e = faceElementIn(at.slot, c, l);
     float v = c == 0 ? velocityX[e] : (c == 1 ? velocityY[e] : velocityZ[e]);
     v = pulled(vec4(v), facePosition(c, q), c, masked, count).x;
@@ -111,6 +112,7 @@ void main() {
 
     if (kTarget == MFX_TARGET_PIGMENT) {
         int e = cellElementIn(at.slot, at.local);
+        if (solidElement(e)) return; // no pigment inside a solid
         pigment[e] = pulled(pigment[e], cellCentre(at.brick * kBrick + at.local), 0, masked, count);
         return;
     }

@@ -56,8 +56,7 @@ std::unique_ptr<EffectKindSpec> SmokeSpec::parse(const Object& o) {
     // validateSparseOptions): given, they make the grid dense; with "domain": "sparse" they are
     // refused, and a sparse grid does not read them.
     const char* denseKey = nullptr;
-    for (const char* key : {"pressure", "advection", "storage", "vorticity", "follow", "collide",
-                            "collide_bones", "collide_thickness"})
+    for (const char* key : {"pressure", "advection", "storage", "vorticity", "follow"})
         if (!denseKey && o.given(key)) denseKey = key;
     g.domain = o.choice("domain", g.domain,
                         denseKey && !o.given("domain") ? std::vector<std::string>{"dense"}
@@ -66,7 +65,7 @@ std::unique_ptr<EffectKindSpec> SmokeSpec::parse(const Object& o) {
     if (sparse && denseKey)
         detail::fail(o.at(denseKey), "only for \"domain\": \"dense\" (the sparse domain solves "
                                      "with jacobi and semi-lagrangian advection in fp32, without "
-                                     "vorticity confinement or solids, and stands still)");
+                                     "vorticity confinement, and stands still)");
     if (sparse) g.cells = {256, 256, 256};
     if (o.has("grid")) {
         // The dense grid's cells are all stored; the sparse domain's only where there is smoke,
@@ -91,15 +90,12 @@ std::unique_ptr<EffectKindSpec> SmokeSpec::parse(const Object& o) {
     g.drag = float(o.number("drag", g.drag, 0.0, 100.0));
     g.stepsPerSecond = float(o.number("steps_per_second", g.stepsPerSecond, 1.0, 1000.0));
     if (!sparse) g.follow = o.boolean("follow", g.follow);
-    // Solids, with every pressure solver of the dense grid, on unless "collide": false. The bones
-    // and thickness are read beside "collide" and used when it is true.
-    if (!sparse) {
-        g.collide = o.boolean("collide", g.collide);
-        g.collideBones = o.strings("collide_bones");
-        g.collideThickness = float(o.number("collide_thickness", g.collideThickness, 0.0, 10.0));
-    } else {
-        g.collide = false;
-    }
+    // Solids, on either domain and with every pressure solver of the dense grid, on unless
+    // "collide": false. The bones and thickness are read beside "collide" and used when it is
+    // true.
+    g.collide = o.boolean("collide", g.collide);
+    g.collideBones = o.strings("collide_bones");
+    g.collideThickness = float(o.number("collide_thickness", g.collideThickness, 0.0, 10.0));
     g.buoyancy = float(o.number("buoyancy", g.buoyancy, -100.0, 100.0));
     if (!sparse) g.vorticity = float(o.number("vorticity", g.vorticity, 0.0, 100.0));
     if (sparse) {

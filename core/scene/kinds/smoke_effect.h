@@ -59,8 +59,7 @@ struct SmokeGridSpec {
     // The character as a moving solid the smoke flows around (docs/fluid.md, "Solids"): its body
     // capsules (core/anim/body_capsules.h), those of `collideBones` (entries as an effect's
     // "bones"; empty: every one but those of the bones the grid's effects emit from), each at
-    // least `collideThickness` across. On by default on a dense grid; the sparse domain has no
-    // solids (always false there).
+    // least `collideThickness` across. On by default, on either domain.
     bool collide = true;
     std::vector<std::string> collideBones;
     float collideThickness = 0.0f;
