@@ -368,12 +368,6 @@ void SparseSmokeSolver::recordRebuild(VkCommandBuffer cmd, float alphaThreshold,
     if (emitterCount_ > 0)
         flat("sparse_mark_emitter_bricks", 0, {emitterWrite(2), gpu::bindBuffer(3, wantedScratch_)},
              emitterCount_);
-    if (!solids_.empty()) {
-        recordSolidsUpload(cmd);
-        flat("sparse_mark_solid_bricks", 0,
-             {gpu::bindBuffer(2, solidsBuffer_), gpu::bindBuffer(3, wantedScratch_)},
-             uint32_t(solids_.size()));
-    }
     listBarrier(cmd);
     // The lists are rebuilt from here on: empty them.
     for (const gpu::Buffer* list : {&active_, &activated_}) {
@@ -389,6 +383,15 @@ void SparseSmokeSolver::recordRebuild(VkCommandBuffer cmd, float alphaThreshold,
              bricks);
         listBarrier(cmd);
         std::swap(from, to);
+    }
+    // The bricks the solids may reach, not grown: the air the body stirs is live, and the next
+    // rebuild grows its bricks as any live ones.
+    if (!solids_.empty()) {
+        recordSolidsUpload(cmd);
+        flat("sparse_mark_solid_bricks", 0,
+             {gpu::bindBuffer(2, solidsBuffer_), gpu::bindBuffer(3, brickState_)},
+             uint32_t(solids_.size()));
+        listBarrier(cmd);
     }
     // 4-5: free, then allocate and list.
     flat("sparse_free_bricks", 0,

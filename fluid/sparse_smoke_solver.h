@@ -65,10 +65,11 @@ public:
     // Records the active set's rebuild on the GPU (shaders/fluid/sparse_*_bricks.comp): wanted
     // are the active bricks with a cell whose pigment alpha exceeds `alphaThreshold` or whose
     // cell-centre speed exceeds `speedThreshold` (NaN counts), and the bricks the emitters'
-    // spheres reach, and those the solids may reach (SparseBricks::wantCapsule, at the solids set
-    // now); then every brick within `reachCells` cells (rounded up to bricks) of a wanted
-    // one. Unwanted bricks are freed, wanted ones given slots and started at rest. recordStep
-    // does not call it: record it before the step.
+    // spheres reach; then every brick within `reachCells` cells (rounded up to bricks) of a wanted
+    // one; then the bricks the solids may reach (SparseBricks::wantCapsule, at the solids set now;
+    // not grown: the air they stir is live, and the next rebuild grows its bricks). Unwanted
+    // bricks are freed, wanted ones given slots and started at rest. recordStep does not call
+    // it: record it before the step.
     void recordRebuild(VkCommandBuffer cmd, float alphaThreshold, float speedThreshold,
                        uint32_t reachCells);
     struct RebuildCounts {

@@ -172,9 +172,9 @@ TEST_F(SparseSolidsTest, HundredStepsWithASweptCapsuleStayCloseToTheReference) {
     expectMovingAndFinite(run);
 }
 
-// The GPU's rebuild wants every brick the solids may reach (none was active, nothing is live),
-// brick for brick as the layout's twin (SparseBricks::wantCapsule, then the dilation), and every
-// solid cell lies in an active brick.
+// The GPU's rebuild wants every brick the solids may reach (none was active, nothing is live), not
+// grown by the dilation, beside an emitter's bricks, grown: brick for brick as the layout's twin
+// (SparseBricks::wantSphere, dilate, then wantCapsule); every solid cell lies in an active brick.
 TEST_F(SparseSolidsTest, TheRebuildWantsTheBricksTheSolidsReach) {
     const SolverOptions o = openOptions({64, 48, 48, 0.05f});
     auto sparse = makeSparse(ctx(), o, 4096, 8);
@@ -186,25 +186,30 @@ TEST_F(SparseSolidsTest, TheRebuildWantsTheBricksTheSolidsReach) {
         solidSphere({7.0f, 1.0f, 1.0f}, 0.3f), // wholly outside: nothing
     };
     ASSERT_TRUE(sparse->setSolids(solids).ok());
+    const shared::FluidEmitter source =
+        emitter({2.2f, 1.9f, 1.7f}, 0.15f, {0.0f, 1.0f, 0.0f}, 5.0f, {1.0f, 1.0f, 1.0f, 1.0f});
+    ASSERT_TRUE(sparse->setEmitters(std::span(&source, 1)).ok());
+    const float h = o.grid.cellSize;
+    size_t previous = 0;
     for (uint32_t reach : {0u, fluid::kBrickSize}) {
         gpu::submitOneShot(
             ctx(), [&](VkCommandBuffer cmd) { sparse->recordRebuild(cmd, 1e-4f, 0.1f, reach); });
         sparse->finishRebuild(); // grown: the refused bricks get slots at the next rebuild
         gpu::submitOneShot(
             ctx(), [&](VkCommandBuffer cmd) { sparse->recordRebuild(cmd, 1e-4f, 0.1f, reach); });
-        const auto settled = sparse->finishRebuild();
-        EXPECT_EQ(settled.refused, 0u);
+        EXPECT_EQ(sparse->finishRebuild().refused, 0u);
 
         fluid::SparseBricks twin(sparse->layout().bricks(), 4096);
         twin.clearWanted();
-        const float h = o.grid.cellSize;
+        twin.wantSphere(glm::vec3(source.positionRadius) / h, source.positionRadius.w / h);
+        twin.dilate(reach);
         for (const shared::FluidSolid& s : solids)
             twin.wantCapsule(glm::vec3(s.endA) / h, glm::vec3(s.endB) / h, s.endA.w / h);
-        twin.dilate(reach);
         twin.commit();
         EXPECT_EQ(sparse->activeBricks(), twin.activeList()) << "reach " << reach;
-        EXPECT_GT(twin.activeList().size(), 6u);
+        EXPECT_GT(twin.activeList().size(), previous + 20) << "reach " << reach;
         EXPECT_LT(twin.activeList().size(), 200u); // of 432
+        previous = twin.activeList().size();
 
         const std::vector<uint8_t> active = sparse->activeCells();
         const std::vector<uint8_t> solid = fluid::solidCellMask(o.grid, solids);

@@ -1,8 +1,10 @@
-// The active set's rebuild, 2 (with the emitters'): every brick a solid may reach is wanted, so
-// that the body's cells are stored and the air it pushes is simulated (docs/fluid.md, "Solids" and
-// "Sparse domain"): a brick whose cell centres' bounding sphere (its centre, 3.5 √3 cells wide,
-// and a hundredth of a cell) meets the capsule. One invocation a solid (rebuild.counts.w of
-// them). Twin: SparseBricks::wantCapsule (the same test, in cells).
+// The active set's rebuild, 3b (after the dilation, into the brick states): every brick a solid
+// may reach is wanted, so that the body's cells are stored and the air it pushes is simulated
+// (docs/fluid.md, "Solids" and "Sparse domain"): a brick whose cell centres' bounding sphere (its
+// centre, 3.5 √3 cells wide, and a hundredth of a cell) meets the capsule. Not grown by the
+// advection's reach: the air the body stirs is live, and the next rebuild grows its bricks. One
+// invocation a solid (rebuild.counts.w of them). Twin: SparseBricks::wantCapsule (the same test,
+// in cells).
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "sparse_rebuild_common.glsl"
