@@ -52,7 +52,7 @@ vec4 samplePigment(int field, vec3 x) {
     vec4 c01 = lerpValue(corners[4], corners[5], f.x);
     vec4 c11 = lerpValue(corners[6], corners[7], f.x);
     vec4 plain = lerpValue(lerpValue(c00, c10, f.y), lerpValue(c01, c11, f.y), f.z);
-    uint solid = solidStencilCorners(i0); // corner k at bit k
+    uint solid = stageStencilCorners(i0); // corner k at bit k
     return solid != 0u ? sampleOutsideSolids(f, corners, solid) : plain;
 }
 

@@ -124,6 +124,21 @@ uint solidStencilCorners(ivec3 i0) {
     return corners;
 }
 
+// solidStencilCorners in a stage: walking the blocks away from solids, none where the stencil
+// starts from one cell before this workgroup's block to its last (the mark left every flag byte
+// there 0, stencil bit included: mark_solids.comp), without a load; else from the corner bytes.
+uint stageStencilCorners(ivec3 i0) {
+    if (kBlockList != 0u && kBlockList % 2u == 0u) {
+        // Cells inside the grid only: a stencil from past a periodic face wraps to cells the
+        // block's flags do not cover.
+        ivec3 first = ivec3(stageWorkGroup() * gl_WorkGroupSize);
+        if (all(greaterThanEqual(i0, max(first - 1, ivec3(0)))) &&
+            all(lessThan(i0, min(first + ivec3(gl_WorkGroupSize), cellCount()))))
+            return 0u;
+    }
+    return solidStencilCorners(i0);
+}
+
 // The six sides' solid-neighbour bits of cell q (inside the grid), side s at bit s.
 uint solidNeighbours(ivec3 q) {
     return (solidByte(q) >> 1) & 63u;
