@@ -1,13 +1,16 @@
 // Moving solids under hard settings (docs/fluid.md, "Solids"): 2,000 whole GPU steps on a small
-// grid with the usual emitters (tests/fluid_stability_util.h) and a solid that fills most of the
-// grid, moves at CFL 5, touches the domain's edges, or appears and vanishes every other step; under
-// a closed box and under mixed boundaries. Read back at step 1 and every 100 steps and held to the
-// stability tests' bounds (tests/test_fluid_stability.cpp): no NaN or Inf; pigment within
-// [0, the emitters' largest] and none inside a solid; kinetic energy below the ceiling of every
-// energy-carrying face at the fastest speed present, the solids' speeds counted with the
-// emitters' (a solid face is set to its solid's velocity, and every other stage but the
+// grid, dense and sparse, with the usual emitters (tests/fluid_stability_util.h) and a solid that
+// fills most of the grid, moves at CFL 5, touches the domain's edges, or appears and vanishes every
+// other step; under a closed box and under mixed boundaries. Read back at step 1 and every 100
+// steps and held to the stability tests' bounds (tests/test_fluid_stability.cpp): no NaN or Inf;
+// pigment within [0, the emitters' largest] and none inside a solid; kinetic energy below the
+// ceiling of every energy-carrying face at the fastest speed present, the solids' speeds counted
+// with the emitters' (a solid face is set to its solid's velocity, and every other stage but the
 // projection keeps |u_c| within the fastest such value; the projection never adds energy).
+#include "core/gpu/commands.h"
 #include "fluid/reference/reference_solver.h"
+#include "fluid/smoke_solver.h"
+#include "fluid/sparse_smoke_solver.h"
 #include "tests/fluid_stability_util.h"
 #include "tests/gpu_test.h"
 
@@ -15,6 +18,8 @@
 #include <cstdio>
 #include <functional>
 #include <limits>
+#include <span>
+#include <string>
 
 namespace mfx::test {
 namespace {
@@ -41,9 +46,9 @@ struct SolidCase {
     std::function<std::vector<shared::FluidSolid>(uint32_t step, float dt)> solids;
 };
 
-std::vector<SolidCase> solidCases() {
-    const glm::vec3 size = glm::vec3(kGrid.cellsX, kGrid.cellsY, kGrid.cellsZ) * kGrid.cellSize;
-    const float h = kGrid.cellSize;
+std::vector<SolidCase> solidCases(const fluid::GridShape& grid = kGrid) {
+    const glm::vec3 size = glm::vec3(grid.cellsX, grid.cellsY, grid.cellsZ) * grid.cellSize;
+    const float h = grid.cellSize;
     return {
         // A sphere larger than the box across y and z, rocking along x.
         {"FillsMostOfTheGrid",
@@ -121,22 +126,24 @@ struct HardCase {
     Boundaries boundaries;
 };
 
-class GpuSolidsHardCaseTest : public GpuTest, public ::testing::WithParamInterface<HardCase> {};
+// A solver under test: its solids for the next step, a step recorded (after its rebuild, on the
+// sparse domain), and its fields.
+struct HardCaseSolver {
+    std::function<Status(std::span<const shared::FluidSolid>)> setSolids;
+    std::function<void(VkCommandBuffer)> recordStep;
+    std::function<fluid::FieldState()> state;
+};
 
-TEST_P(GpuSolidsHardCaseTest, StaysFiniteAndBoundedFor2000Steps) {
-    const SolidCase c = solidCases()[GetParam().solidCase];
-    const fluid::SolverOptions options = stability::usualOptions(kGrid, GetParam().boundaries);
-    const auto emitters = stability::usualEmitters(kGrid, 1.0f);
+// 2,000 steps of case `c` with the usual emitters, checked at step 1 and every 100 steps.
+void runHardCase(const gpu::Context& ctx, const fluid::SolverOptions& options, const SolidCase& c,
+                 const HardCaseSolver& solver) {
+    const fluid::GridShape& grid = options.grid;
+    const auto emitters = stability::usualEmitters(grid, 1.0f);
     const double ceiling = energyCeiling(options, emitters, c);
     double pigmentCeiling = 0.0;
     for (const shared::FluidEmitter& e : emitters)
         for (int channel = 0; channel < 4; ++channel)
             pigmentCeiling = std::max(pigmentCeiling, double(e.pigment[channel]));
-
-    auto created = fluid::SmokeSolver::create(ctx(), options);
-    ASSERT_TRUE(created.ok()) << created.error().message;
-    fluid::SmokeSolver& gpu = *created.value();
-    ASSERT_TRUE(gpu.setEmitters(emitters).ok());
     fluid::ReferenceSolver marks(options); // the solid cells, as the GPU marks them
     double largestEnergy = 0.0, largestSolidShare = 0.0;
     uint32_t done = 0;
@@ -148,29 +155,29 @@ TEST_P(GpuSolidsHardCaseTest, StaysFiniteAndBoundedFor2000Steps) {
         // its own solids (markSolids copies them into the recording).
         while (done < checkpoint) {
             const uint32_t batch = std::min(stability::kStepsPerSubmit, checkpoint - done);
-            gpu::submitOneShot(ctx(), [&](VkCommandBuffer cmd) {
+            gpu::submitOneShot(ctx, [&](VkCommandBuffer cmd) {
                 for (uint32_t i = 0; i < batch; ++i) {
-                    ASSERT_TRUE(gpu.setSolids(c.solids(done + i, options.dt)).ok());
-                    gpu.recordStep(cmd);
+                    ASSERT_TRUE(solver.setSolids(c.solids(done + i, options.dt)).ok());
+                    solver.recordStep(cmd);
                 }
             });
-            if (HasFatalFailure()) return;
+            if (::testing::Test::HasFatalFailure()) return;
             done += batch;
         }
         const std::vector<shared::FluidSolid> solids = c.solids(done - 1, options.dt);
         marks.setSolids(solids);
-        const fluid::FieldState state = gpu.state();
+        const fluid::FieldState state = solver.state();
         const fluid::Diagnostics d = fluid::computeDiagnostics(options, state);
         ASSERT_EQ(d.nonFinite, 0u) << "step " << done;
         double low = 0.0, inside = 0.0;
         size_t solidCells = 0;
-        for (int k = 0; k < int(kGrid.cellsZ); ++k)
-            for (int j = 0; j < int(kGrid.cellsY); ++j)
-                for (int i = 0; i < int(kGrid.cellsX); ++i) {
+        for (int k = 0; k < int(grid.cellsZ); ++k)
+            for (int j = 0; j < int(grid.cellsY); ++j)
+                for (int i = 0; i < int(grid.cellsX); ++i) {
                     const bool solid = marks.solidCell({i, j, k});
                     solidCells += solid ? 1 : 0;
                     for (int channel = 0; channel < 4; ++channel) {
-                        const double p = state.pigment[kGrid.index(i, j, k) * 4 + size_t(channel)];
+                        const double p = state.pigment[grid.index(i, j, k) * 4 + size_t(channel)];
                         low = std::min(low, p);
                         if (solid) inside += std::abs(p);
                     }
@@ -181,9 +188,9 @@ TEST_P(GpuSolidsHardCaseTest, StaysFiniteAndBoundedFor2000Steps) {
         EXPECT_LE(d.kineticEnergy, ceiling) << "step " << done;
         largestEnergy = std::max(largestEnergy, d.kineticEnergy);
         largestSolidShare =
-            std::max(largestSolidShare, double(solidCells) / double(kGrid.cellCount()));
+            std::max(largestSolidShare, double(solidCells) / double(grid.cellCount()));
     }
-    const fluid::Diagnostics last = fluid::computeDiagnostics(options, gpu.state());
+    const fluid::Diagnostics last = fluid::computeDiagnostics(options, solver.state());
     std::printf("%s: largest energy %.3g of the ceiling %.3g (%.0f%%), solid cells up to %.0f%%, "
                 "pigment %.3g at the end\n",
                 c.name, largestEnergy, ceiling, 100.0 * largestEnergy / ceiling,
@@ -194,6 +201,49 @@ TEST_P(GpuSolidsHardCaseTest, StaysFiniteAndBoundedFor2000Steps) {
     }
 }
 
+class GpuSolidsHardCaseTest : public GpuTest, public ::testing::WithParamInterface<HardCase> {};
+
+TEST_P(GpuSolidsHardCaseTest, StaysFiniteAndBoundedFor2000Steps) {
+    const SolidCase c = solidCases()[GetParam().solidCase];
+    const fluid::SolverOptions options = stability::usualOptions(kGrid, GetParam().boundaries);
+    auto created = fluid::SmokeSolver::create(ctx(), options);
+    ASSERT_TRUE(created.ok()) << created.error().message;
+    fluid::SmokeSolver& gpu = *created.value();
+    ASSERT_TRUE(gpu.setEmitters(stability::usualEmitters(kGrid, 1.0f)).ok());
+    runHardCase(ctx(), options, c,
+                {[&](std::span<const shared::FluidSolid> s) { return gpu.setSolids(s); },
+                 [&](VkCommandBuffer cmd) { gpu.recordStep(cmd); }, [&] { return gpu.state(); }});
+}
+
+// The same on the sparse domain (2 x 2 x 1 bricks of 8³ cells), its active set rebuilt on the GPU
+// before every step as a scene's grid rebuilds it (the solids' bricks wanted, so a solid that
+// appears and vanishes makes bricks come and go): closed, and open along x instead of the mixed
+// boxes' periodic x (the sparse domain has no periodic axis).
+class SparseSolidsHardCaseTest : public GpuTest, public ::testing::WithParamInterface<HardCase> {};
+
+TEST_P(SparseSolidsHardCaseTest, StaysFiniteAndBoundedFor2000Steps) {
+    constexpr fluid::GridShape kSparseGrid{16, 16, 8, 1.0f / 16.0f}; // 1 x 1 x 0.5 world units
+    const SolidCase c = solidCases(kSparseGrid)[GetParam().solidCase];
+    fluid::SolverOptions options = stability::usualOptions(kSparseGrid, GetParam().boundaries);
+    if (options.periodic(0)) {
+        options.boundaries[fluid::FaceLowX].kind = fluid::Boundary::Open;
+        options.boundaries[fluid::FaceHighX].kind = fluid::Boundary::Open;
+    }
+    auto created = fluid::SparseSmokeSolver::create(ctx(), options, 4, 4);
+    ASSERT_TRUE(created.ok()) << created.error().message;
+    fluid::SparseSmokeSolver& gpu = *created.value();
+    ASSERT_TRUE(gpu.setEmitters(stability::usualEmitters(kSparseGrid, 1.0f)).ok());
+    const float speed = 1e-4f * options.grid.cellSize / options.dt;
+    runHardCase(ctx(), options, c,
+                {[&](std::span<const shared::FluidSolid> s) { return gpu.setSolids(s); },
+                 [&](VkCommandBuffer cmd) {
+                     gpu.recordRebuild(cmd, 1e-4f, speed, fluid::kBrickSize);
+                     gpu.recordStep(cmd);
+                 },
+                 [&] { return gpu.state(); }});
+    EXPECT_EQ(gpu.lastSharedFaceMismatches(), 0u);
+}
+
 std::vector<HardCase> hardCases() {
     std::vector<HardCase> cases;
     for (size_t i = 0; i < solidCases().size(); ++i)
@@ -202,12 +252,16 @@ std::vector<HardCase> hardCases() {
     return cases;
 }
 
+std::string hardCaseName(const ::testing::TestParamInfo<HardCase>& param) {
+    return std::string(solidCases()[param.param.solidCase].name) +
+           (param.param.boundaries == Boundaries::Closed ? "_Closed" : "_Mixed");
+}
+
+INSTANTIATE_TEST_SUITE_P(SparseSolids, SparseSolidsHardCaseTest, ::testing::ValuesIn(hardCases()),
+                         hardCaseName);
+
 INSTANTIATE_TEST_SUITE_P(GpuSolids, GpuSolidsHardCaseTest, ::testing::ValuesIn(hardCases()),
-                         [](const ::testing::TestParamInfo<HardCase>& param) {
-                             return std::string(solidCases()[param.param.solidCase].name) +
-                                    (param.param.boundaries == Boundaries::Closed ? "_Closed"
-                                                                                  : "_Mixed");
-                         });
+                         hardCaseName);
 
 } // namespace
 } // namespace mfx::test
