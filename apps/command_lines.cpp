@@ -78,6 +78,42 @@ CommandLine renderCommandLine() {
     return command;
 }
 
+CommandLine bakeCommandLine() {
+    CommandLine command(
+        "usage: motionfx bake [SCENE | CHARACTER.glb] [options]\n\nBakes a scene's effects "
+        "(default: the built-in scene's) into flipbook sheets for game engines (docs/flipbook.md): "
+        "DIR/colour.png, the effects alone frame after frame in a grid of cells (premultiplied "
+        "RGBA; the character left out or kept as a holdout), DIR/motion.png, each cell's motion "
+        "toward the next as motion vectors for smooth blending, and DIR/flipbook.json, the "
+        "layout, timing, encodings and camera. The frames are sampled evenly from the scene's "
+        "clip (or --range) into the cells, drawn through a camera framed on what the effects "
+        "draw (or the scene's).",
+        1, CommandLine::kDevice | CommandLine::kScene);
+    command.option("out", "DIR", "write the sheets into DIR (default: bake)")
+        .option("grid", "CxR", "columns and rows of cells, each 1 to 64 (default 8x8)")
+        .option("cell", "N|WxH",
+                "a cell's size in pixels, at least 8, the sheet at most 16384 a side "
+                "(default 256)")
+        .option("range", "FIRST:LAST", "bake scene frames FIRST to LAST (default: all)")
+        .option("fps", "N",
+                "frames per second of the simulation, 1 to 240 (default: the scene's); more "
+                "frames to sample from")
+        .option("effects", "LIST", "bake the effects of these names (comma-separated; default all)")
+        .option("holdout", "", "keep the character as a holdout: it hides the effects behind it")
+        .option("camera", "effect|scene",
+                "frame the cells on what the effects draw (default), or use the scene's camera")
+        .option("margin", "F",
+                "share of a cell kept empty on each side when framed on the effects, 0 to 0.4 "
+                "(default 0.06)")
+        .option("loop", "N", "cross-fade the last N cells into the first, for a seamless loop")
+        .option("motion", "flow|none",
+                "motion vectors measured as optical flow between the cells (default), or none")
+        .option("evaluate", "R",
+                "also measure the sheets played at 1/R of their rate: the mean error of the "
+                "motion-vector blend and of a cross-fade against the cells between");
+    return command;
+}
+
 CommandLine compareCommandLine() {
     CommandLine command("usage: motionfx compare SCENARIO [options]\n\nRuns SCENARIO (" +
                             scenarioNameList() +
@@ -348,6 +384,8 @@ std::span<const Command> commands() {
         {"info", "print the chosen Vulkan device and its capabilities", &infoCommandLine, &runInfo},
         {"render", "render a scene (default: the built-in one) into PNG frames (and MP4)",
          &renderCommandLine, &runRender},
+        {"bake", "bake a scene's effects into flipbook sheets (colour, motion vectors, JSON)",
+         &bakeCommandLine, &runBake},
         {"compare", "run a solver scenario on GPU and CPU reference, print the differences",
          &compareCommandLine, &runCompare},
         {"bench",

@@ -236,7 +236,7 @@ void CharacterPass::shadow(VkCommandBuffer cmd) {
                       VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
 }
 
-void CharacterPass::draw(VkCommandBuffer cmd, const SceneCamera& camera) {
+void CharacterPass::draw(VkCommandBuffer cmd, const SceneCamera& camera, bool withStage) {
     const shared::SceneFrame frame =
         sceneFrame(scene_, camera, lightViewProjection_, shadowReady_ ? kShadowSize : 0);
     std::memcpy(frame_.mapped, &frame, sizeof frame);
@@ -258,7 +258,7 @@ void CharacterPass::draw(VkCommandBuffer cmd, const SceneCamera& camera) {
         vkCmdDrawIndexed(cmd, count, 1, 0, 0, 0);
     };
     for (const StageMesh& m : stage_)
-        drawMesh(m.vertices, m.indices, m.indexCount, m.colour, false);
+        if (withStage) drawMesh(m.vertices, m.indices, m.indexCount, m.colour, false);
     for (const Part& part : parts_)
         drawMesh(part.output, part.indices, part.indexCount, glm::vec3(part.primitive->baseColor),
                  true);

@@ -35,8 +35,8 @@ public:
     // skin()). Without it, or for a light with "shadow": false, nothing is shadowed.
     void shadow(VkCommandBuffer cmd);
     // Records the draws (inside rendering to a colour + depth target of
-    // kSceneColorFormat/kDepthFormat).
-    void draw(VkCommandBuffer cmd, const SceneCamera& camera);
+    // kSceneColorFormat/kDepthFormat): the stage, unless `withStage` is false, and the character.
+    void draw(VkCommandBuffer cmd, const SceneCamera& camera, bool withStage = true);
     // Whether the character has an outline (toon, width > 0), and the draws of it (after draw(),
     // in the same rendering, into a target of `width` x `height` pixels).
     bool hasOutline() const { return outlined_; }

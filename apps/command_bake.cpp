@@ -1,0 +1,462 @@
+// motionfx bake: a scene's effects baked into flipbook sheets for game engines (render/flipbook.h,
+// docs/flipbook.md): DIR/colour.png (premultiplied RGBA), DIR/motion.png (motion vectors) and
+// DIR/flipbook.json (the layout, timing, encodings and camera), with a progress bar; with
+// --evaluate, how well the sheets play at a fraction of their rate.
+#include "apps/commands.h"
+#include "apps/progress.h"
+
+#include "core/gpu/commands.h"
+#include "render/bake_renderer.h"
+#include "render/flipbook.h"
+#include "render/frame_renderer.h"
+#include "render/image_output.h"
+#include "render/optical_flow.h"
+#include "sim/scene_simulation.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace mfx::app {
+
+namespace {
+
+enum class MotionSource { Flow, None };
+
+struct BakeOptions {
+    render::FlipbookLayout layout;
+    uint32_t first = 0, last = 0; // scene frames, inclusive
+    uint32_t loop = 0;            // cells cross-faded into the first
+    std::vector<size_t> effects;  // indices into scene.effects
+    bool holdout = false;
+    bool frameOnEffect = true;
+    float margin = 0.06f;
+    MotionSource motion = MotionSource::Flow;
+    uint32_t evaluate = 0;
+    std::string out;
+};
+
+// The options that need no scene: layout, loop, margin, motion, evaluation.
+Status readLayoutOptions(const cli::ParsedArgs& parsed, BakeOptions& options) {
+    if (Status s = render::parseFlipbookGrid(parsed.value("grid", "8x8"), options.layout); !s)
+        return s;
+    if (Status s = render::parseFlipbookCell(parsed.value("cell", "256"), render::kMaxSheetSide,
+                                             options.layout);
+        !s)
+        return s;
+    const uint32_t cells = options.layout.cells();
+    if (parsed.has("loop")) {
+        const Result<uint32_t> loop =
+            cli::parseUnsigned(parsed.value("loop"), 1, std::max(cells - 1, 1u), "--loop");
+        if (!loop) return loop.error();
+        if (cells < 2) return Error{"--loop needs a grid of at least 2 cells"};
+        options.loop = loop.value();
+    }
+    if (parsed.has("margin")) {
+        const Result<double> margin =
+            cli::parseNumber(parsed.value("margin"), 0.0, 0.4, "--margin");
+        if (!margin) return margin.error();
+        options.margin = float(margin.value());
+    }
+    const std::string camera = parsed.value("camera", "effect");
+    if (camera != "effect" && camera != "scene")
+        return Error{"--camera '" + camera + "' is not effect or scene"};
+    options.frameOnEffect = camera == "effect";
+    const std::string motion = parsed.value("motion", "flow");
+    if (motion != "flow" && motion != "none")
+        return Error{"--motion '" + motion + "' is not flow or none"};
+    options.motion = motion == "flow" ? MotionSource::Flow : MotionSource::None;
+    if (parsed.has("evaluate")) {
+        const Result<uint32_t> rate =
+            cli::parseUnsigned(parsed.value("evaluate"), 2, 64, "--evaluate");
+        if (!rate) return rate.error();
+        if (rate.value() >= cells)
+            return Error{"--evaluate " + std::to_string(rate.value()) + " needs more than " +
+                         std::to_string(rate.value()) + " cells; the grid has " +
+                         std::to_string(cells)};
+        options.evaluate = rate.value();
+    }
+    options.holdout = parsed.has("holdout");
+    options.out = parsed.value("out", "bake");
+    return Ok{};
+}
+
+// The options that name parts of the scene: --effects and --range.
+Status readSceneOptions(const cli::ParsedArgs& parsed, const scene::Scene& scene,
+                        uint32_t frameCount, BakeOptions& options) {
+    if (parsed.has("effects")) {
+        const std::string list = parsed.value("effects");
+        size_t start = 0;
+        while (start <= list.size()) {
+            size_t end = list.find(',', start);
+            if (end == std::string::npos) end = list.size();
+            const std::string name = list.substr(start, end - start);
+            size_t found = scene.effects.size();
+            for (size_t e = 0; e < scene.effects.size(); ++e)
+                if (scene.effects[e].name == name) found = e;
+            if (found == scene.effects.size()) {
+                std::string names;
+                for (const scene::EffectSpec& e : scene.effects)
+                    names += (names.empty() ? "\"" : ", \"") + e.name + "\"";
+                return Error{"--effects: the scene has no effect named \"" + name + "\" (it has " +
+                             (names.empty() ? "none" : names) + ")"};
+            }
+            if (std::find(options.effects.begin(), options.effects.end(), found) ==
+                options.effects.end())
+                options.effects.push_back(found);
+            start = end + 1;
+        }
+    } else {
+        for (size_t e = 0; e < scene.effects.size(); ++e)
+            options.effects.push_back(e);
+    }
+    if (options.effects.empty()) return Error{"the scene has no effects to bake"};
+    options.first = 0;
+    options.last = frameCount - 1;
+    if (parsed.has("range")) {
+        const std::string text = parsed.value("range");
+        const size_t colon = text.find(':');
+        auto number = [](std::string_view part, uint32_t& out) {
+            auto [end, error] = std::from_chars(part.data(), part.data() + part.size(), out);
+            return !part.empty() && error == std::errc() && end == part.data() + part.size();
+        };
+        uint32_t first = 0, last = 0;
+        if (colon == std::string::npos || !number(std::string_view(text).substr(0, colon), first) ||
+            !number(std::string_view(text).substr(colon + 1), last))
+            return Error{"--range '" + text + "' is not FIRST:LAST (scene frames), e.g. 10:73"};
+        if (first > last || last >= frameCount)
+            return Error{"--range '" + text + "': frames must satisfy FIRST <= LAST < " +
+                         std::to_string(frameCount) + " (the scene's frames)"};
+        options.first = first;
+        options.last = last;
+    }
+    return Ok{};
+}
+
+// Plays a new simulation of the scene through the last of `capture`, drawing each frame with
+// `renderer`, and hands each captured frame's layer (linear RGBA, top row first) to `take`.
+template <class Take>
+bool playCaptured(const gpu::Context& ctx, sim::SceneSimulation& sim,
+                  render::BakeRenderer& renderer, const std::vector<uint32_t>& capture,
+                  const char* what, Take take) {
+    Progress progress(what, capture.back() + 1);
+    size_t next = 0;
+    for (uint32_t f = 0; f <= capture.back(); ++f) {
+        gpu::submitOneShot(ctx, [&](VkCommandBuffer cmd) { renderer.record(cmd, sim, f); });
+        reportBudget(sim.finishFrame());
+        while (next < capture.size() && capture[next] == f) {
+            take(next, render::readLinearColor(ctx, renderer.layer()));
+            ++next;
+        }
+        progress.update(f + 1);
+    }
+    progress.finish();
+    return true;
+}
+
+std::unique_ptr<render::BakeRenderer>
+makeRenderer(const gpu::Context& ctx, const sim::SceneSimulation& sim, const BakeOptions& options) {
+    auto renderer = std::make_unique<render::BakeRenderer>(
+        ctx, sim, options.layout.cellWidth, options.layout.cellHeight, options.holdout);
+    for (size_t e = 0; e < sim.scene().effects.size(); ++e)
+        renderer->setShown(e, std::find(options.effects.begin(), options.effects.end(), e) !=
+                                  options.effects.end());
+    return renderer;
+}
+
+// Whether a pixel of a layer shows anything (1/255 of coverage or light).
+bool visible(const float* rgba) {
+    return std::max({rgba[0], rgba[1], rgba[2], rgba[3]}) > 1.0f / 255.0f;
+}
+
+// The crop of the scene's camera (its normalised device coordinates) that frames what the effects
+// draw over the captured frames with `margin` of the cell to spare on every side: found by drawing
+// them first through a camera that sees twice as far each way.
+Result<glm::vec4> frameEffects(const gpu::Context& ctx, const SceneArgument& argument,
+                               const BakeOptions& options, const std::vector<uint32_t>& capture,
+                               bool& reachesEdge) {
+    int exitCode = kExitOk;
+    const std::unique_ptr<sim::SceneSimulation> sim =
+        createSceneSimulation(ctx, argument, exitCode);
+    if (!sim) return Error{"cannot simulate the scene"};
+    const std::unique_ptr<render::BakeRenderer> renderer = makeRenderer(ctx, *sim, options);
+    renderer->setCamera(render::cropCamera(renderer->camera(), {-2.0f, -2.0f, 2.0f, 2.0f}));
+    const uint32_t w = options.layout.cellWidth, h = options.layout.cellHeight;
+    uint32_t x0 = w, y0 = h, x1 = 0, y1 = 0;
+    playCaptured(ctx, *sim, *renderer, capture, "framing",
+                 [&](size_t, const std::vector<float>& layer) {
+                     for (uint32_t y = 0; y < h; ++y)
+                         for (uint32_t x = 0; x < w; ++x)
+                             if (visible(&layer[(size_t(y) * w + x) * 4])) {
+                                 x0 = std::min(x0, x);
+                                 x1 = std::max(x1, x);
+                                 y0 = std::min(y0, y);
+                                 y1 = std::max(y1, y);
+                             }
+                 });
+    if (x0 > x1)
+        return Error{"the effects baked draw nothing in frames " + std::to_string(options.first) +
+                     " to " + std::to_string(options.last) +
+                     " within twice the scene camera's view; choose other --effects or --range"};
+    reachesEdge = x0 == 0 || y0 == 0 || x1 + 1 == w || y1 + 1 == h;
+    // Pixel edges to the wide camera's device coordinates (+y up), then to the scene camera's
+    // (twice as large).
+    const float left = 2.0f * (2.0f * float(x0) / float(w) - 1.0f);
+    const float right = 2.0f * (2.0f * float(x1 + 1) / float(w) - 1.0f);
+    const float top = 2.0f * (1.0f - 2.0f * float(y0) / float(h));
+    const float bottom = 2.0f * (1.0f - 2.0f * float(y1 + 1) / float(h));
+    const glm::vec2 centre{0.5f * (left + right), 0.5f * (top + bottom)};
+    const float half = 0.5f * std::max(right - left, top - bottom) / (1.0f - 2.0f * options.margin);
+    return glm::vec4(centre.x - half, centre.y - half, centre.x + half, centre.y + half);
+}
+
+nlohmann::json matrixJson(const glm::mat4& m) {
+    nlohmann::json out = nlohmann::json::array();
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            out.push_back(m[c][r]);
+    return out;
+}
+
+// The sheets played at 1/rate of their cells' rate: every rate-th cell kept, its motion measured
+// toward the next kept one, the cells between them blended (cross-fade and motion vectors, the
+// motion through its 8-bit encoding) and compared with the cells baked there.
+nlohmann::json evaluateRate(const std::vector<render::CellImage>& cells, uint32_t rate) {
+    double crossFade = 0.0, motion = 0.0;
+    uint32_t between = 0;
+    Progress progress("evaluating", uint32_t((cells.size() - 1) / rate));
+    for (size_t j = 0; (j + 1) * rate < cells.size(); ++j) {
+        const render::CellImage& a = cells[j * rate];
+        const render::CellImage& b = cells[(j + 1) * rate];
+        const render::MotionField flow = render::opticalFlow(a, b);
+        const float scale = render::motionScale(std::span(&flow, 1));
+        const render::MotionField stored =
+            render::decodeMotion(render::encodeMotion(flow, scale), a.width, a.height, scale);
+        for (uint32_t i = 1; i < rate; ++i) {
+            const render::CellImage& truth = cells[j * rate + i];
+            const float t = float(i) / float(rate);
+            const render::CellImage* cover[] = {&a, &b, &truth};
+            crossFade +=
+                render::coveredMeanError(render::blendCells(a, b, nullptr, t), truth, cover);
+            motion += render::coveredMeanError(render::blendCells(a, b, &stored, t), truth, cover);
+            ++between;
+        }
+        progress.update(uint32_t(j + 1));
+    }
+    progress.finish();
+    crossFade /= std::max(between, 1u);
+    motion /= std::max(between, 1u);
+    std::printf("played at 1/%u of the baked rate (every %u%s cell): mean error over %u in-between "
+                "cells (covered pixels, channels in [0, 1]): cross-fade %.5f, motion-vector blend "
+                "%.5f (%.2fx)\n",
+                rate, rate,
+                rate == 2   ? "nd"
+                : rate == 3 ? "rd"
+                            : "th",
+                between, crossFade, motion, crossFade > 0.0 ? motion / crossFade : 1.0);
+    return {{"rate", rate},
+            {"in_between_cells", between},
+            {"cross_fade_error", crossFade},
+            {"motion_vector_error", motion},
+            {"error", "mean absolute difference of the 8-bit sheet's values over 255, over the "
+                      "pixels either kept cell or the baked one covers"}};
+}
+
+} // namespace
+
+int runBake(const cli::ParsedArgs& parsed) {
+    BakeOptions options;
+    if (Status s = readLayoutOptions(parsed, options); !s) {
+        printError(s.error().message);
+        return kExitUsage;
+    }
+    SceneArgument argument;
+    int exitCode = kExitOk;
+    if (!loadSceneArgument(parsed, argument, exitCode)) return exitCode;
+    const scene::Scene& s = argument.scene;
+    const uint32_t frameCount = scene::frameCount(s, argument.character);
+    if (Status status = readSceneOptions(parsed, s, frameCount, options); !status) {
+        printError(status.error().message);
+        return kExitUsage;
+    }
+    const uint32_t cells = options.layout.cells();
+    const Result<std::vector<uint32_t>> capture =
+        render::sampleFrames(options.first, options.last, cells + options.loop);
+    if (!capture) {
+        printError(capture.error().message);
+        return kExitUsage;
+    }
+    if (Status dir = render::ensureOutputDirectory(options.out); !dir) {
+        printError(dir.error().message);
+        return kExitFailure;
+    }
+    const std::unique_ptr<gpu::Context> context = createContext(parsed);
+    if (!context) return kExitFailure;
+    const gpu::Context& ctx = *context;
+    const uint32_t side = ctx.limits().maxImageDimension2D;
+    if (options.layout.cellWidth > side || options.layout.cellHeight > side) {
+        printError("--cell: this device draws at most " + std::to_string(side) + " pixels a side");
+        return kExitUsage;
+    }
+
+    // The camera: the scene's, or framed on what the effects draw.
+    glm::vec4 crop{-1.0f, -1.0f, 1.0f, 1.0f};
+    if (options.frameOnEffect) {
+        bool reachesEdge = false;
+        const Result<glm::vec4> framed =
+            frameEffects(ctx, argument, options, capture.value(), reachesEdge);
+        if (!framed) {
+            printError(framed.error().message);
+            return kExitFailure;
+        }
+        crop = framed.value();
+        if (reachesEdge)
+            std::fprintf(stderr,
+                         "motionfx: warning: the effects reach beyond twice the scene camera's "
+                         "view and may be cut at the cells' edges; move the scene's camera back\n");
+    }
+
+    const std::unique_ptr<sim::SceneSimulation> sim =
+        createSceneSimulation(ctx, argument, exitCode);
+    if (!sim) return exitCode;
+    const std::unique_ptr<render::BakeRenderer> renderer = makeRenderer(ctx, *sim, options);
+    const render::SceneCamera camera = render::cropCamera(renderer->camera(), crop);
+    renderer->setCamera(camera);
+    const uint32_t w = options.layout.cellWidth, h = options.layout.cellHeight;
+    std::vector<render::CellImage> frames(capture.value().size());
+    playCaptured(
+        ctx, *sim, *renderer, capture.value(), "baking", [&](size_t k, std::vector<float> layer) {
+            render::CellImage& cell = frames[k];
+            cell.width = w;
+            cell.height = h;
+            cell.rgba = std::move(layer);
+            render::toneMapCell(cell, s.post.exposure, s.post.toneMap == scene::ToneMap::Aces);
+        });
+    frames = render::crossFadeLoop(std::move(frames), options.loop);
+
+    // The colour sheet, and its cells as stored (what the motion is measured on and played from).
+    const render::FlipbookLayout& layout = options.layout;
+    std::vector<uint8_t> colourSheet(size_t(layout.sheetWidth()) * layout.sheetHeight() * 4, 0);
+    std::vector<render::CellImage> stored;
+    for (uint32_t i = 0; i < cells; ++i) {
+        const std::vector<uint8_t> cell = render::encodeColour8(frames[i]);
+        render::placeCell(colourSheet, layout, i, cell);
+        stored.push_back(render::cellFromRgba8(cell, w, h));
+    }
+    frames.clear();
+    const std::string colourFile = options.out + "/colour.png";
+    const float background[3] = {render::kClearColour.r, render::kClearColour.g,
+                                 render::kClearColour.b};
+    for (const auto& [file, pixels] :
+         {std::pair{colourFile, colourSheet},
+          std::pair{options.out + "/preview.png", render::previewOver(colourSheet, background)}})
+        if (Status written =
+                render::writePng(file, layout.sheetWidth(), layout.sheetHeight(), pixels);
+            !written) {
+            printError(written.error().message);
+            return kExitFailure;
+        }
+
+    nlohmann::json motionJson = nullptr;
+    std::string motionNote;
+    if (options.motion == MotionSource::Flow) {
+        std::vector<render::MotionField> fields(cells);
+        Progress progress("motion vectors", cells);
+        for (uint32_t i = 0; i < cells; ++i) {
+            const bool last = i + 1 == cells;
+            if (!last || options.loop)
+                fields[i] = render::opticalFlow(stored[i], stored[last ? 0 : i + 1]);
+            else
+                fields[i] = i > 0 ? fields[i - 1] : render::MotionField(w, h);
+            progress.update(i + 1);
+        }
+        progress.finish();
+        const float scale = render::motionScale(fields);
+        std::vector<uint8_t> motionSheet(colourSheet.size(), 0);
+        for (uint32_t i = 0; i < cells; ++i)
+            render::placeCell(motionSheet, layout, i, render::encodeMotion(fields[i], scale));
+        const std::string motionFile = options.out + "/motion.png";
+        if (Status written = render::writePng(motionFile, layout.sheetWidth(), layout.sheetHeight(),
+                                              motionSheet);
+            !written) {
+            printError(written.error().message);
+            return kExitFailure;
+        }
+        motionNote = ", " + motionFile;
+        motionJson = {
+            {"file", "motion.png"},
+            {"method", "flow"},
+            {"measured", "optical flow between consecutive cells of the colour sheet (Horn and "
+                         "Schunck, coarse to fine)"},
+            {"encoding", "rg = 0.5 + 0.5 * m / scale, b = 0, a = 1; m: the displacement in the "
+                         "cell's uv (u right, v down, 1 = a cell's width or height) taking a "
+                         "pixel of this cell to its content in the next cell"},
+            {"scale", scale},
+            {"v_axis", "down"},
+            {"last_cell", options.loop ? "toward cell 0" : "the cell before's motion"},
+            {"blend", "out(uv) = (1 - t) A(uv - t m(uv)) + t B(uv + (1 - t) m(uv)), m from A"}};
+    }
+
+    nlohmann::json evaluation = nullptr;
+    if (options.evaluate) evaluation = evaluateRate(stored, options.evaluate);
+
+    std::vector<uint32_t> cellFrames;
+    for (uint32_t i = 0; i < cells; ++i)
+        cellFrames.push_back(capture.value()[options.loop + i]);
+    std::vector<std::string> effectNames;
+    for (size_t e : options.effects)
+        effectNames.push_back(s.effects[e].name);
+    const double step = cells + options.loop > 1 ? double(options.last - options.first) /
+                                                       double(cells + options.loop - 1)
+                                                 : 1.0;
+    nlohmann::json meta = {
+        {"scene", s.file},
+        {"effects", effectNames},
+        {"grid", {{"columns", layout.columns}, {"rows", layout.rows}}},
+        {"cell", {{"width", w}, {"height", h}}},
+        {"sheet", {{"width", layout.sheetWidth()}, {"height", layout.sheetHeight()}}},
+        {"cells", cells},
+        {"order", "left to right, then top to bottom; row 0 at the top of the image"},
+        {"fps", double(s.output.fps) / step},
+        {"scene_fps", s.output.fps},
+        {"scene_frames", cellFrames},
+        {"loop",
+         {{"on", options.loop > 0},
+          {"cross_faded_cells", options.loop},
+          {"how", "the last cells fade toward the frames before cell 0's, so the last cell "
+                  "leads into the first"}}},
+        {"colour",
+         {{"file", "colour.png"},
+          {"channels", "RGBA"},
+          {"alpha", "premultiplied"},
+          {"encoding", "colour premultiplied in linear light, RGB sRGB-encoded (import as sRGB), "
+                       "alpha linear; blend one, one-minus-source-alpha"},
+          {"tone_map", s.post.toneMap == scene::ToneMap::Aces ? "aces" : "none"},
+          {"exposure", s.post.exposure}}},
+        {"motion_vectors", motionJson},
+        {"character", options.holdout ? "holdout" : "hidden"},
+        {"camera",
+         {{"mode", options.frameOnEffect ? "effect" : "scene"},
+          {"crop", {crop.x, crop.y, crop.z, crop.w}},
+          {"eye", {camera.eye.x, camera.eye.y, camera.eye.z}},
+          {"view", matrixJson(camera.view)},
+          {"projection", matrixJson(camera.projection)}}},
+        {"evaluation", evaluation}};
+    const std::string metaFile = options.out + "/flipbook.json";
+    std::ofstream metaOut(metaFile);
+    metaOut << meta.dump(1) << "\n";
+    if (!metaOut) {
+        printError("cannot write " + metaFile);
+        return kExitFailure;
+    }
+    std::printf("baked %u cells of %ux%u (scene frames %u to %u) into %s (%ux%u)%s and %s\n", cells,
+                w, h, options.first, options.last, colourFile.c_str(), layout.sheetWidth(),
+                layout.sheetHeight(), motionNote.c_str(), metaFile.c_str());
+    return finishValidation(ctx, kExitOk);
+}
+
+} // namespace mfx::app
