@@ -11,6 +11,7 @@
 #include "render/frame_renderer.h"
 #include "render/image_output.h"
 #include "render/optical_flow.h"
+#include "render/six_way.h"
 #include "sim/scene_simulation.h"
 
 #include <algorithm>
@@ -36,6 +37,7 @@ struct BakeOptions {
     bool frameOnEffect = true;
     float margin = 0.06f;
     MotionSource motion = MotionSource::Flow;
+    bool sixWay = false;
     uint32_t evaluate = 0;
     std::string out;
 };
@@ -81,6 +83,7 @@ Status readLayoutOptions(const cli::ParsedArgs& parsed, BakeOptions& options) {
         options.evaluate = rate.value();
     }
     options.holdout = parsed.has("holdout");
+    options.sixWay = parsed.has("six-way");
     options.out = parsed.value("out", "bake");
     return Ok{};
 }
@@ -115,6 +118,10 @@ Status readSceneOptions(const cli::ParsedArgs& parsed, const scene::Scene& scene
             options.effects.push_back(e);
     }
     if (options.effects.empty()) return Error{"the scene has no effects to bake"};
+    if (options.sixWay &&
+        std::none_of(options.effects.begin(), options.effects.end(),
+                     [&](size_t e) { return scene.effects[e].is<scene::SmokeSpec>(); }))
+        return Error{"--six-way lights smoke, and none of the effects baked is smoke"};
     options.first = 0;
     options.last = frameCount - 1;
     if (parsed.has("range")) {
@@ -266,6 +273,150 @@ nlohmann::json evaluateRate(const std::vector<render::CellImage>& cells, uint32_
                       "pixels either kept cell or the baked one covers"}};
 }
 
+// One captured frame's six-way maps (render/six_way.h) and, when evaluating, the smoke lit directly
+// from the diagonal directions of kDiagonals (premultiplied luminance in channel 0, opacity in 3).
+struct SixWayFrame {
+    render::SixWayCell maps;
+    std::vector<render::CellImage> direct;
+};
+
+// Directions toward the light that are none of the six axes, as (right, up, front) in the bake
+// camera's frame, for the six-way blend's check, with their names.
+struct Diagonal {
+    glm::vec3 frame;
+    const char* name;
+};
+constexpr Diagonal kDiagonals[] = {{{1.0f, 1.0f, 1.0f}, "upper right, in front"},
+                                   {{-1.0f, 0.5f, -1.0f}, "upper left, behind"},
+                                   {{0.7f, -1.0f, -0.4f}, "lower right, behind"}};
+
+glm::vec3 diagonalDirection(const render::SceneCamera& camera, const Diagonal& d) {
+    const std::array<glm::vec3, 6> axes = render::sixWayDirections(camera);
+    return glm::normalize(d.frame.x * axes[0] + d.frame.y * axes[1] + d.frame.z * axes[5]);
+}
+
+// The layer's smoke drawn again, lit by one white light from `towardLight` (intensity 1, no glow),
+// or with `emission` by its glow alone; its premultiplied luminance into `out`'s channel
+// `channel`, and with `alpha`, its opacity into channel 3.
+void captureLit(const gpu::Context& ctx, render::BakeRenderer& renderer,
+                const sim::SceneSimulation& sim, glm::vec3 towardLight, bool emission,
+                render::CellImage& out, int channel, bool alpha) {
+    render::SmokeRelight relight;
+    relight.key.direction = -towardLight;
+    relight.key.colour = glm::vec3(1.0f);
+    relight.key.intensity = emission ? 0.0f : 1.0f;
+    relight.glowScale = emission ? 1.0f : 0.0f;
+    gpu::submitOneShot(ctx, [&](VkCommandBuffer cmd) { renderer.recordSmoke(cmd, sim, relight); });
+    const std::vector<float> layer = render::readLinearColor(ctx, renderer.layer());
+    for (size_t p = 0; p < size_t(out.width) * out.height; ++p) {
+        out.rgba[p * 4 + size_t(channel)] = render::luminance(&layer[p * 4]);
+        if (alpha) out.rgba[p * 4 + 3] = layer[p * 4 + 3];
+    }
+}
+
+SixWayFrame captureSixWay(const gpu::Context& ctx, render::BakeRenderer& renderer,
+                          const sim::SceneSimulation& sim, bool evaluate) {
+    const uint32_t w = renderer.layer().width, h = renderer.layer().height;
+    SixWayFrame frame{{render::CellImage(w, h), render::CellImage(w, h)}, {}};
+    const std::array<glm::vec3, 6> axes = render::sixWayDirections(renderer.camera());
+    for (int i = 0; i < 6; ++i)
+        captureLit(ctx, renderer, sim, axes[size_t(i)], false, i < 3 ? frame.maps.a : frame.maps.b,
+                   i % 3, i == 0);
+    captureLit(ctx, renderer, sim, axes[0], true, frame.maps.b, 3, false);
+    if (evaluate)
+        for (const Diagonal& d : kDiagonals) {
+            frame.direct.emplace_back(w, h);
+            captureLit(ctx, renderer, sim, diagonalDirection(renderer.camera(), d), false,
+                       frame.direct.back(), 0, true);
+        }
+    return frame;
+}
+
+// The six-way sheets (cross-faded into a loop as the colour is) and their metadata; with
+// `evaluation`, the blend checked against the smoke lit directly from kDiagonals, on the cells
+// that are not cross-faded (the direct pictures are of one frame each).
+Result<nlohmann::json> writeSixWay(std::vector<SixWayFrame> frames, const BakeOptions& options,
+                                   const render::SceneCamera& camera, nlohmann::json& evaluation) {
+    const render::FlipbookLayout& layout = options.layout;
+    std::vector<render::CellImage> a, b;
+    for (SixWayFrame& f : frames) {
+        a.push_back(std::move(f.maps.a));
+        b.push_back(std::move(f.maps.b));
+    }
+    a = render::crossFadeLoop(std::move(a), options.loop);
+    b = render::crossFadeLoop(std::move(b), options.loop);
+    std::vector<render::SixWayCell> cells;
+    for (size_t i = 0; i < a.size(); ++i)
+        cells.push_back({std::move(a[i]), std::move(b[i])});
+    const render::SixWayScales scales = render::sixWayScales(cells);
+    const size_t sheetBytes = size_t(layout.sheetWidth()) * layout.sheetHeight() * 4;
+    std::array<std::vector<uint8_t>, 2> sheets{std::vector<uint8_t>(sheetBytes, 0),
+                                               std::vector<uint8_t>(sheetBytes, 0)};
+    std::vector<std::array<std::vector<uint8_t>, 2>> stored;
+    for (uint32_t i = 0; i < layout.cells(); ++i) {
+        stored.push_back(render::encodeSixWay(cells[i], scales));
+        for (int s = 0; s < 2; ++s)
+            render::placeCell(sheets[size_t(s)], layout, i, stored.back()[size_t(s)]);
+    }
+    const char* files[2] = {"six_way_right_top_back.png", "six_way_left_bottom_front.png"};
+    for (int s = 0; s < 2; ++s)
+        if (Status written = render::writePng(options.out + "/" + files[s], layout.sheetWidth(),
+                                              layout.sheetHeight(), sheets[size_t(s)]);
+            !written)
+            return written.error();
+
+    const std::array<glm::vec3, 6> axes = render::sixWayDirections(camera);
+    auto vec = [](glm::vec3 v) { return nlohmann::json{v.x, v.y, v.z}; };
+    nlohmann::json meta = {
+        {"files", {files[0], files[1]}},
+        {"channels", {"right, top, back, opacity", "left, bottom, front, emission"}},
+        {"light_scale", scales.light},
+        {"emission_scale", scales.emission},
+        {"encoding", "linear 8-bit (import without sRGB); maps straight, not premultiplied: "
+                     "light = byte / 255 * light_scale, emission = byte / 255 * emission_scale; "
+                     "opacity linear"},
+        {"axes_world", {{"right", vec(axes[0])}, {"top", vec(axes[1])}, {"back", vec(axes[2])}}},
+        {"lit_by", "a white directional light of intensity 1 from each axis, the glow left out; "
+                   "emission: the glow alone"},
+        {"blend", "light = sum over axes a of max(0, dot(l, a))^2 * map_a, l the unit direction "
+                  "toward the light"}};
+
+    if (!frames.empty() && !frames.front().direct.empty()) {
+        nlohmann::json checks = nlohmann::json::array();
+        const uint32_t w = layout.cellWidth, h = layout.cellHeight;
+        for (size_t d = 0; d < std::size(kDiagonals); ++d) {
+            const glm::vec3 toward = diagonalDirection(camera, kDiagonals[d]);
+            const std::array<float, 6> weights = render::sixWayWeights(camera, toward);
+            double difference = 0.0, light = 0.0;
+            for (uint32_t i = 0; i + options.loop < layout.cells(); ++i) {
+                const render::CellImage relit =
+                    render::relightSixWay(stored[i][0], stored[i][1], w, h, scales, weights);
+                const render::CellImage& direct = frames[options.loop + i].direct[d];
+                for (size_t p = 0; p < size_t(w) * h; ++p) {
+                    if (!(direct.rgba[p * 4 + 3] > 1.0f / 255.0f) && relit.rgba[p * 4 + 3] == 0.0f)
+                        continue;
+                    difference += std::abs(double(relit.rgba[p * 4]) - double(direct.rgba[p * 4]));
+                    light += double(direct.rgba[p * 4]);
+                }
+            }
+            const double relative = light > 0.0 ? difference / light : 0.0;
+            std::printf("six-way blend against the smoke lit directly from the %s (%.2f, %.2f, "
+                        "%.2f): relative mean difference %.4f\n",
+                        kDiagonals[d].name, double(toward.x), double(toward.y), double(toward.z),
+                        relative);
+            checks.push_back({{"light", kDiagonals[d].name},
+                              {"toward_light_world", vec(toward)},
+                              {"relative_difference", relative}});
+        }
+        if (evaluation.is_null()) evaluation = nlohmann::json::object();
+        evaluation["six_way"] = {
+            {"measure", "sum over covered pixels of |blend - direct| / sum of direct, the "
+                        "premultiplied luminance, over the cells not cross-faded"},
+            {"lights", checks}};
+    }
+    return meta;
+}
+
 } // namespace
 
 int runBake(const cli::ParsedArgs& parsed) {
@@ -328,6 +479,7 @@ int runBake(const cli::ParsedArgs& parsed) {
     renderer->setCamera(camera);
     const uint32_t w = options.layout.cellWidth, h = options.layout.cellHeight;
     std::vector<render::CellImage> frames(capture.value().size());
+    std::vector<SixWayFrame> sixWay;
     playCaptured(
         ctx, *sim, *renderer, capture.value(), "baking", [&](size_t k, std::vector<float> layer) {
             render::CellImage& cell = frames[k];
@@ -335,6 +487,8 @@ int runBake(const cli::ParsedArgs& parsed) {
             cell.height = h;
             cell.rgba = std::move(layer);
             render::toneMapCell(cell, s.post.exposure, s.post.toneMap == scene::ToneMap::Aces);
+            if (options.sixWay)
+                sixWay.push_back(captureSixWay(ctx, *renderer, *sim, options.evaluate != 0));
         });
     frames = render::crossFadeLoop(std::move(frames), options.loop);
 
@@ -404,6 +558,17 @@ int runBake(const cli::ParsedArgs& parsed) {
     nlohmann::json evaluation = nullptr;
     if (options.evaluate) evaluation = evaluateRate(stored, options.evaluate);
 
+    nlohmann::json sixWayJson = nullptr;
+    if (options.sixWay) {
+        Result<nlohmann::json> written =
+            writeSixWay(std::move(sixWay), options, renderer->camera(), evaluation);
+        if (!written) {
+            printError(written.error().message);
+            return kExitFailure;
+        }
+        sixWayJson = std::move(written).value();
+    }
+
     std::vector<uint32_t> cellFrames;
     for (uint32_t i = 0; i < cells; ++i)
         cellFrames.push_back(capture.value()[options.loop + i]);
@@ -438,6 +603,7 @@ int runBake(const cli::ParsedArgs& parsed) {
           {"tone_map", s.post.toneMap == scene::ToneMap::Aces ? "aces" : "none"},
           {"exposure", s.post.exposure}}},
         {"motion_vectors", motionJson},
+        {"six_way", sixWayJson},
         {"character", options.holdout ? "holdout" : "hidden"},
         {"camera",
          {{"mode", options.frameOnEffect ? "effect" : "scene"},

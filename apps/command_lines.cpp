@@ -108,9 +108,13 @@ CommandLine bakeCommandLine() {
         .option("loop", "N", "cross-fade the last N cells into the first, for a seamless loop")
         .option("motion", "flow|none",
                 "motion vectors measured as optical flow between the cells (default), or none")
+        .option("six-way", "",
+                "also bake the smoke's six-way light maps (lit from right, top, back, left, "
+                "bottom, front), packed in two sheets as Unity's six-way smoke takes them")
         .option("evaluate", "R",
-                "also measure the sheets played at 1/R of their rate: the mean error of the "
-                "motion-vector blend and of a cross-fade against the cells between");
+                "also measure the sheets played at 1/R of their rate (the mean error of the "
+                "motion-vector blend and of a cross-fade against the cells between) and, with "
+                "--six-way, the six-way blend against the smoke lit from three diagonal lights");
     return command;
 }
 

@@ -26,6 +26,10 @@ BakeRenderer::BakeRenderer(const gpu::Context& ctx, const sim::SceneSimulation& 
       effects_(ctx, simulation, layer_.samples),
       camera_(makeCamera(simulation.scene().camera, float(width) / float(height))) {
     if (holdout) holdout_.emplace(ctx, simulation.character(), simulation.scene(), layer_.samples);
+    // One ray a pixel: a cell is small, and what it holds is all there is of the effect.
+    SmokeLook look;
+    look.resolution = SmokeResolution::Full;
+    effects_.setSmokeLook(look);
 }
 
 void BakeRenderer::record(VkCommandBuffer cmd, sim::SceneSimulation& simulation, uint32_t frame) {
@@ -33,7 +37,20 @@ void BakeRenderer::record(VkCommandBuffer cmd, sim::SceneSimulation& simulation,
     effects_.setCamera(camera_);
     effects_.advance(cmd, simulation, frame);
     if (holdout_) holdout_->skin(cmd, simulation.framePose(), simulation.placement());
-    beginRendering(cmd, layer_, glm::vec4(0.0f), effects_.fadesAgainstDepth());
+    beginLayer(cmd, effects_.fadesAgainstDepth());
+    effects_.drawEffects(cmd, layer_, simulation, simulation.frameTime(frame));
+    effects_.drawSmoke(cmd, layer_, simulation);
+}
+
+void BakeRenderer::recordSmoke(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
+                               const SmokeRelight& relight) {
+    beginLayer(cmd, false);
+    endRendering(cmd);
+    effects_.drawSmoke(cmd, layer_, simulation, &relight);
+}
+
+void BakeRenderer::beginLayer(VkCommandBuffer cmd, bool resumable) {
+    beginRendering(cmd, layer_, glm::vec4(0.0f), resumable);
     if (holdout_) {
         holdout_->draw(cmd, camera_, false);
         // The character's colour cleared away again, its depth kept.
@@ -46,8 +63,6 @@ void BakeRenderer::record(VkCommandBuffer cmd, sim::SceneSimulation& simulation,
         rect.layerCount = 1;
         vkCmdClearAttachments(cmd, 1, &clear, 1, &rect);
     }
-    effects_.drawEffects(cmd, layer_, simulation, simulation.frameTime(frame));
-    effects_.drawSmoke(cmd, layer_, simulation);
 }
 
 } // namespace mfx::render

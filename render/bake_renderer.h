@@ -3,7 +3,8 @@
 // colour is premultiplied linear light and its alpha the effects' coverage. The character is left
 // out, or kept as a holdout: drawn into the layer's depth alone (its colour cleared away again),
 // so that it hides what is behind it and adds nothing of its own. The stage is always left out.
-// No bloom and no tone map: the bake applies the scene's tone curve to the layer itself.
+// No bloom and no tone map: the bake applies the scene's tone curve to the layer itself. The smoke
+// is marched at full resolution (one ray a pixel).
 #pragma once
 
 #include "render/character_pass.h"
@@ -37,10 +38,18 @@ public:
     // previous recording must have finished executing, and the simulation's frame been finished.
     void record(VkCommandBuffer cmd, sim::SceneSimulation& simulation, uint32_t frame);
 
+    // Records the smoke alone drawn again into the layer, cleared first, lit as `relight` says
+    // (after record() of the frame, whose submission has finished).
+    void recordSmoke(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
+                     const SmokeRelight& relight);
+
     // The layer: colour (kSceneColorFormat, premultiplied linear) and depth.
     RenderTarget& layer() { return layer_; }
 
 private:
+    // Begins the layer's rendering (cleared) and draws the holdout's depth.
+    void beginLayer(VkCommandBuffer cmd, bool resumable);
+
     RenderTarget layer_;
     EffectsRenderer effects_;
     std::optional<CharacterPass> holdout_;

@@ -44,8 +44,9 @@ uint32_t EffectsRenderer::drawEffects(VkCommandBuffer cmd, RenderTarget& target,
 }
 
 void EffectsRenderer::drawSmoke(VkCommandBuffer cmd, RenderTarget& target,
-                                const sim::SceneSimulation& simulation) {
-    smokePass_.draw(cmd, target, simulation, camera_, shown_, smokeLook_);
+                                const sim::SceneSimulation& simulation,
+                                const SmokeRelight* relight) {
+    smokePass_.draw(cmd, target, simulation, camera_, shown_, smokeLook_, relight);
 }
 
 } // namespace mfx::render

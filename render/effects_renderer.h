@@ -39,9 +39,10 @@ public:
     // time `time` and ends the rendering. Returns the number of draws.
     uint32_t drawEffects(VkCommandBuffer cmd, RenderTarget& target,
                          const sim::SceneSimulation& simulation, float time);
-    // After drawEffects: the smoke grids composited over the target's colour.
+    // After drawEffects: the smoke grids composited over the target's colour (with `relight`, lit
+    // as it says).
     void drawSmoke(VkCommandBuffer cmd, RenderTarget& target,
-                   const sim::SceneSimulation& simulation);
+                   const sim::SceneSimulation& simulation, const SmokeRelight* relight = nullptr);
 
     // How the smoke is marched (render/smoke_pass.h; the defaults unless set).
     void setSmokeLook(const SmokeLook& look) { smokeLook_ = look; }

@@ -257,7 +257,8 @@ void SmokePass::marchLight(VkCommandBuffer cmd, size_t i, const Volume& volume,
 
 uint32_t SmokePass::draw(VkCommandBuffer cmd, RenderTarget& target,
                          const sim::SceneSimulation& simulation, const SceneCamera& camera,
-                         std::span<const uint8_t> shown, const SmokeLook& look) {
+                         std::span<const uint8_t> shown, const SmokeLook& look,
+                         const SmokeRelight* relight) {
     std::vector<Volume> volumes;
     for (const sim::SceneSimulation::SmokeGrid& grid : simulation.smokeGrids()) {
         bool visible = shown.empty();
@@ -272,8 +273,13 @@ uint32_t SmokePass::draw(VkCommandBuffer cmd, RenderTarget& target,
                            smoke ? smoke->shading : scene::SmokeShading{}});
     }
     if (volumes.empty()) return 0;
-    const scene::LightSpec key =
+    scene::LightSpec key =
         simulation.scene().lights.empty() ? scene::LightSpec{} : simulation.scene().lights.front();
+    if (relight) {
+        key = relight->key;
+        for (Volume& v : volumes)
+            v.shading.glow *= relight->glowScale;
+    }
     draw(cmd, target, volumes, camera, key, look);
     return uint32_t(volumes.size());
 }

@@ -66,6 +66,13 @@ struct SmokeLook {
     uint32_t maxLightCells = 128;
 };
 
+// The smoke lit otherwise than by the scene (a flipbook's six-way light maps, render/
+// bake_renderer.h): this key light in place of the scene's first, and the effects' glow scaled.
+struct SmokeRelight {
+    scene::LightSpec key;
+    float glowScale = 1.0f;
+};
+
 class SmokePass {
 public:
     explicit SmokePass(const gpu::Context& ctx);
@@ -74,13 +81,13 @@ public:
     // (outside any rendering; after the scene's rendering has ended, so its depth is resolved).
     // With `shown` non-empty, a grid is drawn only while one of its effects' entries (by index in
     // scene.effects) is non-zero. Returns the number of grids drawn (a grid without pigment counts,
-    // though nothing of it reaches the picture).
+    // though nothing of it reaches the picture). With `relight`, lit as it says.
     //
     // The pass keeps one fluid buffer for the target's size and the look's resolution; a draw with
     // another size or resolution replaces it, so no earlier draw may still be executing then.
     uint32_t draw(VkCommandBuffer cmd, RenderTarget& target, const sim::SceneSimulation& simulation,
                   const SceneCamera& camera, std::span<const uint8_t> shown = {},
-                  const SmokeLook& look = {});
+                  const SmokeLook& look = {}, const SmokeRelight* relight = nullptr);
 
     // One pigment volume (fluid/grid_solver.h: a solver's image, or the sparse domain's brick
     // atlas over its virtual domain) of `shape` whose low corner is at `origin`, shaded as

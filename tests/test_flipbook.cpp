@@ -3,6 +3,7 @@
 // pictures whose motion is known, and the player's blend against a plain cross-fade.
 #include "render/flipbook.h"
 #include "render/optical_flow.h"
+#include "render/six_way.h"
 #include "tests/flipbook_test_util.h"
 
 #include <gtest/gtest.h>
@@ -189,6 +190,60 @@ TEST(FlipbookBlend, CoveredErrorIgnoresEmptyPixels) {
     EXPECT_DOUBLE_EQ(coveredMeanError(a, b, cover), 0.25);
     const CellImage* none[] = {&b};
     EXPECT_DOUBLE_EQ(coveredMeanError(b, b, none), 0.0);
+}
+
+TEST(SixWay, AxesAreTheCamerasFrameAndWeightsSumToOne) {
+    scene::CameraSpec spec;
+    spec.position = {2.0f, 1.0f, 3.0f};
+    spec.target = {0.0f, 1.0f, 0.0f};
+    const SceneCamera camera = makeCamera(spec, 1.0f);
+    const std::array<glm::vec3, 6> axes = sixWayDirections(camera);
+    const glm::vec3 towardViewer = glm::normalize(spec.position - spec.target);
+    EXPECT_NEAR(glm::dot(axes[5], towardViewer), 1.0f, 1e-5f);  // front: the camera's side
+    EXPECT_NEAR(glm::dot(axes[2], towardViewer), -1.0f, 1e-5f); // back: the far side
+    EXPECT_NEAR(axes[1].y, 1.0f, 1e-5f);                        // top: up (a level camera)
+    EXPECT_NEAR(glm::dot(axes[0], glm::cross(axes[1], axes[5])), 1.0f, 1e-5f); // right-handed
+    for (size_t i = 0; i < 6; ++i) {
+        const std::array<float, 6> w = sixWayWeights(camera, axes[i] * 3.0f);
+        for (size_t j = 0; j < 6; ++j)
+            EXPECT_NEAR(w[j], i == j ? 1.0f : 0.0f, 1e-6f) << i << " " << j;
+    }
+    for (glm::vec3 l : {glm::vec3(1, 2, 3), glm::vec3(-0.3f, 0.1f, -2.0f), glm::vec3(0, -1, 1)}) {
+        const std::array<float, 6> w = sixWayWeights(camera, l);
+        float sum = 0.0f;
+        for (float v : w) {
+            EXPECT_GE(v, 0.0f);
+            sum += v;
+        }
+        EXPECT_NEAR(sum, 1.0f, 1e-5f);
+    }
+}
+
+TEST(SixWay, MapsAreStoredStraightOverTheirScales) {
+    SixWayCell cell{CellImage(2, 1), CellImage(2, 1)};
+    // Pixel 0 half covered, lit 0.5, 1.0, 0.25 (premultiplied) from right, top, back, 0.1 from
+    // the others, emission 0.2; pixel 1 empty.
+    float a[4] = {0.5f, 1.0f, 0.25f, 0.5f}, b[4] = {0.1f, 0.1f, 0.1f, 0.2f};
+    std::copy_n(a, 4, cell.a.at(0, 0));
+    std::copy_n(b, 4, cell.b.at(0, 0));
+    const SixWayScales scales = sixWayScales(std::span(&cell, 1));
+    EXPECT_FLOAT_EQ(scales.light, 2.0f);    // top: 1.0 / 0.5
+    EXPECT_FLOAT_EQ(scales.emission, 0.4f); // 0.2 / 0.5
+    const std::array<std::vector<uint8_t>, 2> stored = encodeSixWay(cell, scales);
+    EXPECT_EQ(stored[0][0], 128); // 1.0 straight over 2
+    EXPECT_EQ(stored[0][1], 255);
+    EXPECT_EQ(stored[0][2], 64);
+    EXPECT_EQ(stored[0][3], 128); // opacity
+    EXPECT_EQ(stored[1][0], 26);  // 0.2 straight over 2
+    EXPECT_EQ(stored[1][3], 255); // emission at its scale
+    EXPECT_EQ(stored[0][4 + 3], 0);
+    // Relit from the top alone: the top map again, premultiplied.
+    std::array<float, 6> top{};
+    top[1] = 1.0f;
+    const CellImage relit = relightSixWay(stored[0], stored[1], 2, 1, scales, top);
+    EXPECT_NEAR(relit.at(0, 0)[0], 1.0f, 2.0f / 255.0f);
+    EXPECT_NEAR(relit.at(0, 0)[3], 0.5f, 1.0f / 255.0f);
+    EXPECT_FLOAT_EQ(relit.at(1, 0)[0], 0.0f);
 }
 
 } // namespace
