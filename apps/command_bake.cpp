@@ -12,6 +12,7 @@
 #include "render/image_output.h"
 #include "render/optical_flow.h"
 #include "render/six_way.h"
+#include "render/smoke_motion.h"
 #include "sim/scene_simulation.h"
 
 #include <algorithm>
@@ -26,7 +27,7 @@ namespace mfx::app {
 
 namespace {
 
-enum class MotionSource { Flow, None };
+enum class MotionSource { Flow, Velocity, None };
 
 struct BakeOptions {
     render::FlipbookLayout layout;
@@ -69,9 +70,11 @@ Status readLayoutOptions(const cli::ParsedArgs& parsed, BakeOptions& options) {
         return Error{"--camera '" + camera + "' is not effect or scene"};
     options.frameOnEffect = camera == "effect";
     const std::string motion = parsed.value("motion", "flow");
-    if (motion != "flow" && motion != "none")
-        return Error{"--motion '" + motion + "' is not flow or none"};
-    options.motion = motion == "flow" ? MotionSource::Flow : MotionSource::None;
+    if (motion != "flow" && motion != "velocity" && motion != "none")
+        return Error{"--motion '" + motion + "' is not flow, velocity or none"};
+    options.motion = motion == "flow"       ? MotionSource::Flow
+                     : motion == "velocity" ? MotionSource::Velocity
+                                            : MotionSource::None;
     if (parsed.has("evaluate")) {
         const Result<uint32_t> rate =
             cli::parseUnsigned(parsed.value("evaluate"), 2, 64, "--evaluate");
@@ -86,6 +89,11 @@ Status readLayoutOptions(const cli::ParsedArgs& parsed, BakeOptions& options) {
     options.sixWay = parsed.has("six-way");
     options.out = parsed.value("out", "bake");
     return Ok{};
+}
+
+bool bakesSmoke(const scene::Scene& scene, const BakeOptions& options) {
+    return std::any_of(options.effects.begin(), options.effects.end(),
+                       [&](size_t e) { return scene.effects[e].is<scene::SmokeSpec>(); });
 }
 
 // The options that name parts of the scene: --effects and --range.
@@ -118,10 +126,11 @@ Status readSceneOptions(const cli::ParsedArgs& parsed, const scene::Scene& scene
             options.effects.push_back(e);
     }
     if (options.effects.empty()) return Error{"the scene has no effects to bake"};
-    if (options.sixWay &&
-        std::none_of(options.effects.begin(), options.effects.end(),
-                     [&](size_t e) { return scene.effects[e].is<scene::SmokeSpec>(); }))
+    if (options.sixWay && !bakesSmoke(scene, options))
         return Error{"--six-way lights smoke, and none of the effects baked is smoke"};
+    if (options.motion == MotionSource::Velocity && !bakesSmoke(scene, options))
+        return Error{"--motion velocity follows the smoke's velocity, and none of the effects "
+                     "baked is smoke"};
     options.first = 0;
     options.last = frameCount - 1;
     if (parsed.has("range")) {
@@ -229,48 +238,68 @@ nlohmann::json matrixJson(const glm::mat4& m) {
     return out;
 }
 
-// The sheets played at 1/rate of their cells' rate: every rate-th cell kept, its motion measured
-// toward the next kept one, the cells between them blended (cross-fade and motion vectors, the
-// motion through its 8-bit encoding) and compared with the cells baked there.
-nlohmann::json evaluateRate(const std::vector<render::CellImage>& cells, uint32_t rate) {
-    double crossFade = 0.0, motion = 0.0;
+// A field through the motion sheet's 8-bit encoding at its own scale (what a player gets).
+render::MotionField throughEncoding(const render::MotionField& field) {
+    const float scale = render::motionScale(std::span(&field, 1));
+    return render::decodeMotion(render::encodeMotion(field, scale), field.width, field.height,
+                                scale);
+}
+
+// The sheets played at 1/rate of their cells' rate: every rate-th cell kept, its motion toward the
+// next kept one measured by the optical flow and, with `velocity` (each cell's smoke motion over
+// `rate` cells' time), taken from the simulation, the cells between them blended (cross-fade and
+// motion vectors, the motion through its 8-bit encoding) and compared with the cells baked there.
+nlohmann::json evaluateRate(const std::vector<render::CellImage>& cells, uint32_t rate,
+                            const std::vector<render::MotionField>* velocity) {
+    double crossFade = 0.0, flow = 0.0, simulated = 0.0;
     uint32_t between = 0;
     Progress progress("evaluating", uint32_t((cells.size() - 1) / rate));
     for (size_t j = 0; (j + 1) * rate < cells.size(); ++j) {
         const render::CellImage& a = cells[j * rate];
         const render::CellImage& b = cells[(j + 1) * rate];
-        const render::MotionField flow = render::opticalFlow(a, b);
-        const float scale = render::motionScale(std::span(&flow, 1));
-        const render::MotionField stored =
-            render::decodeMotion(render::encodeMotion(flow, scale), a.width, a.height, scale);
+        const render::MotionField measured = throughEncoding(render::opticalFlow(a, b));
+        render::MotionField projected;
+        if (velocity) projected = throughEncoding((*velocity)[j * rate]);
         for (uint32_t i = 1; i < rate; ++i) {
             const render::CellImage& truth = cells[j * rate + i];
             const float t = float(i) / float(rate);
             const render::CellImage* cover[] = {&a, &b, &truth};
             crossFade +=
                 render::coveredMeanError(render::blendCells(a, b, nullptr, t), truth, cover);
-            motion += render::coveredMeanError(render::blendCells(a, b, &stored, t), truth, cover);
+            flow += render::coveredMeanError(render::blendCells(a, b, &measured, t), truth, cover);
+            if (velocity)
+                simulated +=
+                    render::coveredMeanError(render::blendCells(a, b, &projected, t), truth, cover);
             ++between;
         }
         progress.update(uint32_t(j + 1));
     }
     progress.finish();
-    crossFade /= std::max(between, 1u);
-    motion /= std::max(between, 1u);
+    const double n = std::max(between, 1u);
+    crossFade /= n;
+    flow /= n;
+    simulated /= n;
+    auto ratio = [&](double e) { return crossFade > 0.0 ? e / crossFade : 1.0; };
     std::printf("played at 1/%u of the baked rate (every %u%s cell): mean error over %u in-between "
-                "cells (covered pixels, channels in [0, 1]): cross-fade %.5f, motion-vector blend "
-                "%.5f (%.2fx)\n",
+                "cells (covered pixels, channels in [0, 1]): cross-fade %.5f, motion vectors by "
+                "optical flow %.5f (%.2fx)",
                 rate, rate,
                 rate == 2   ? "nd"
                 : rate == 3 ? "rd"
                             : "th",
-                between, crossFade, motion, crossFade > 0.0 ? motion / crossFade : 1.0);
-    return {{"rate", rate},
-            {"in_between_cells", between},
-            {"cross_fade_error", crossFade},
-            {"motion_vector_error", motion},
-            {"error", "mean absolute difference of the 8-bit sheet's values over 255, over the "
-                      "pixels either kept cell or the baked one covers"}};
+                between, crossFade, flow, ratio(flow));
+    if (velocity)
+        std::printf(", by the smoke's velocity %.5f (%.2fx)", simulated, ratio(simulated));
+    std::printf("\n");
+    nlohmann::json out = {{"rate", rate},
+                          {"in_between_cells", between},
+                          {"cross_fade_error", crossFade},
+                          {"flow_error", flow},
+                          {"error", "mean absolute difference of the 8-bit sheet's values over "
+                                    "255, over the pixels either kept cell or the baked one "
+                                    "covers"}};
+    if (velocity) out["velocity_error"] = simulated;
+    return out;
 }
 
 // One captured frame's six-way maps (render/six_way.h) and, when evaluating, the smoke lit directly
@@ -480,6 +509,55 @@ int runBake(const cli::ParsedArgs& parsed) {
     const uint32_t w = options.layout.cellWidth, h = options.layout.cellHeight;
     std::vector<render::CellImage> frames(capture.value().size());
     std::vector<SixWayFrame> sixWay;
+
+    // The smoke's velocity carried to the screen: for --motion velocity (toward the next cell),
+    // and for --evaluate's comparison (over `evaluate` cells' time), where the smoke is baked on
+    // dense grids (a sparse domain's whole fields would be read back every frame).
+    std::vector<size_t> velocityGrids;
+    bool sparseSmoke = false;
+    for (size_t g = 0; g < sim->smokeGrids().size(); ++g) {
+        const sim::SceneSimulation::SmokeGrid& grid = sim->smokeGrids()[g];
+        const bool baked = std::any_of(grid.effects.begin(), grid.effects.end(), [&](size_t e) {
+            const size_t index = sim->effectIndex(sim->trajectories()[e]);
+            return std::find(options.effects.begin(), options.effects.end(), index) !=
+                   options.effects.end();
+        });
+        if (!baked) continue;
+        velocityGrids.push_back(g);
+        sparseSmoke = sparseSmoke || grid.grid.sparse();
+    }
+    if (options.motion == MotionSource::Velocity && sparseSmoke) {
+        printError("--motion velocity reads the smoke's fields back every frame, which a sparse "
+                   "domain's are too large for; use --motion flow");
+        return kExitUsage;
+    }
+    const bool velocityWanted = options.motion == MotionSource::Velocity ||
+                                (options.evaluate && !velocityGrids.empty() && !sparseSmoke);
+    std::vector<render::MotionField> velocityNext(velocityWanted ? frames.size() : 0),
+        velocityRate(velocityWanted && options.evaluate ? frames.size() : 0);
+    auto captureVelocity = [&](size_t k) {
+        std::vector<fluid::FieldState> states;
+        for (size_t g : velocityGrids)
+            states.push_back(sim->smokeGrids()[g].grid.state());
+        std::vector<render::SmokeFields> fields;
+        for (size_t i = 0; i < states.size(); ++i)
+            fields.push_back({&states[i], sim->smokeGrids()[velocityGrids[i]].grid.origin()});
+        // Seconds from this picture to the one `steps` pictures on (past the last, the spacing
+        // before it, continued).
+        const std::vector<uint32_t>& at = capture.value();
+        auto seconds = [&](size_t steps) {
+            const size_t later = std::min(k + steps, at.size() - 1);
+            double span = double(at[later]) - double(at[k]);
+            if (later - k < steps && k > 0)
+                span += double(steps - (later - k)) * (double(at[k]) - double(at[k - 1]));
+            return float(std::max(span, 1.0) / double(s.output.fps));
+        };
+        const float density = render::SmokeLook{}.densityScale;
+        velocityNext[k] = render::projectedSmokeMotion(fields, camera, w, h, seconds(1), density);
+        if (options.evaluate)
+            velocityRate[k] = render::projectedSmokeMotion(fields, camera, w, h,
+                                                           seconds(options.evaluate), density);
+    };
     playCaptured(
         ctx, *sim, *renderer, capture.value(), "baking", [&](size_t k, std::vector<float> layer) {
             render::CellImage& cell = frames[k];
@@ -489,6 +567,7 @@ int runBake(const cli::ParsedArgs& parsed) {
             render::toneMapCell(cell, s.post.exposure, s.post.toneMap == scene::ToneMap::Aces);
             if (options.sixWay)
                 sixWay.push_back(captureSixWay(ctx, *renderer, *sim, options.evaluate != 0));
+            if (velocityWanted) captureVelocity(k);
         });
     frames = render::crossFadeLoop(std::move(frames), options.loop);
 
@@ -517,18 +596,23 @@ int runBake(const cli::ParsedArgs& parsed) {
 
     nlohmann::json motionJson = nullptr;
     std::string motionNote;
-    if (options.motion == MotionSource::Flow) {
+    if (options.motion != MotionSource::None) {
+        const bool flow = options.motion == MotionSource::Flow;
         std::vector<render::MotionField> fields(cells);
-        Progress progress("motion vectors", cells);
-        for (uint32_t i = 0; i < cells; ++i) {
-            const bool last = i + 1 == cells;
-            if (!last || options.loop)
-                fields[i] = render::opticalFlow(stored[i], stored[last ? 0 : i + 1]);
-            else
-                fields[i] = i > 0 ? fields[i - 1] : render::MotionField(w, h);
-            progress.update(i + 1);
+        if (flow) {
+            Progress progress("motion vectors", cells);
+            for (uint32_t i = 0; i < cells; ++i) {
+                const bool last = i + 1 == cells;
+                if (!last || options.loop)
+                    fields[i] = render::opticalFlow(stored[i], stored[last ? 0 : i + 1]);
+                else
+                    fields[i] = i > 0 ? fields[i - 1] : render::MotionField(w, h);
+                progress.update(i + 1);
+            }
+            progress.finish();
+        } else {
+            fields = render::crossFadeLoop(velocityNext, options.loop);
         }
-        progress.finish();
         const float scale = render::motionScale(fields);
         std::vector<uint8_t> motionSheet(colourSheet.size(), 0);
         for (uint32_t i = 0; i < cells; ++i)
@@ -543,20 +627,30 @@ int runBake(const cli::ParsedArgs& parsed) {
         motionNote = ", " + motionFile;
         motionJson = {
             {"file", "motion.png"},
-            {"method", "flow"},
-            {"measured", "optical flow between consecutive cells of the colour sheet (Horn and "
-                         "Schunck, coarse to fine)"},
+            {"method", flow ? "flow" : "velocity"},
+            {"measured", flow ? "optical flow between consecutive cells of the colour sheet (Horn "
+                                "and Schunck, coarse to fine)"
+                              : "the smoke's simulated velocity carried to the screen over the "
+                                "time to the next cell, weighted along each ray by what each "
+                                "sample adds to the pixel; 0 where no smoke is"},
             {"encoding", "rg = 0.5 + 0.5 * m / scale, b = 0, a = 1; m: the displacement in the "
                          "cell's uv (u right, v down, 1 = a cell's width or height) taking a "
                          "pixel of this cell to its content in the next cell"},
             {"scale", scale},
             {"v_axis", "down"},
-            {"last_cell", options.loop ? "toward cell 0" : "the cell before's motion"},
+            {"last_cell", options.loop ? "toward cell 0"
+                          : flow       ? "the cell before's motion"
+                                       : "its own velocity"},
             {"blend", "out(uv) = (1 - t) A(uv - t m(uv)) + t B(uv + (1 - t) m(uv)), m from A"}};
     }
 
     nlohmann::json evaluation = nullptr;
-    if (options.evaluate) evaluation = evaluateRate(stored, options.evaluate);
+    if (options.evaluate) {
+        std::vector<render::MotionField> velocity;
+        for (size_t i = 0; velocityWanted && i < cells; ++i)
+            velocity.push_back(std::move(velocityRate[options.loop + i]));
+        evaluation = evaluateRate(stored, options.evaluate, velocityWanted ? &velocity : nullptr);
+    }
 
     nlohmann::json sixWayJson = nullptr;
     if (options.sixWay) {

@@ -73,21 +73,37 @@ Result<std::vector<uint32_t>> sampleFrames(uint32_t first, uint32_t last, uint32
     return frames;
 }
 
-std::vector<CellImage> crossFadeLoop(std::vector<CellImage> frames, uint32_t overlap) {
+namespace {
+
+// crossFadeLoop over pictures or fields: `values` picks the numbers of one.
+template <class Picture, class Values>
+std::vector<Picture> crossFade(std::vector<Picture> frames, uint32_t overlap, Values values) {
     if (overlap == 0) return frames;
     const size_t cells = frames.size() - overlap;
-    std::vector<CellImage> out;
+    std::vector<Picture> out;
     out.reserve(cells);
     for (size_t i = 0; i < cells; ++i)
-        out.push_back(frames[overlap + i]);
+        out.push_back(std::move(frames[overlap + i]));
     for (uint32_t j = 0; j < overlap; ++j) {
-        CellImage& cell = out[cells - overlap + j];
-        const CellImage& start = frames[j];
+        std::vector<float>& cell = values(out[cells - overlap + j]);
+        const std::vector<float>& start = values(frames[j]);
         const float w = float(j + 1) / float(overlap + 1);
-        for (size_t k = 0; k < cell.rgba.size(); ++k)
-            cell.rgba[k] = (1.0f - w) * cell.rgba[k] + w * start.rgba[k];
+        for (size_t k = 0; k < cell.size(); ++k)
+            cell[k] = (1.0f - w) * cell[k] + w * start[k];
     }
     return out;
+}
+
+} // namespace
+
+std::vector<CellImage> crossFadeLoop(std::vector<CellImage> frames, uint32_t overlap) {
+    return crossFade(
+        std::move(frames), overlap, [](auto& p) -> auto& { return p.rgba; });
+}
+
+std::vector<MotionField> crossFadeLoop(std::vector<MotionField> fields, uint32_t overlap) {
+    return crossFade(
+        std::move(fields), overlap, [](auto& f) -> auto& { return f.xy; });
 }
 
 void sampleCell(const CellImage& image, float x, float y, float out[4]) {

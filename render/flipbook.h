@@ -77,6 +77,8 @@ struct MotionField {
     MotionField() = default;
     MotionField(uint32_t w, uint32_t h) : width(w), height(h), xy(size_t(w) * h * 2, 0.0f) {}
 };
+// The same cross-fade for the cells' motion fields.
+std::vector<MotionField> crossFadeLoop(std::vector<MotionField> fields, uint32_t overlap);
 
 // Bilinear sample of `image` at pixel coordinates (x, y) (pixel centres at +0.5), transparent
 // black outside the picture.

@@ -156,16 +156,18 @@ TEST(Bake, TheChosenEffectsAloneAndTheCharacterAsAHoldout) {
     EXPECT_EQ(meta["motion_vectors"], nullptr);
 }
 
-TEST(Bake, SixWayMapsRelightTheSmokeAsADirectRenderDoes) {
+TEST(Bake, SixWayMapsAndVelocityMotionOfTheSmoke) {
     // The smoke's six-way maps, and the check --evaluate makes: relit by the six-way blend from
     // three diagonal lights, against the smoke lit directly from each. The blend is exact for a
     // light along an axis and for the ambient share; between the axes the phase function and the
     // shadowing are not linear in the light's direction, so it differs: 8% to 14% measured
-    // (docs/flipbook.md), bounded here at 20%.
+    // (docs/flipbook.md), bounded here at 20%. The motion vectors here follow the smoke's
+    // simulated velocity (--motion velocity), and --evaluate compares them and the optical flow's
+    // with a cross-fade.
     const std::string dir = outputDir("six_way");
     const RunResult r = runMotionfx("bake " + kScene +
                                     " --effects \"foot smoke\" --grid 3x2 --cell 48 --six-way "
-                                    "--evaluate 2 --motion none --out " +
+                                    "--evaluate 2 --motion velocity --out " +
                                     dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
     for (const char* name : {"six_way_right_top_back.png", "six_way_left_bottom_front.png"}) {
@@ -184,6 +186,10 @@ TEST(Bake, SixWayMapsRelightTheSmokeAsADirectRenderDoes) {
     EXPECT_EQ(differing, 0u);
     const nlohmann::json meta = nlohmann::json::parse(readFile(dir + "/flipbook.json"));
     EXPECT_GT(meta["six_way"]["light_scale"].get<double>(), 0.0);
+    // The motion vectors from the smoke's velocity, and both ways compared with a cross-fade.
+    EXPECT_EQ(meta["motion_vectors"]["method"], "velocity");
+    EXPECT_GT(meta["evaluation"]["velocity_error"].get<double>(), 0.0);
+    EXPECT_GT(meta["evaluation"]["flow_error"].get<double>(), 0.0);
     const nlohmann::json& lights = meta["evaluation"]["six_way"]["lights"];
     ASSERT_EQ(lights.size(), 3u);
     for (const nlohmann::json& light : lights) {
@@ -216,6 +222,7 @@ TEST(Bake, BadOptionsAreRefusedInOneLine) {
         {"--evaluate 1", "--evaluate"},
         {"--grid 2x1 --evaluate 2", "--evaluate"},
         {"--effects \"kick lines\" --six-way", "--six-way"},
+        {"--effects \"kick lines\" --motion velocity", "--motion velocity"},
     };
     for (const auto& c : cases) {
         const RunResult r =

@@ -4,6 +4,7 @@
 #include "render/flipbook.h"
 #include "render/optical_flow.h"
 #include "render/six_way.h"
+#include "render/smoke_motion.h"
 #include "tests/flipbook_test_util.h"
 
 #include <gtest/gtest.h>
@@ -244,6 +245,34 @@ TEST(SixWay, MapsAreStoredStraightOverTheirScales) {
     EXPECT_NEAR(relit.at(0, 0)[0], 1.0f, 2.0f / 255.0f);
     EXPECT_NEAR(relit.at(0, 0)[3], 0.5f, 1.0f / 255.0f);
     EXPECT_FLOAT_EQ(relit.at(1, 0)[0], 0.0f);
+}
+
+TEST(SmokeMotion, TheVelocityCarriedToTheScreen) {
+    // A cube of smoke moving right and up at 1 m/s, seen from 5 m straight in front: over 0.1 s it
+    // moves 0.1 m, which is 0.1 / (5 tan 20 deg) of the picture's half height.
+    fluid::GridShape shape{16, 16, 16, 0.05f};
+    fluid::FieldState state = fluid::FieldState::zero(shape);
+    std::fill(state.velocityX.begin(), state.velocityX.end(), 1.0f);
+    std::fill(state.velocityY.begin(), state.velocityY.end(), 1.0f);
+    for (uint32_t k = 4; k < 12; ++k)
+        for (uint32_t j = 4; j < 12; ++j)
+            for (uint32_t i = 4; i < 12; ++i)
+                state.pigment[4 * shape.index(i, j, k) + 3] = 1.0f;
+    const SmokeFields grid{&state, glm::vec3(-0.4f)}; // centred on the origin
+    scene::CameraSpec spec;
+    spec.position = {0.0f, 0.0f, 5.0f};
+    spec.target = {0.0f, 0.0f, 0.0f};
+    spec.fovDegrees = 40.0f;
+    const SceneCamera camera = makeCamera(spec, 1.0f);
+    const MotionField field = projectedSmokeMotion(std::span(&grid, 1), camera, 64, 64, 0.1f, 8.0f);
+    const float expected = 0.1f / (5.0f * std::tan(glm::radians(20.0f))) * 32.0f;
+    // At the centre, where the front face of the cube is what the pixel shows (0.2 m nearer).
+    const float* centre = &field.xy[(32 * 64 + 32) * 2];
+    EXPECT_NEAR(centre[0], expected * 5.0f / 4.8f, 0.05f * expected);  // right: +x
+    EXPECT_NEAR(centre[1], -expected * 5.0f / 4.8f, 0.05f * expected); // up: -y (rows down)
+    // Outside the smoke, no motion.
+    EXPECT_EQ(field.xy[0], 0.0f);
+    EXPECT_EQ(field.xy[1], 0.0f);
 }
 
 } // namespace
