@@ -7,6 +7,7 @@
 
 #include "core/gpu/commands.h"
 #include "render/bake_renderer.h"
+#include "render/exr_output.h"
 #include "render/flipbook.h"
 #include "render/frame_renderer.h"
 #include "render/image_output.h"
@@ -39,6 +40,7 @@ struct BakeOptions {
     float margin = 0.06f;
     MotionSource motion = MotionSource::Flow;
     bool sixWay = false;
+    bool hdr = false;
     uint32_t evaluate = 0;
     std::string out;
 };
@@ -87,6 +89,7 @@ Status readLayoutOptions(const cli::ParsedArgs& parsed, BakeOptions& options) {
     }
     options.holdout = parsed.has("holdout");
     options.sixWay = parsed.has("six-way");
+    options.hdr = parsed.has("hdr");
     options.out = parsed.value("out", "bake");
     return Ok{};
 }
@@ -563,8 +566,7 @@ int runBake(const cli::ParsedArgs& parsed) {
             render::CellImage& cell = frames[k];
             cell.width = w;
             cell.height = h;
-            cell.rgba = std::move(layer);
-            render::toneMapCell(cell, s.post.exposure, s.post.toneMap == scene::ToneMap::Aces);
+            cell.rgba = std::move(layer); // linear: tone-mapped for the 8-bit sheet below
             if (options.sixWay)
                 sixWay.push_back(captureSixWay(ctx, *renderer, *sim, options.evaluate != 0));
             if (velocityWanted) captureVelocity(k);
@@ -575,12 +577,27 @@ int runBake(const cli::ParsedArgs& parsed) {
     const render::FlipbookLayout& layout = options.layout;
     std::vector<uint8_t> colourSheet(size_t(layout.sheetWidth()) * layout.sheetHeight() * 4, 0);
     std::vector<render::CellImage> stored;
+    std::vector<float> hdrSheet(options.hdr ? colourSheet.size() : 0, 0.0f);
     for (uint32_t i = 0; i < cells; ++i) {
+        if (options.hdr) {
+            const size_t x0 = size_t(i % layout.columns) * w, y0 = size_t(i / layout.columns) * h;
+            for (uint32_t y = 0; y < h; ++y)
+                std::copy_n(&frames[i].rgba[size_t(y) * w * 4], size_t(w) * 4,
+                            &hdrSheet[((y0 + y) * layout.sheetWidth() + x0) * 4]);
+        }
+        render::toneMapCell(frames[i], s.post.exposure, s.post.toneMap == scene::ToneMap::Aces);
         const std::vector<uint8_t> cell = render::encodeColour8(frames[i]);
         render::placeCell(colourSheet, layout, i, cell);
         stored.push_back(render::cellFromRgba8(cell, w, h));
     }
     frames.clear();
+    if (options.hdr)
+        if (Status written = render::writeExr(options.out + "/colour.exr", layout.sheetWidth(),
+                                              layout.sheetHeight(), hdrSheet);
+            !written) {
+            printError(written.error().message);
+            return kExitFailure;
+        }
     const std::string colourFile = options.out + "/colour.png";
     const float background[3] = {render::kClearColour.r, render::kClearColour.g,
                                  render::kClearColour.b};
@@ -695,7 +712,13 @@ int runBake(const cli::ParsedArgs& parsed) {
           {"encoding", "colour premultiplied in linear light, RGB sRGB-encoded (import as sRGB), "
                        "alpha linear; blend one, one-minus-source-alpha"},
           {"tone_map", s.post.toneMap == scene::ToneMap::Aces ? "aces" : "none"},
-          {"exposure", s.post.exposure}}},
+          {"exposure", s.post.exposure},
+          {"hdr", options.hdr ? nlohmann::json{{"file", "colour.exr"},
+                                               {"encoding", "OpenEXR, uncompressed, half-float R, "
+                                                            "G, B, A: linear light, "
+                                                            "premultiplied, before the exposure "
+                                                            "and tone map"}}
+                              : nlohmann::json(nullptr)}}},
         {"motion_vectors", motionJson},
         {"six_way", sixWayJson},
         {"character", options.holdout ? "holdout" : "hidden"},
@@ -713,9 +736,10 @@ int runBake(const cli::ParsedArgs& parsed) {
         printError("cannot write " + metaFile);
         return kExitFailure;
     }
-    std::printf("baked %u cells of %ux%u (scene frames %u to %u) into %s (%ux%u)%s and %s\n", cells,
-                w, h, options.first, options.last, colourFile.c_str(), layout.sheetWidth(),
-                layout.sheetHeight(), motionNote.c_str(), metaFile.c_str());
+    std::printf("baked %u cells of %ux%u (scene frames %u to %u) into %s (%ux%u)%s%s%s and %s\n",
+                cells, w, h, options.first, options.last, colourFile.c_str(), layout.sheetWidth(),
+                layout.sheetHeight(), options.hdr ? ", colour.exr" : "", motionNote.c_str(),
+                options.sixWay ? ", the six-way sheets" : "", metaFile.c_str());
     return finishValidation(ctx, kExitOk);
 }
 

@@ -108,6 +108,9 @@ CommandLine bakeCommandLine() {
         .option("loop", "N", "cross-fade the last N cells into the first, for a seamless loop")
         .option("motion", "flow|none",
                 "motion vectors measured as optical flow between the cells (default), or none")
+        .option("hdr", "",
+                "also write DIR/colour.exr: the colour in linear light, half floats, before the "
+                "tone map (for emissive effects)")
         .option("six-way", "",
                 "also bake the smoke's six-way light maps (lit from right, top, back, left, "
                 "bottom, front), packed in two sheets as Unity's six-way smoke takes them")

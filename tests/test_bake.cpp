@@ -1,5 +1,6 @@
 // `motionfx bake` through the program, as a user runs it: the sheets' sizes, channels and cell
-// layout (read by our PNG reader and by a third-party one, Debian's Pillow), the metadata, the
+// layout (read by our PNG reader and by third-party ones, Debian's Pillow and OpenEXR tools), the
+// metadata, the
 // effects chosen, the character as a holdout, and the options refused in one line.
 #include "render/flipbook.h"
 #include "render/image_output.h"
@@ -86,7 +87,7 @@ TEST(Bake, WritesTheSheetsAndTheirMetadata) {
 
 TEST(Bake, ADebianImageReaderOpensTheSheets) {
     const std::string dir = outputDir("reader");
-    const RunResult r = runMotionfx("bake " + kScene + " --grid 3x2 --cell 24 --out " + dir);
+    const RunResult r = runMotionfx("bake " + kScene + " --grid 3x2 --cell 24 --hdr --out " + dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
     // Pillow (python3-pil) reports each sheet's size and channels; the cell layout is checked
     // through it too: the sheet's pixel at cell 4's centre is the cell's own centre pixel.
@@ -118,6 +119,23 @@ TEST(Bake, ADebianImageReaderOpensTheSheets) {
     std::snprintf(expected, sizeof expected, "cell4 %d %d %d %d", sheet[centre], sheet[centre + 1],
                   sheet[centre + 2], sheet[centre + 3]);
     EXPECT_NE(out.find(expected), std::string::npos) << out << " wanted " << expected;
+
+    // The HDR sheet: OpenEXR's own tools (Debian's openexr) read its header, and all of its
+    // pixels when they write it again tiled.
+    const std::string exr = dir + "/colour.exr";
+    const std::string header = dir + "/exrheader.txt";
+    ASSERT_EQ(std::system(("exrheader \"" + exr + "\" >\"" + header + "\" 2>&1").c_str()), 0)
+        << readFile(header);
+    const std::string text = readFile(header);
+    EXPECT_NE(text.find("dataWindow (type box2i): (0 0) - (71 47)"), std::string::npos) << text;
+    for (const char* channel : {"A, 16-bit floating-point", "B, 16-bit floating-point",
+                                "G, 16-bit floating-point", "R, 16-bit floating-point"})
+        EXPECT_NE(text.find(channel), std::string::npos) << text;
+    EXPECT_EQ(std::system(("exrmaketiled \"" + exr + "\" \"" + dir + "/tiled.exr\" >\"" + header +
+                           "\" 2>&1")
+                              .c_str()),
+              0)
+        << readFile(header);
 }
 
 TEST(Bake, TheChosenEffectsAloneAndTheCharacterAsAHoldout) {

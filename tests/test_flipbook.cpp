@@ -1,6 +1,7 @@
 // Flipbooks without a GPU (render/flipbook.h, render/optical_flow.h): the layout's options, the
 // frames sampled into cells, the loop's cross-fade, the sheets' encodings, the optical flow on
 // pictures whose motion is known, and the player's blend against a plain cross-fade.
+#include "render/exr_output.h"
 #include "render/flipbook.h"
 #include "render/optical_flow.h"
 #include "render/six_way.h"
@@ -10,6 +11,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <glm/gtc/packing.hpp>
 
 namespace mfx::render {
 namespace {
@@ -273,6 +278,51 @@ TEST(SmokeMotion, TheVelocityCarriedToTheScreen) {
     // Outside the smoke, no motion.
     EXPECT_EQ(field.xy[0], 0.0f);
     EXPECT_EQ(field.xy[1], 0.0f);
+}
+
+TEST(ExrOutput, HalfChannelsInTheFileLayout) {
+    // 3 x 2 pixels, pixel (x, y) = (x, y, 10 + x, 0.5): read back where the layout puts them.
+    std::vector<float> rgba;
+    for (int y = 0; y < 2; ++y)
+        for (int x = 0; x < 3; ++x)
+            rgba.insert(rgba.end(), {float(x), float(y), 10.0f + float(x), 0.5f});
+    const std::string path = std::string(MFX_TEST_OUTPUT_DIR) + "/exr_layout.exr";
+    ASSERT_TRUE(writeExr(path, 3, 2, rgba));
+    std::ifstream in(path, std::ios::binary);
+    const std::vector<uint8_t> file((std::istreambuf_iterator<char>(in)),
+                                    std::istreambuf_iterator<char>());
+    auto u32 = [&](size_t at) {
+        uint32_t v;
+        std::memcpy(&v, &file[at], 4);
+        return v;
+    };
+    ASSERT_GT(file.size(), 8u);
+    EXPECT_EQ(u32(0), 20000630u);
+    EXPECT_EQ(u32(4), 2u);
+    // The offset table follows the header's closing 0; two lines of 8 + 3 * 4 * 2 bytes end the
+    // file.
+    const size_t lineBytes = 3 * 4 * 2;
+    const size_t table = file.size() - 2 * (8 + lineBytes) - 2 * 8;
+    EXPECT_EQ(file[table - 1], 0);
+    uint64_t offsets[2];
+    std::memcpy(offsets, &file[table], 16);
+    EXPECT_EQ(offsets[0], table + 16);
+    EXPECT_EQ(offsets[1], table + 16 + 8 + lineBytes);
+    // Line 1: y, byte count, then A, B, G, R of its three pixels.
+    const size_t line = size_t(offsets[1]);
+    EXPECT_EQ(u32(line), 1u);
+    EXPECT_EQ(u32(line + 4), lineBytes);
+    auto value = [&](int channel, int x) {
+        uint16_t h;
+        std::memcpy(&h, &file[line + 8 + size_t(channel) * 6 + size_t(x) * 2], 2);
+        return glm::unpackHalf1x16(h);
+    };
+    for (int x = 0; x < 3; ++x) {
+        EXPECT_EQ(value(0, x), 0.5f);             // A
+        EXPECT_EQ(value(1, x), 10.0f + float(x)); // B
+        EXPECT_EQ(value(2, x), 1.0f);             // G = y
+        EXPECT_EQ(value(3, x), float(x));         // R
+    }
 }
 
 } // namespace
