@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
+#include <iostream>
 
 namespace mfx::test {
 namespace {
@@ -215,6 +216,55 @@ TEST(Bake, SixWayMapsAndVelocityMotionOfTheSmoke) {
         EXPECT_GT(difference, 0.0) << light.dump();
         EXPECT_LT(difference, 0.2) << light.dump();
     }
+}
+
+TEST(Bake, GodotDrawsAFrameOfTheSheetAsTheCpuPlayerDoes) {
+    // Godot 3 (Debian's godot3-runner, its GLES3 renderer on Mesa's llvmpipe under Xvfb) loads a
+    // baked sheet and draws one frame of it, half way between cells 5 and 6, with
+    // examples/godot/flipbook_player.shader (examples/godot/check.gd); the frame matches
+    // render/flipbook.h's blendCells of the same sheets.
+    const std::string dir = outputDir("godot");
+    const RunResult r =
+        runMotionfx("bake " + kScene + " --grid 4x3 --cell 64 --loop 2 --out " + dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::string log = dir + "/godot.txt", picture = dir + "/godot.png";
+    const std::string command =
+        "FLIPBOOK=\"" + dir + "\" FLIPBOOK_POSITION=5.5 FLIPBOOK_OUT=\"" + picture +
+        "\" xvfb-run -a godot3-runner --audio-driver Dummy --path \"" +
+        std::string(MFX_SOURCE_DIR) + "/examples/godot\" -s check.gd >\"" + log + "\" 2>&1";
+    ASSERT_EQ(std::system(command.c_str()), 0) << readFile(log);
+    EXPECT_NE(readFile(log).find("godot: drew a 64x64 frame"), std::string::npos) << readFile(log);
+    const Result<render::RgbaImage> drawn = render::readPng(picture);
+    ASSERT_TRUE(drawn) << drawn.error().message;
+    ASSERT_EQ(drawn.value().width, 64u);
+    ASSERT_EQ(drawn.value().height, 64u);
+
+    const render::FlipbookLayout layout{4, 3, 64, 64};
+    const std::vector<uint8_t> colour = render::readPng(dir + "/colour.png").value().rgba;
+    const std::vector<uint8_t> motion = render::readPng(dir + "/motion.png").value().rgba;
+    const nlohmann::json meta = nlohmann::json::parse(readFile(dir + "/flipbook.json"));
+    const float scale = meta["motion_vectors"]["scale"];
+    const render::CellImage a =
+        render::cellFromRgba8(render::cellOfSheet(colour, layout, 5), 64, 64);
+    const render::CellImage b =
+        render::cellFromRgba8(render::cellOfSheet(colour, layout, 6), 64, 64);
+    const render::MotionField m =
+        render::decodeMotion(render::cellOfSheet(motion, layout, 5), 64, 64, scale);
+    const render::CellImage cpu = render::blendCells(a, b, &m, 0.5f);
+    double sum = 0.0, largest = 0.0;
+    size_t covered = 0;
+    for (size_t k = 0; k < cpu.rgba.size(); ++k) {
+        const double d = std::abs(double(drawn.value().rgba[k]) / 255.0 - double(cpu.rgba[k]));
+        sum += d;
+        largest = std::max(largest, d);
+        covered += k % 4 == 3 && cpu.rgba[k] > 0.0f;
+    }
+    std::cout << "Godot against the CPU blend: mean " << sum / double(cpu.rgba.size()) * 255.0
+              << ", largest " << largest * 255.0 << " of 255 over " << covered
+              << " covered pixels\n";
+    EXPECT_GT(covered, 100u);
+    EXPECT_LT(sum / double(cpu.rgba.size()), 0.5 / 255.0);
+    EXPECT_LE(largest, 2.0 / 255.0);
 }
 
 TEST(Bake, BadOptionsAreRefusedInOneLine) {
