@@ -364,6 +364,28 @@ SixWayFrame captureSixWay(const gpu::Context& ctx, render::BakeRenderer& rendere
     return frame;
 }
 
+// A strip of grey panels (each `width` x `height`, values in [0, 1] as linear light, NaN-free)
+// side by side, sRGB-encoded, for a preview picture: panel i's value at pixel p is
+// panels[i][p], laid over the preview's dark background by its coverage covers[i][p].
+std::vector<uint8_t> greyStrip(const std::vector<std::vector<float>>& panels,
+                               const std::vector<std::vector<float>>& covers, uint32_t width,
+                               uint32_t height) {
+    const size_t columns = panels.size();
+    std::vector<uint8_t> strip(columns * width * height * 4);
+    for (size_t i = 0; i < columns; ++i)
+        for (uint32_t y = 0; y < height; ++y)
+            for (uint32_t x = 0; x < width; ++x) {
+                const size_t p = size_t(y) * width + x;
+                const float cover = std::clamp(covers[i][p], 0.0f, 1.0f);
+                uint8_t* out = &strip[((size_t(y) * columns * width) + i * width + x) * 4];
+                for (int c = 0; c < 3; ++c)
+                    out[c] = render::encodeSrgb8(std::clamp(
+                        panels[i][p] + (1.0f - cover) * render::kClearColour[c], 0.0f, 1.0f));
+                out[3] = 255;
+            }
+    return strip;
+}
+
 // The six-way sheets (cross-faded into a loop as the colour is) and their metadata; with
 // `evaluation`, the blend checked against the smoke lit directly from kDiagonals, on the cells
 // that are not cross-faded (the direct pictures are of one frame each).
@@ -397,6 +419,32 @@ Result<nlohmann::json> writeSixWay(std::vector<SixWayFrame> frames, const BakeOp
             !written)
             return written.error();
 
+    // A preview of the middle cell's maps: right, top, back, left, bottom, front and emission,
+    // each as light over the opacity (premultiplied, over the dark background).
+    const uint32_t w = layout.cellWidth, h = layout.cellHeight;
+    const size_t pixels = size_t(w) * h;
+    {
+        const uint32_t middle = layout.cells() / 2;
+        std::vector<std::vector<float>> panels(7, std::vector<float>(pixels)),
+            covers(7, std::vector<float>(pixels));
+        for (size_t p = 0; p < pixels; ++p) {
+            const float alpha = float(stored[middle][0][p * 4 + 3]) / 255.0f;
+            for (int m = 0; m < 7; ++m) {
+                const std::vector<uint8_t>& sheet = stored[middle][m < 3 ? 0 : 1];
+                const int channel = m < 6 ? m % 3 : 3;
+                const float scale = m < 6 ? scales.light : scales.emission;
+                // Shown at up to 1 for the brightest light in the sheet.
+                panels[size_t(m)][p] = alpha * float(sheet[p * 4 + size_t(channel)]) / 255.0f *
+                                       scale / std::max(scales.light, scales.emission);
+                covers[size_t(m)][p] = alpha;
+            }
+        }
+        if (Status written = render::writePng(options.out + "/six_way_preview.png", 7 * w, h,
+                                              greyStrip(panels, covers, w, h));
+            !written)
+            return written.error();
+    }
+
     const std::array<glm::vec3, 6> axes = render::sixWayDirections(camera);
     auto vec = [](glm::vec3 v) { return nlohmann::json{v.x, v.y, v.z}; };
     nlohmann::json meta = {
@@ -415,7 +463,10 @@ Result<nlohmann::json> writeSixWay(std::vector<SixWayFrame> frames, const BakeOp
 
     if (!frames.empty() && !frames.front().direct.empty()) {
         nlohmann::json checks = nlohmann::json::array();
-        const uint32_t w = layout.cellWidth, h = layout.cellHeight;
+        // The picture of the check: per light, the middle uncross-faded cell lit directly, by
+        // the blend, and their difference four times over (on black).
+        const uint32_t shown = (layout.cells() - options.loop) / 2;
+        std::vector<uint8_t> check;
         for (size_t d = 0; d < std::size(kDiagonals); ++d) {
             const glm::vec3 toward = diagonalDirection(camera, kDiagonals[d]);
             const std::array<float, 6> weights = render::sixWayWeights(camera, toward);
@@ -432,6 +483,23 @@ Result<nlohmann::json> writeSixWay(std::vector<SixWayFrame> frames, const BakeOp
                 }
             }
             const double relative = light > 0.0 ? difference / light : 0.0;
+            {
+                const render::CellImage relit = render::relightSixWay(
+                    stored[shown][0], stored[shown][1], w, h, scales, weights);
+                const render::CellImage& direct = frames[options.loop + shown].direct[d];
+                std::vector<std::vector<float>> panels(3, std::vector<float>(pixels)),
+                    covers(3, std::vector<float>(pixels));
+                for (size_t p = 0; p < pixels; ++p) {
+                    panels[0][p] = direct.rgba[p * 4];
+                    panels[1][p] = relit.rgba[p * 4];
+                    panels[2][p] = 4.0f * std::abs(relit.rgba[p * 4] - direct.rgba[p * 4]);
+                    covers[0][p] = direct.rgba[p * 4 + 3];
+                    covers[1][p] = relit.rgba[p * 4 + 3];
+                    covers[2][p] = 1.0f; // on black
+                }
+                const std::vector<uint8_t> row = greyStrip(panels, covers, w, h);
+                check.insert(check.end(), row.begin(), row.end());
+            }
             std::printf("six-way blend against the smoke lit directly from the %s (%.2f, %.2f, "
                         "%.2f): relative mean difference %.4f\n",
                         kDiagonals[d].name, double(toward.x), double(toward.y), double(toward.z),
@@ -440,6 +508,10 @@ Result<nlohmann::json> writeSixWay(std::vector<SixWayFrame> frames, const BakeOp
                               {"toward_light_world", vec(toward)},
                               {"relative_difference", relative}});
         }
+        if (Status written = render::writePng(options.out + "/six_way_check.png", 3 * w,
+                                              uint32_t(std::size(kDiagonals)) * h, check);
+            !written)
+            return written.error();
         if (evaluation.is_null()) evaluation = nlohmann::json::object();
         evaluation["six_way"] = {
             {"measure", "sum over covered pixels of |blend - direct| / sum of direct, the "
