@@ -40,7 +40,7 @@ TEST(Bake, WritesTheSheetsAndTheirMetadata) {
                                     " --grid 4x3 --cell 40x32 --loop 2 --evaluate 2 --out " + dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.out.find("baked 12 cells of 40x32"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("motion-vector blend"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("motion vectors by optical flow"), std::string::npos) << r.out;
 
     const nlohmann::json meta = nlohmann::json::parse(readFile(dir + "/flipbook.json"));
     EXPECT_EQ(meta["grid"]["columns"], 4);
