@@ -53,6 +53,13 @@ Status parseFlipbookCell(const std::string& text, uint32_t maxSide, FlipbookLayo
                      " pixels wide and " + std::to_string(kMinCellSide) + " to " +
                      std::to_string(tallest) + " high (the sheet at most " +
                      std::to_string(maxSide) + " pixels a side)"};
+    const uint64_t pixels = uint64_t(width) * layout.columns * height * layout.rows;
+    if (pixels > kMaxSheetPixels)
+        return Error{"--cell '" + text + "': with a " + std::to_string(layout.columns) + "x" +
+                     std::to_string(layout.rows) + " grid the sheet would be " +
+                     std::to_string(width * layout.columns) + "x" +
+                     std::to_string(height * layout.rows) + " pixels; at most " +
+                     std::to_string(kMaxSheetPixels) + " pixels (8192x8192) are baked at once"};
     layout.cellWidth = width;
     layout.cellHeight = height;
     return Ok{};
@@ -112,7 +119,10 @@ void sampleCell(const CellImage& image, float x, float y, float out[4]) {
     const float ax = fx - x0f, ay = fy - y0f;
     for (int c = 0; c < 4; ++c)
         out[c] = 0.0f;
-    if (!std::isfinite(x0f) || !std::isfinite(y0f)) return;
+    // Outside the picture by more than a pixel (or not a number): nothing to blend.
+    if (!(x0f >= -2.0f && x0f <= float(image.width) + 1.0f && y0f >= -2.0f &&
+          y0f <= float(image.height) + 1.0f))
+        return;
     const long x0 = long(x0f), y0 = long(y0f);
     for (int j = 0; j < 2; ++j)
         for (int i = 0; i < 2; ++i) {

@@ -27,8 +27,10 @@
 
 namespace mfx::render {
 
-// The largest sheet side the bake writes (and most engines import).
+// The largest sheet side the bake writes (and most engines import), and the most pixels a sheet
+// may have (8192 x 8192, or 16384 x 4096: the bake holds a few float copies of every cell).
 inline constexpr uint32_t kMaxSheetSide = 16384;
+inline constexpr uint64_t kMaxSheetPixels = uint64_t(8192) * 8192;
 inline constexpr uint32_t kMaxFlipbookColumns = 64;
 inline constexpr uint32_t kMinCellSide = 8;
 
@@ -44,7 +46,7 @@ struct FlipbookLayout {
 // "--grid COLUMNSxROWS", each 1 to kMaxFlipbookColumns: the error is one line naming the option.
 Status parseFlipbookGrid(const std::string& text, FlipbookLayout& layout);
 // "--cell N" (square) or "WxH" pixels, each at least kMinCellSide, with the sheet (the grid's
-// columns and rows of cells, parsed first) at most `maxSide` a side.
+// columns and rows of cells, parsed first) at most `maxSide` a side and kMaxSheetPixels in all.
 Status parseFlipbookCell(const std::string& text, uint32_t maxSide, FlipbookLayout& layout);
 
 // The `count` scene frames sampled evenly from first..last (inclusive, both ends taken when

@@ -54,7 +54,12 @@ TEST(FlipbookLayout, BadCellsAreRefusedInOneLineNamingTheOption) {
     FlipbookLayout wide;
     ASSERT_TRUE(parseFlipbookGrid("16x1", wide));
     EXPECT_FALSE(parseFlipbookCell("1025x1025", kMaxSheetSide, wide));
-    EXPECT_TRUE(parseFlipbookCell("1024x4096", kMaxSheetSide, wide));
+    EXPECT_TRUE(parseFlipbookCell("1024x4096", kMaxSheetSide, wide)); // 16384 x 4096
+    FlipbookLayout big;
+    ASSERT_TRUE(parseFlipbookGrid("64x64", big));
+    const Status tooMany = parseFlipbookCell("256", kMaxSheetSide, big); // 16384 x 16384
+    ASSERT_FALSE(tooMany);
+    EXPECT_NE(tooMany.error().message.find("16384x16384"), std::string::npos);
 }
 
 TEST(FlipbookFrames, SampledEvenlyWithBothEnds) {
@@ -172,6 +177,18 @@ TEST(FlipbookFlow, StillPicturesHaveNoMotion) {
     const MotionField flow = opticalFlow(image, image);
     for (float v : flow.xy)
         EXPECT_NEAR(v, 0.0f, 1e-4f);
+}
+
+TEST(FlipbookBlend, WildMotionSamplesNothing) {
+    // Motion vectors far outside the picture, infinite or not a number blend in transparent black.
+    const CellImage a = disc(8, 4.0f, 4.0f, 3.0f);
+    MotionField wild(8, 8);
+    const float values[] = {1e30f, -1e30f, INFINITY, NAN};
+    for (size_t k = 0; k < wild.xy.size(); ++k)
+        wild.xy[k] = values[k % 4];
+    const CellImage out = blendCells(a, a, &wild, 0.5f);
+    for (float v : out.rgba)
+        EXPECT_EQ(v, 0.0f);
 }
 
 TEST(FlipbookBlend, MotionVectorsMatchTheInBetweenFrameBetterThanACrossFade) {
