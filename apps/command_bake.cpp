@@ -21,6 +21,7 @@
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -159,7 +160,7 @@ Status readSceneOptions(const cli::ParsedArgs& parsed, const scene::Scene& scene
 // Plays a new simulation of the scene through the last of `capture`, drawing each frame with
 // `renderer`, and hands each captured frame's layer (linear RGBA, top row first) to `take`.
 template <class Take>
-bool playCaptured(const gpu::Context& ctx, sim::SceneSimulation& sim,
+void playCaptured(const gpu::Context& ctx, sim::SceneSimulation& sim,
                   render::BakeRenderer& renderer, const std::vector<uint32_t>& capture,
                   const char* what, Take take) {
     Progress progress(what, capture.back() + 1);
@@ -174,7 +175,6 @@ bool playCaptured(const gpu::Context& ctx, sim::SceneSimulation& sim,
         progress.update(f + 1);
     }
     progress.finish();
-    return true;
 }
 
 std::unique_ptr<render::BakeRenderer>
@@ -194,14 +194,14 @@ bool visible(const float* rgba) {
 
 // The crop of the scene's camera (its normalised device coordinates) that frames what the effects
 // draw over the captured frames with `margin` of the cell to spare on every side: found by drawing
-// them first through a camera that sees twice as far each way.
-Result<glm::vec4> frameEffects(const gpu::Context& ctx, const SceneArgument& argument,
-                               const BakeOptions& options, const std::vector<uint32_t>& capture,
-                               bool& reachesEdge) {
-    int exitCode = kExitOk;
+// them first through a camera that sees twice as far each way. Nothing (after printing why, with
+// `exitCode` set) when it cannot.
+std::optional<glm::vec4> frameEffects(const gpu::Context& ctx, const SceneArgument& argument,
+                                      const BakeOptions& options,
+                                      const std::vector<uint32_t>& capture, int& exitCode) {
     const std::unique_ptr<sim::SceneSimulation> sim =
         createSceneSimulation(ctx, argument, exitCode);
-    if (!sim) return Error{"cannot simulate the scene"};
+    if (!sim) return std::nullopt;
     const std::unique_ptr<render::BakeRenderer> renderer = makeRenderer(ctx, *sim, options);
     renderer->setCamera(render::cropCamera(renderer->camera(), {-2.0f, -2.0f, 2.0f, 2.0f}));
     const uint32_t w = options.layout.cellWidth, h = options.layout.cellHeight;
@@ -217,17 +217,23 @@ Result<glm::vec4> frameEffects(const gpu::Context& ctx, const SceneArgument& arg
                                  y1 = std::max(y1, y);
                              }
                  });
-    if (x0 > x1)
-        return Error{"the effects baked draw nothing in frames " + std::to_string(options.first) +
-                     " to " + std::to_string(options.last) +
-                     " within twice the scene camera's view; choose other --effects or --range"};
-    reachesEdge = x0 == 0 || y0 == 0 || x1 + 1 == w || y1 + 1 == h;
-    // Pixel edges to the wide camera's device coordinates (+y up), then to the scene camera's
-    // (twice as large).
-    const float left = 2.0f * (2.0f * float(x0) / float(w) - 1.0f);
-    const float right = 2.0f * (2.0f * float(x1 + 1) / float(w) - 1.0f);
-    const float top = 2.0f * (1.0f - 2.0f * float(y0) / float(h));
-    const float bottom = 2.0f * (1.0f - 2.0f * float(y1 + 1) / float(h));
+    if (x0 > x1) {
+        printError("the effects baked draw nothing in frames " + std::to_string(options.first) +
+                   " to " + std::to_string(options.last) +
+                   " within twice the scene camera's view; choose other --effects or --range");
+        exitCode = kExitFailure;
+        return std::nullopt;
+    }
+    if (x0 == 0 || y0 == 0 || x1 + 1 == w || y1 + 1 == h)
+        std::fprintf(stderr,
+                     "motionfx: warning: the effects reach beyond twice the scene camera's view "
+                     "and may be cut at the cells' edges; move the scene's camera back\n");
+    // Pixel edges, one pixel out (the wide view is coarse), to the wide camera's device
+    // coordinates (+y up), then to the scene camera's (twice as large).
+    const float left = 2.0f * (2.0f * (float(x0) - 1.0f) / float(w) - 1.0f);
+    const float right = 2.0f * (2.0f * float(x1 + 2) / float(w) - 1.0f);
+    const float top = 2.0f * (1.0f - 2.0f * (float(y0) - 1.0f) / float(h));
+    const float bottom = 2.0f * (1.0f - 2.0f * float(y1 + 2) / float(h));
     const glm::vec2 centre{0.5f * (left + right), 0.5f * (top + bottom)};
     const float half = 0.5f * std::max(right - left, top - bottom) / (1.0f - 2.0f * options.margin);
     return glm::vec4(centre.x - half, centre.y - half, centre.x + half, centre.y + half);
@@ -561,18 +567,10 @@ int runBake(const cli::ParsedArgs& parsed) {
     // The camera: the scene's, or framed on what the effects draw.
     glm::vec4 crop{-1.0f, -1.0f, 1.0f, 1.0f};
     if (options.frameOnEffect) {
-        bool reachesEdge = false;
-        const Result<glm::vec4> framed =
-            frameEffects(ctx, argument, options, capture.value(), reachesEdge);
-        if (!framed) {
-            printError(framed.error().message);
-            return kExitFailure;
-        }
-        crop = framed.value();
-        if (reachesEdge)
-            std::fprintf(stderr,
-                         "motionfx: warning: the effects reach beyond twice the scene camera's "
-                         "view and may be cut at the cells' edges; move the scene's camera back\n");
+        const std::optional<glm::vec4> framed =
+            frameEffects(ctx, argument, options, capture.value(), exitCode);
+        if (!framed) return exitCode;
+        crop = *framed;
     }
 
     const std::unique_ptr<sim::SceneSimulation> sim =
