@@ -164,8 +164,9 @@ int runCommand(const Command& command, std::span<const std::string> args);
 
 // Each subcommand's entry point (command_<name>.cpp), with the signature of Command::run.
 using CommandMain = int(const cli::ParsedArgs& args);
-CommandMain runInfo, runRender, runBake, runCompare, runBenchSolver, runBenchTrajectory, runBenchFrame,
-    runBenchEffects, runBenchAccuracy, runInspect, runExportFighter, runScene, runSimulate, runView;
+CommandMain runInfo, runRender, runBake, runCompare, runBenchSolver, runBenchTrajectory,
+    runBenchFrame, runBenchEffects, runBenchAccuracy, runInspect, runExportFighter, runScene,
+    runSimulate, runView;
 
 // The solver scenarios' and stages' names, comma-separated (for help and errors).
 std::string scenarioNameList();
