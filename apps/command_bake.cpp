@@ -477,8 +477,9 @@ Result<nlohmann::json> writeSixWay(std::vector<SixWayFrame> frames, const BakeOp
             const glm::vec3 toward = diagonalDirection(camera, kDiagonals[d]);
             const std::array<float, 6> weights = render::sixWayWeights(camera, toward);
             double difference = 0.0, light = 0.0;
+            render::CellImage shownRelit;
             for (uint32_t i = 0; i + options.loop < layout.cells(); ++i) {
-                const render::CellImage relit =
+                render::CellImage relit =
                     render::relightSixWay(stored[i][0], stored[i][1], w, h, scales, weights);
                 const render::CellImage& direct = frames[options.loop + i].direct[d];
                 for (size_t p = 0; p < size_t(w) * h; ++p) {
@@ -487,11 +488,11 @@ Result<nlohmann::json> writeSixWay(std::vector<SixWayFrame> frames, const BakeOp
                     difference += std::abs(double(relit.rgba[p * 4]) - double(direct.rgba[p * 4]));
                     light += double(direct.rgba[p * 4]);
                 }
+                if (i == shown) shownRelit = std::move(relit);
             }
             const double relative = light > 0.0 ? difference / light : 0.0;
             {
-                const render::CellImage relit = render::relightSixWay(
-                    stored[shown][0], stored[shown][1], w, h, scales, weights);
+                const render::CellImage& relit = shownRelit;
                 const render::CellImage& direct = frames[options.loop + shown].direct[d];
                 std::vector<std::vector<float>> panels(3, std::vector<float>(pixels)),
                     covers(3, std::vector<float>(pixels));
