@@ -52,6 +52,10 @@ gpu::Program trajectoryDrawProgram(const gpu::Context& ctx, const char* name, Tr
         stages(VK_PRIMITIVE_TOPOLOGY_POINT_LIST, shaders::effect_particles_vert,
                shaders::effect_particles_geom, shaders::effect_particles_frag);
         break;
+    case TrajectoryShape::Sheet: // two lines joined into triangles, shaded as a ribbon
+        stages(VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, shaders::effect_sheet_vert, {},
+               shaders::effect_lines_frag);
+        break;
     }
     desc.colorFormats = {kSceneColorFormat};
     desc.depthFormat = kDepthFormat;

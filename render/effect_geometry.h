@@ -45,11 +45,12 @@ gpu::Program storageComputeProgram(const gpu::Context& ctx, const char* name,
                                    std::span<const uint32_t> spirv, uint32_t pushConstantSize);
 
 // What a trajectory draw makes of its vertices (shaders/render/effect_*): lit triangles, line
-// pieces widened into camera-facing ribbons, or points as round sprites.
-enum class TrajectoryShape { Triangles, Ribbons, Sprites };
+// pieces widened into camera-facing ribbons, points as round sprites, or the triangles of a
+// speed-line sheet between two lines (effect_sheet.vert; the ring itself at binding 3).
+enum class TrajectoryShape { Triangles, Ribbons, Sprites, Sheet };
 
-// A pipeline drawing shared::TrajectoryVertex as the effect pass does
-// (render/kinds/effect_pass.cpp): the scene frame at binding 0, shared::EffectDraw as push
+// A pipeline drawing shared::TrajectoryVertex as the trajectory effects' passes do
+// (render/trail_effect_pass.h): the scene frame at binding 0, shared::EffectDraw as push
 // constants, premultiplied alpha, depth tested, the effect shaders of `shape`.
 gpu::Program trajectoryDrawProgram(const gpu::Context& ctx, const char* name, TrajectoryShape shape,
                                    VkSampleCountFlagBits samples, bool depthWrite);

@@ -148,9 +148,15 @@ Result<std::unique_ptr<SceneSimulation>> SceneSimulation::create(const gpu::Cont
         const scene::TrailSpec& trail = *effect.trail;
         effect.smoke = e.as<scene::SmokeSpec>();
         const bool surface = e.kind().surfaceSampling().has_value();
-        effect.source = trail.shape == trajectory::Kind::Volumes || surface
-                            ? std::move(selected).value()
-                            : strided(selected.value(), trail.stride);
+        if (trail.twoEnds) {
+            Result<trajectory::Source> ends = trajectory::twoEnds(character, selected.value());
+            if (!ends) return Error{where + ends.error().message};
+            effect.source = std::move(ends).value();
+        } else {
+            effect.source = trail.shape == trajectory::Kind::Volumes || surface
+                                ? std::move(selected).value()
+                                : strided(selected.value(), trail.stride);
+        }
         if (!trail.useMeshColour)
             std::fill(effect.source.colours.begin(), effect.source.colours.end(), trail.colour);
         trajectory::QueueOptions options;

@@ -247,6 +247,45 @@ TEST_F(RibbonDrawTest, BladeFacingLiesInTheSurfacesPlane) {
     EXPECT_LE(bladeEdgeOn, 2);
 }
 
+// A sheet joins the point's line and its second vertex's, 0.3 m above it (the one farther from
+// the joint: the outer edge), into one surface reaching `width` in from the outer edge: 0.2 m,
+// from 0.9 down to 0.7, not to the point's own line at 0.6.
+TEST_F(RibbonDrawTest, SheetReachesItsWidthInFromTheOuterLine) {
+    const std::vector<float> rgba =
+        draw(lineScene(kEvenWidth + R"("shape": "sheet")"), {0, 0, 1}, 0.0f, glm::vec3(0, 0.3f, 0));
+    const int x = int(std::lround(column(0.0f)));
+    const glm::vec4 background = at(rgba, x, 0);
+    int top = -1, bottom = -1;
+    for (int y = 0; y < int(kHeight); ++y) {
+        const glm::vec4 d = glm::abs(at(rgba, x, y) - background);
+        if (d.r + d.g + d.b > 0.004f) {
+            if (top < 0) top = y;
+            bottom = y;
+        }
+    }
+    const int outer = pixel({0.0f, 0.9f, 0.0f}).y, reach = pixel({0.0f, 0.7f, 0.0f}).y;
+    std::cout << "sheet rows " << top << " to " << bottom << "; outer line at " << outer
+              << ", reach at " << reach << "\n";
+    EXPECT_NEAR(top, outer, 1);
+    EXPECT_NEAR(bottom, reach, 2); // its alpha fades to 0 at the inner edge
+    // Opaque at the outer edge, fading inwards.
+    EXPECT_GT(at(rgba, x, outer + 1).r, at(rgba, x, (outer + reach) / 2).r);
+}
+
+TEST(RibbonLook, SheetsAreSpeedLinesOnly) {
+    Result<scene::Scene> s = lineScene(R"("shape": "sheet")");
+    ASSERT_TRUE(s) << s.error().message;
+    EXPECT_TRUE(linesOf(s.value()).ribbon.sheet);
+    EXPECT_TRUE(linesOf(s.value()).trail.twoEnds);
+    Result<scene::Scene> afterimage =
+        pointScene(R"({"type": "afterimage_smear", "variant": "speed_lines", "shape": "sheet"})");
+    ASSERT_FALSE(afterimage);
+    EXPECT_NE(
+        afterimage.error().message.find("effects[0].shape: \"sheet\" is not one of: flat, tube"),
+        std::string::npos)
+        << afterimage.error().message;
+}
+
 // A tube is as wide on the screen as the flat ribbon whatever the normal, and lit by the key light
 // from above: brighter above its axis than below, where the flat ribbon is the same both sides.
 TEST_F(RibbonDrawTest, TubeKeepsItsWidthAndIsLitFromAbove) {

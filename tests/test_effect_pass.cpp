@@ -1,9 +1,10 @@
-// The effect passes over the scene pass: each drawn effect changes the picture where its trail
-// is, and writes the picture for a look.
+// The trajectory effects' passes over the scene pass, made by the registry as the frame makes
+// them: each drawn effect changes the picture where its trail is, and writes the picture for a
+// look.
 #include "core/gpu/commands.h"
 #include "render/character_pass.h"
+#include "render/effect_kind_pass.h"
 #include "render/image_output.h"
-#include "render/kinds/effect_pass.h"
 #include "render/render_target.h"
 #include "sim/scene_simulation.h"
 #include "tests/gpu_test.h"
@@ -22,12 +23,18 @@ std::vector<uint8_t> renderFrame(gpu::Context& ctx, const scene::Scene& s, uint3
     EXPECT_TRUE(character.ok());
     auto sim = sim::SceneSimulation::create(ctx, s, character.value());
     EXPECT_TRUE(sim.ok()) << sim.error().message;
-    for (uint32_t f = 0; f <= frame; ++f)
+    const auto passes = render::makeEffectPasses(ctx, *sim.value(), VK_SAMPLE_COUNT_1_BIT);
+    EXPECT_EQ(passes.size(), 1u); // the one kind of the scene's one effect
+    for (uint32_t f = 0; f <= frame; ++f) {
         sim.value()->runFrame(f);
+        gpu::submitOneShot(ctx, [&](VkCommandBuffer cmd) {
+            for (const auto& pass : passes)
+                pass->advance(cmd, *sim.value(), f);
+        });
+    }
     const uint32_t width = 320, height = 180;
     render::RenderTarget target = render::createRenderTarget(ctx, width, height);
     render::CharacterPass scenePass(ctx, character.value(), s);
-    render::EffectPass effectPass(ctx);
     const render::SceneCamera camera = render::makeCamera(s.camera, float(width) / float(height));
     const float t = sim.value()->frameTime(frame);
     const anim::Pose pose =
@@ -39,7 +46,9 @@ std::vector<uint8_t> renderFrame(gpu::Context& ctx, const scene::Scene& s, uint3
         render::beginRendering(cmd, target, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
         scenePass.draw(cmd, camera);
         if (effects) {
-            const uint32_t n = effectPass.draw(cmd, *sim.value(), camera, t);
+            uint32_t n = 0;
+            for (const auto& pass : passes)
+                n += pass->draw(cmd, *sim.value(), camera, t);
             if (draws) *draws = n;
         }
         render::endRendering(cmd);

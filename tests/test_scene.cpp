@@ -157,7 +157,7 @@ TEST(SceneFile, DefaultSceneIsTheHeroCombo) {
         EXPECT_EQ(s.effects[e].name, file.value().effects[e].name);
     EXPECT_EQ(s.effects[0].name, "kick lines");
     EXPECT_EQ(s.effects[1].name, "slash arc");
-    EXPECT_TRUE(s.effects[1].as<scene::SpeedLinesSpec>()->ribbon.bladeFacing);
+    EXPECT_TRUE(s.effects[1].as<scene::SpeedLinesSpec>()->ribbon.sheet); // the sword's sweep
     EXPECT_EQ(s.effects[2].as<scene::SmokeSpec>()->shading.preset, scene::SmokePreset::Energy);
     EXPECT_EQ(scene::characterStyle(s.character), scene::CharacterStyle::Toon);
     EXPECT_GT(s.post.bloom, 0.0f);

@@ -32,6 +32,9 @@ struct TrailSpec {
     float alphaStart = 1.0f;
     float alphaEnd = 0.0f;
     float alphaPower = 1.0f;
+    // Only the two bound vertices spanning the selection from the joint it hangs from outwards (a
+    // speed-line sheet between them; trajectory::twoEnds), instead of every stride-th.
+    bool twoEnds = false;
 };
 
 // How many vertices fitScene leaves an effect without "stride" (scene_fit.h).

@@ -93,6 +93,10 @@ public:
     // The live segments, newest first.
     std::vector<LiveSegment> liveSegments() const;
     uint32_t verticesPerSegment() const { return sourceVertices_ * (subSamples_ + 1); }
+    // A segment holds the S + 1 samples of each source vertex in turn: sample j of source vertex
+    // v is vertex firstVertex + v * (S + 1) + j (tau = j / S).
+    uint32_t sourceVertices() const { return sourceVertices_; }
+    uint32_t subSamples() const { return subSamples_; }
     uint32_t indicesPerSegment() const { return indexCount_; } // 0 for particles
     const gpu::Buffer& vertices() const { return ring_; }
     const gpu::Buffer& indices() const { return indices_; } // empty for particles

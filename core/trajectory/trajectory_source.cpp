@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -130,6 +131,52 @@ std::vector<anim::DualQuatJoint> sourcePalette(const anim::Character& character,
         matrices.push_back(placement * m);
     }
     return anim::dualQuatPalette(matrices);
+}
+
+Result<Source> twoEnds(const anim::Character& character, const Source& source) {
+    if (source.vertices.empty())
+        return Error{"a sheet needs bound vertices; the selection has none"};
+    const anim::Pose rest = anim::samplePose(character, nullptr, 0.0f);
+    // The joint the part hangs from: the palette entry with the most weight over the selection.
+    std::vector<double> weight(source.palette.size(), 0.0);
+    for (const shared::SkinVertexIn& v : source.vertices)
+        for (int k = 0; k < 4; ++k)
+            if (v.joints[k] < weight.size()) weight[v.joints[k]] += double(v.weights[k]);
+    const size_t heaviest = size_t(std::max_element(weight.begin(), weight.end()) - weight.begin());
+    glm::vec3 pivot(0.0f);
+    if (heaviest < source.palette.size()) {
+        const PaletteEntry& entry = source.palette[heaviest];
+        int node = entry.node;
+        if (entry.skin >= 0 && entry.joint >= 0)
+            node = character.skins[size_t(entry.skin)].joints[size_t(entry.joint)];
+        if (node >= 0 && size_t(node) < rest.world.size())
+            pivot = glm::vec3(rest.world[size_t(node)][3]);
+    }
+    const std::vector<anim::DualQuatJoint> palette = sourcePalette(character, source, rest);
+    size_t nearest = 0, farthest = 0;
+    float near = std::numeric_limits<float>::max(), far = -1.0f;
+    for (size_t i = 0; i < source.vertices.size(); ++i) {
+        const shared::SkinVertexIn& v = source.vertices[i];
+        const glm::vec3 p = anim::skinDualQuat(palette, glm::vec3(v.position), glm::vec3(v.normal),
+                                               v.joints, v.weights)
+                                .position;
+        const float d = glm::distance(p, pivot);
+        if (d < near) near = d, nearest = i;
+        if (d > far) far = d, farthest = i;
+    }
+    if (!(far - near > 1e-6f))
+        return Error{"a sheet needs bound vertices at different distances from the joint they "
+                     "hang from; the " +
+                     std::to_string(source.vertices.size()) + " selected are all " +
+                     std::to_string(near) + " from it"};
+    Source out;
+    out.palette = source.palette;
+    for (const size_t i : {nearest, farthest}) {
+        out.vertices.push_back(source.vertices[i]);
+        out.colours.push_back(source.colours[i]);
+        if (i < source.uvs.size()) out.uvs.push_back(source.uvs[i]);
+    }
+    return out;
 }
 
 } // namespace mfx::trajectory

@@ -50,4 +50,10 @@ std::vector<anim::DualQuatJoint> sourcePalette(const anim::Character& character,
                                                const Source& source, const anim::Pose& pose,
                                                const glm::mat4& placement = glm::mat4(1.0f));
 
+// The two vertices of `source` that span it from the joint it hangs from outwards, for a sheet
+// over the bound part (a sword's grip and tip): the one nearest to that joint and the one farthest
+// from it, in the character's rest pose, that order. The joint is the palette entry carrying the
+// most weight over the selection. Refused, naming why, when every vertex is as far from it.
+Result<Source> twoEnds(const anim::Character& character, const Source& source);
+
 } // namespace mfx::trajectory

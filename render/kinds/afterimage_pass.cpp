@@ -140,6 +140,7 @@ AfterimagePass::AfterimagePass(const gpu::Context& ctx, const scene::Scene& scen
     arcDraw_ =
         trajectoryDrawProgram(ctx, "afterimage_arcs", TrajectoryShape::Triangles, samples, false);
     frame_ = sceneFrameBuffer(ctx, "afterimage frame");
+    noJoins_ = effectStorage(ctx, 64, 0, "afterimage lines no joins");
 }
 
 void AfterimagePass::beginFrame(const sim::SceneSimulation& simulation, bool reset) {
@@ -252,9 +253,11 @@ uint32_t AfterimagePass::draw(VkCommandBuffer cmd, const sim::SceneSimulation& s
                                      sizeof(VkDrawIndexedIndirectCommand));
         } else {
             gpu::Program& program = lines ? lineDraw_ : arcDraw_;
+            // The lines have no joins (ribbonShape.x = 0): binding 3 is bound, never read.
             if (lines)
-                program.bind(cmd, {gpu::bindBuffer(0, frame_), gpu::bindBuffer(1, effect.style),
-                                   fadeDepthSource_.binding(fadeDepth_)});
+                program.bind(cmd,
+                             {gpu::bindBuffer(0, frame_), gpu::bindBuffer(1, effect.style),
+                              fadeDepthSource_.binding(fadeDepth_), gpu::bindBuffer(3, noJoins_)});
             else
                 program.bind(cmd, {gpu::bindBuffer(0, frame_), gpu::bindBuffer(1, effect.style)});
             program.push(cmd, d);

@@ -100,6 +100,7 @@ private:
     gpu::Program record_, smear_, weld_, build_;
     gpu::Program smearDraw_, lineDraw_, arcDraw_;
     FadeDepthSource fadeDepthSource_;
+    gpu::Buffer noJoins_; // the speed-line program's joins binding (unused by the afterimage)
     void beginFrame(const sim::SceneSimulation& simulation, bool reset) override;
     glm::vec3 lastRoot_{0.0f}, characterMotion_{0.0f};
 };

@@ -1,5 +1,6 @@
 // Speed-lines: trajectory vertices passed on to the geometry stage, which widens each piece of a
-// motion line into a ribbon or a tube (effect_lines.geom). Each vertex's life u = age /
+// motion line into a ribbon or a tube (effect_lines.geom), with the direction along the line the
+// joins pass gave the vertex (ribbon_joins.comp). Each vertex's life u = age /
 // lifetime; its colour is the ribbon's colour_over_life at u (times the segment's attenuation),
 // or without one the trail's colour faded with age (Xu et al., Algorithm 1).
 #version 450
@@ -15,6 +16,13 @@ layout(location = 0) out vec4 vertexColour;
 layout(location = 1) out float vertexTau;
 layout(location = 2) out float vertexLife;
 layout(location = 3) out vec3 vertexNormal; // the source's normal (blade facing)
+layout(location = 4) out vec4 vertexJoin;   // xyz: direction along the line, or 0: none
+
+// The direction along the line at each ring vertex, shared by the pieces that meet there
+// (ribbon_joins.comp); read only with draw.ribbonShape.x = 1.
+layout(std430, binding = 3) readonly buffer Joins {
+    vec4 joins[];
+};
 
 void main() {
     float fade = ageFade(normal.w);
@@ -28,5 +36,6 @@ void main() {
     }
     vertexTau = position.w;
     vertexNormal = normal.xyz;
+    vertexJoin = draw.ribbonShape.x > 0.5 ? joins[gl_VertexIndex] : vec4(0.0);
     gl_Position = vec4(position.xyz, 1.0); // world space; projected in the geometry stage
 }

@@ -1,5 +1,5 @@
-// Push constants of the effect passes (render/kinds/effect_pass.h;
-// shaders/effect_*.vert/.geom/.frag): how trajectory vertices are drawn.
+// Push constants of the trajectory effect passes (render/trail_effect_pass.h and the kinds'
+// passes; shaders/effect_*.vert/.geom/.frag): how trajectory vertices are drawn.
 #ifndef MFX_SHARED_EFFECT_DRAW_H
 #define MFX_SHARED_EFFECT_DRAW_H
 
@@ -20,6 +20,20 @@ struct EffectDraw {
     vec4 ribbonFlags;
     vec4 ribbonLight; // x: intensity; y: core whiteness; z 1 = tube; w: depth fade (world units)
     vec4 rimLight;    // volumes: x the Fresnel rim's strength, yzw its colour (linear RGB)
+    // Lines: x 1 = each vertex's direction along its line comes from the joins buffer (binding 3,
+    // ribbon_joins.comp), so the pieces that meet at a sample share its edge points; 0 = each
+    // piece's own direction (a ribbon without joins). y: sheets, S + 1 (the samples of a line in a
+    // segment; effect_sheet.vert).
+    vec4 ribbonShape;
+};
+
+// Push constants of ribbon_joins.comp: the live segments of one speed-line queue, chained.
+#define MFX_RIBBON_JOINS_GROUP_SIZE 64
+struct RibbonJoinConstants {
+    uint sourceVertices; // lines per segment
+    uint perLine;        // S + 1 samples of each line in a segment
+    uint segments;       // live segments, newest first, in the chain buffer
+    uint pad0;
 };
 
 // How a speed-line ribbon or a particle looks over its life (scene::RibbonLook; uniform buffer,
@@ -37,7 +51,9 @@ struct RibbonStyle {
 MFX_SHARED_END
 
 #ifdef __cplusplus
-MFX_CHECK_SIZE(EffectDraw, 80);
+MFX_CHECK_SIZE(EffectDraw, 96);
+MFX_CHECK_LAYOUT(EffectDraw, ribbonShape, 80);
+MFX_CHECK_SIZE(RibbonJoinConstants, 16);
 MFX_CHECK_LAYOUT(EffectDraw, rimLight, 64);
 MFX_CHECK_LAYOUT(EffectDraw, ribbonLight, 48);
 MFX_CHECK_SIZE(RibbonStyle, 224);

@@ -126,12 +126,20 @@ void readParticleLook(const Object& o, RibbonLook& r) {
     readLook(o, r, "size");
 }
 
-void readRibbon(const Object& o, RibbonLook& r) {
+void readRibbon(const Object& o, RibbonLook& r, bool sheets) {
     readLook(o, r, "width");
     r.core = float(o.number("core", r.core, 0.0, 1.0));
     r.bladeFacing =
         o.choice("facing", r.bladeFacing ? "blade" : "camera", {"camera", "blade"}) == "blade";
-    r.tube = o.choice("shape", r.tube ? "tube" : "flat", {"flat", "tube"}) == "tube";
+    std::vector<std::string> shapes = {"flat", "tube"};
+    if (sheets) shapes.push_back("sheet");
+    const std::string shape = o.choice("shape",
+                                       r.sheet  ? "sheet"
+                                       : r.tube ? "tube"
+                                                : "flat",
+                                       shapes);
+    r.tube = shape == "tube";
+    r.sheet = shape == "sheet";
 }
 
 glm::vec4 colourAt(const std::vector<GradientStop>& stops, float u) {
@@ -147,7 +155,8 @@ float valueAt(const std::vector<CurveStop>& stops, float u) {
 std::unique_ptr<EffectKindSpec> SpeedLinesSpec::parse(const Object& o) {
     auto e = readTrailKind<SpeedLinesSpec>(o);
     e->width = float(o.number("width", e->width, 0.0, 1.0, true));
-    readRibbon(o, e->ribbon);
+    readRibbon(o, e->ribbon, true);
+    e->trail.twoEnds = e->ribbon.sheet;
     return e;
 }
 

@@ -1,7 +1,7 @@
 // The effects drawn from a trajectory queue (Xu et al., section 4): speed-lines (motion lines,
 // Sec. 4.2), blur volumes (motion volumes, Sec. 4.4) and motion particles (Sec. 4.3). Each frame
-// the queue gets one segment per vertex the effect binds; the pass draws its live segments
-// (render/kinds/effect_pass.h).
+// the queue gets one segment per vertex the effect binds; each kind's pass draws its live segments
+// (render/kinds/speed_lines_pass.h, motion_blur_pass.h, motion_particles_pass.h).
 #pragma once
 
 #include "core/scene/effect_spec.h"
@@ -60,6 +60,13 @@ struct RibbonLook {
     bool bladeFacing = false;
     // A tube, round and lit by the key light, instead of a flat strip (Xu et al., Sec. 3.2.2).
     bool tube = false;
+    // Speed-lines only: one sheet spanning the bound part from the joint it hangs from outwards
+    // (the bound vertices nearest to and farthest from that joint,
+    // core/trajectory/trajectory_source.h twoEnds), instead of a ribbon around each bound vertex's
+    // line: a sword's slash, whose outer edge is the path of its tip. The sheet reaches in from
+    // its outer edge by `width` (world units, times width_over_life; at most to the inner line);
+    // `facing` does not apply.
+    bool sheet = false;
 };
 // How a lit effect surface looks (motion volumes, swept volumes, afterimage smears and arcs,
 // silhouette shells; shaders/render/effect_volume.*): its colour over its life, an HDR intensity,
@@ -76,9 +83,10 @@ struct VolumeLook {
 std::vector<std::string> volumeLookKeys();
 void readVolumeLook(const detail::Object& o, VolumeLook& v);
 
-// The ribbon keys and their reading (speed-lines and the afterimage's speed-line variant).
+// The ribbon keys and their reading (speed-lines and the afterimage's speed-line variant; with
+// `sheets`, "shape" may be "sheet").
 std::vector<std::string> ribbonKeys();
-void readRibbon(const detail::Object& o, RibbonLook& r);
+void readRibbon(const detail::Object& o, RibbonLook& r, bool sheets = false);
 // The particles' share of them: colour_over_life, size_over_life (read into widthOverLife: the
 // sprite's size factor), intensity, blend and depth_fade.
 std::vector<std::string> particleLookKeys();
