@@ -12,12 +12,12 @@ out=docs/images/gallery
 mkdir -p "$out"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-# picture name, scene file, frame (30 fps: 12 is the kick's strike, 40 the slash's cut)
+# picture name, scene file, frame (30 fps: 12 is the kick's strike, 44 the slash's upswing)
 shots=(
     "before_kick docs/scenes/gallery/before.json 12"
     "after_kick docs/scenes/hero.json 12"
-    "before_slash docs/scenes/gallery/before.json 40"
-    "after_slash docs/scenes/hero.json 40"
+    "before_slash docs/scenes/gallery/before.json 44"
+    "after_slash docs/scenes/hero.json 44"
     "style_lit docs/scenes/gallery/style_lit.json 40"
     "style_toon docs/scenes/gallery/style_toon.json 40"
     "smoke_smoke docs/scenes/gallery/smoke_smoke.json 20"
@@ -27,6 +27,7 @@ shots=(
     "ribbon_camera docs/scenes/gallery/ribbon_camera.json 40"
     "ribbon_blade docs/scenes/gallery/ribbon_blade.json 40"
     "ribbon_tube docs/scenes/gallery/ribbon_tube.json 40"
+    "ribbon_sheet docs/scenes/gallery/ribbon_sheet.json 40"
     "volume_rim docs/scenes/gallery/volume_rim.json 12"
     "particles_life docs/scenes/gallery/particles_life.json 42"
 )
@@ -40,7 +41,7 @@ for entry in "${shots[@]}"; do
     read -r name scene frame <<<"$entry"
     shot "$out/$name" "$scene" "$frame" 400x225
 done
-shot docs/images/default_scene_frame40 docs/scenes/hero.json 40 640x360
+shot docs/images/default_scene_frame44 docs/scenes/hero.json 44 640x360
 for effect in lines:20 blur:20 particles:20 smoke:20 afterimage:20 swept:12 shell:16; do
     shot "docs/images/effect_${effect%%:*}" "docs/scenes/${effect%%:*}.json" "${effect##*:}" 480x270
 done

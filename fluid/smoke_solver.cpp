@@ -264,7 +264,7 @@ void SmokeSolver::uploadEmptySolidLists() {
 }
 
 void SmokeSolver::writeParameters() {
-    const shared::FluidParameters parameters = makeParameters(options_, emitterCount_);
+    const shared::FluidParameters parameters = makeParameters(options_, emitterCount_, time_);
     std::memcpy(parameters_.mapped, &parameters, sizeof(parameters));
 }
 
@@ -673,6 +673,20 @@ void SmokeSolver::applyBuoyancy(VkCommandBuffer cmd) {
     storeFields(cmd, direct_, {{&f.scratch[1], &velocityY}});
 }
 
+void SmokeSolver::applyTurbulence(VkCommandBuffer cmd) {
+    if (options_.turbulence == 0.0f) return;
+    SmokeFields& f = fields_;
+    auto& v = f.velocity[size_t(f.currentVelocity)];
+    for (uint32_t c = 0; c < 3; ++c) {
+        const gpu::DescriptorWrite writes[] = {gpu::bindBuffer(0, parameters_), storage(1, v[c]),
+                                               gpu::bindBuffer(2, f.scratch[c]), storage(3, v[c])};
+        dispatchStage(cmd, {"apply_turbulence", c, 0, direct_}, writes,
+                      faceExtent(options_.grid, int(c)));
+    }
+    storeFields(cmd, direct_,
+                {{&f.scratch[0], &v[0]}, {&f.scratch[1], &v[1]}, {&f.scratch[2], &v[2]}});
+}
+
 void SmokeSolver::vorticityConfinement(VkCommandBuffer cmd) {
     if (options_.vorticity == 0.0f) return;
     // Vorticity per cell, then the confinement force per cell, then the faces. On the direct
@@ -887,6 +901,7 @@ void SmokeSolver::recordStep(VkCommandBuffer cmd, gpu::GpuTimer* timer) {
             recordStageOnly(cmd, stage, timer);
             countStageDispatches(lastStepDispatches_, stage, dispatches_ - before);
         }
+    time_ += double(options_.dt);
 }
 
 uint64_t SmokeSolver::memoryBytes() const {

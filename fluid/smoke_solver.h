@@ -3,7 +3,7 @@
 // (fluid/reference/), written down in docs/fluid.md. One sub-step:
 //
 //   splatImpulses → advectVelocity → advectPigment → applyBuoyancy → vorticityConfinement →
-//   diffuseViscosity → computeDivergence → solvePressure → project
+//   applyTurbulence → diffuseViscosity → computeDivergence → solvePressure → project
 //
 // (applyBoundaries runs alone only: the stages keep the faces as the boundaries want them;
 // fluid/stage_table.h.)
@@ -98,6 +98,10 @@ public:
     void recordStep(VkCommandBuffer cmd, gpu::GpuTimer* timer = nullptr);
     // Records one stage alone (with the sub-step dt).
     void recordStage(VkCommandBuffer cmd, Stage stage, gpu::GpuTimer* timer = nullptr);
+    // Seconds of simulation the recorded steps have covered (recordStep adds dt after recording):
+    // the turbulence's noise time. A stage recorded alone reads it and leaves it.
+    double time() const { return time_; }
+    void setTime(double seconds) { time_ = seconds; }
 
     // Convenience: record, submit and wait.
     void step();
@@ -192,6 +196,7 @@ private:
     void advectPigment(VkCommandBuffer cmd);
     void applyBuoyancy(VkCommandBuffer cmd);
     void vorticityConfinement(VkCommandBuffer cmd);
+    void applyTurbulence(VkCommandBuffer cmd);
     void applyVorticityForce(VkCommandBuffer cmd); // its last pass
     void diffuseViscosity(VkCommandBuffer cmd);
     void applyBoundaries(VkCommandBuffer cmd);
@@ -219,6 +224,7 @@ private:
     VkBuffer emitterBuffer_ = VK_NULL_HANDLE;
     VkDeviceSize emitterBufferSize_ = 0;
     uint32_t emitterCount_ = 0;
+    double time_ = 0.0;                      // time()
     gpu::Buffer splatRegions_;               // SplatRegion per target, written by emitter_bounds
     std::vector<shared::FluidSolid> solids_; // what markSolids records
     gpu::Buffer solidsBuffer_;               // where it records them (kMaxSolids; once solids come)

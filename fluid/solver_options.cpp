@@ -36,6 +36,12 @@ Status validateOptions(const SolverOptions& o, uint32_t maxDimension, uint32_t m
         return bad("vorticity must be a finite number >= 0");
     if (!finite(o.viscosity) || o.viscosity < 0.0f)
         return bad("viscosity must be a finite number >= 0");
+    if (!finite(o.turbulence) || o.turbulence < 0.0f)
+        return bad("turbulence must be a finite number >= 0");
+    if (!finite(o.turbulenceScale) || o.turbulenceScale <= 0.0f)
+        return bad("turbulenceScale must be a finite number > 0");
+    if (!finite(o.turbulenceSpeed) || o.turbulenceSpeed < 0.0f)
+        return bad("turbulenceSpeed must be a finite number >= 0");
     if (o.viscosityIterations > 10000) return bad("viscosityIterations must be at most 10000");
     if (o.jacobiIterations > 100000) return bad("jacobiIterations must be at most 100000");
     if (o.multigrid.levels > 16) return bad("multigrid levels must be at most 16");
@@ -152,6 +158,7 @@ Status validateSparseOptions(const SolverOptions& o, uint32_t maxDimension,
         return bad(std::string(advectionName(o.advection)) + " advection (it has semi-lagrangian)");
     if (o.storage != Storage::Float32) return bad("fp16 storage (it has fp32)");
     if (o.vorticity != 0.0f) return bad("vorticity confinement (vorticity must be 0)");
+    if (o.turbulence != 0.0f) return bad("turbulence (turbulence must be 0)");
     if (o.viscosity != 0.0f) return bad("viscosity (viscosity must be 0)");
     for (int axis = 0; axis < 3; ++axis)
         if (o.periodic(axis)) return bad(std::string("a periodic axis (") + "xyz"[axis] + ")");
@@ -212,7 +219,7 @@ Status validateSolidOptions(const SolverOptions& o) {
     return Ok{};
 }
 
-shared::FluidParameters makeParameters(const SolverOptions& o, uint32_t emitterCount) {
+shared::FluidParameters makeParameters(const SolverOptions& o, uint32_t emitterCount, double time) {
     shared::FluidParameters p{};
     p.size = glm::uvec4(o.grid.cellsX, o.grid.cellsY, o.grid.cellsZ, emitterCount);
     const float dt = o.substepDt();
@@ -227,6 +234,8 @@ shared::FluidParameters makeParameters(const SolverOptions& o, uint32_t emitterC
                    uint32_t(o.boundaries[FaceHighZ].kind), 0u);
     for (int face = 0; face < 6; ++face)
         p.wallVelocity[face] = glm::vec4(o.boundaries[face].wallVelocity, 0.0f);
+    p.turbulence = glm::vec4(o.turbulence, 1.0f / o.turbulenceScale,
+                             float(time * double(o.turbulenceSpeed)), o.turbulenceScale);
     return p;
 }
 

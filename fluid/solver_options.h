@@ -112,10 +112,16 @@ struct SolverOptions {
     float dt = 1.0f / 60.0f; // seconds per step
     uint32_t substeps = 1;   // each step runs every stage this many times with dt/substeps
     Integrator integrator = Integrator::Euler;
-    float fade = 0.0f;                 // pigment decay rate per second: pigment *= exp(-fade*dt)
-    float drag = 0.0f;                 // velocity decay rate per second: u *= exp(-drag*dt)
-    float buoyancy = 0.0f;             // upward acceleration per unit pigment alpha (0 = off)
-    float vorticity = 0.0f;            // vorticity confinement strength epsilon (0 = off)
+    float fade = 0.0f;      // pigment decay rate per second: pigment *= exp(-fade*dt)
+    float drag = 0.0f;      // velocity decay rate per second: u *= exp(-drag*dt)
+    float buoyancy = 0.0f;  // upward acceleration per unit pigment alpha (0 = off)
+    float vorticity = 0.0f; // vorticity confinement strength epsilon (0 = off)
+    // Curl-noise turbulence (docs/fluid.md, "applyTurbulence"): a divergence-free acceleration
+    // of `turbulence` world units per second^2 (0 = off), its features `turbulenceScale` world
+    // units across, changing `turbulenceSpeed` times a second.
+    float turbulence = 0.0f;
+    float turbulenceScale = 0.25f;
+    float turbulenceSpeed = 1.0f;
     float viscosity = 0.0f;            // kinematic viscosity nu, world units^2 per second (0 = off)
     uint32_t viscosityIterations = 20; // Jacobi sweeps of the implicit diffusion solve
     PressureSolver pressureSolver = PressureSolver::Jacobi;
@@ -179,8 +185,10 @@ Status validateGpuSolids(std::span<const shared::FluidSolid> solids,
 // so the simulation grid cannot be the coarsest; docs/fluid.md, "Solids").
 Status validateSolidOptions(const SolverOptions& options);
 
-// The uniform block of one sub-step.
-shared::FluidParameters makeParameters(const SolverOptions& options, uint32_t emitterCount);
+// The uniform block of the sub-steps of a step starting at `time` (seconds of simulation: the
+// turbulence's noise time).
+shared::FluidParameters makeParameters(const SolverOptions& options, uint32_t emitterCount,
+                                       double time = 0.0);
 
 // Every field of a simulation, as plain floats (x fastest): the exchange format between the GPU
 // solver, the CPU reference and the tests.

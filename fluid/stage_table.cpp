@@ -98,6 +98,13 @@ StageBytes vorticityBytes(const SolverOptions& o, const StageWork&) {
     return values(c, c.faces3(), c.faces3());
 }
 
+StageBytes turbulenceBytes(const SolverOptions& o, const StageWork&) {
+    if (o.turbulence == 0.0f) return {};
+    // The noise is computed, not read: the velocity read and written once.
+    const Counts c = countsOf(o);
+    return values(c, c.faces3(), c.faces3());
+}
+
 StageBytes viscosityBytes(const SolverOptions& o, const StageWork&) {
     if (o.viscosity == 0.0f || o.viscosityIterations == 0) return {};
     // Each Jacobi sweep reads the previous iterate and the step's starting velocity.
@@ -225,6 +232,9 @@ std::span<const StageEntry> stageTable() {
          &SmokeSolver::vorticityConfinement, nullptr,
          referenceStage<&ReferenceSolver::vorticityConfinement>, vorticityBytes,
          "velocity read and written once (curl and force need nothing else)", true},
+        {Stage::ApplyTurbulence, "apply_turbulence", "apply_turbulence", "",
+         &SmokeSolver::applyTurbulence, nullptr, referenceStage<&ReferenceSolver::applyTurbulence>,
+         turbulenceBytes, "velocity read and written once (the curl noise is computed)", true},
         {Stage::DiffuseViscosity, "diffuse_viscosity", "diffuse_viscosity", "",
          &SmokeSolver::diffuseViscosity, nullptr,
          referenceStage<&ReferenceSolver::diffuseViscosity>, viscosityBytes,

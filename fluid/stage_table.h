@@ -43,13 +43,14 @@ enum class Stage {
     AdvectPigment,
     ApplyBuoyancy,
     VorticityConfinement,
+    ApplyTurbulence,
     DiffuseViscosity,
     ApplyBoundaries,
     ComputeDivergence,
     SolvePressure,
     Project,
 };
-inline constexpr size_t kStageCount = 11;
+inline constexpr size_t kStageCount = 12;
 
 // Bytes a stage must move in one sub-step: every field it reads read once and every field it
 // writes written once (what a kernel that fuses the stage's passes and keeps neighbours in caches

@@ -66,6 +66,9 @@ fluid::SmokeGridSettings gridSettings(std::span<const scene::SmokeSpec* const> e
     options.drag = e.drag;
     options.buoyancy = e.buoyancy;
     options.vorticity = e.vorticity;
+    options.turbulence = e.turbulence;
+    options.turbulenceScale = e.turbulenceScale;
+    options.turbulenceSpeed = e.turbulenceSpeed;
     options.jacobiIterations = e.jacobi;
     // The scene's names are the solver's (a test keeps the two lists the same).
     options.pressureSolver = fluid::pressureSolverFromName(e.pressure).value();

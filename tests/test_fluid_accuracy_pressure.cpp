@@ -89,7 +89,7 @@ void expectStrictlyDecreasing(const std::vector<double>& values, const std::vect
 // =================================================================================================
 
 // One red-black sweep is Gauss-Seidel in place with the Jacobi sweep's neighbour rule
-// (docs/fluid.md step 9), written out here independently: red cells in array order, then black
+// (docs/fluid.md step 10), written out here independently: red cells in array order, then black
 // ones, each using the newest values. On a grid whose periodic axis is even the colours decouple,
 // so the two agree to rounding: both compute in double and sum in the same order, and the
 // reference's pressure comes back rounded to float, half an ulp (6e-8) of the largest value at

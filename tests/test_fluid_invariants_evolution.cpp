@@ -41,6 +41,8 @@ FieldState restState(const GridShape& g, uint32_t seed) {
 
 SolverOptions restOptions(SolverOptions options) {
     options.buoyancy = 0.0f;
+    // Turbulence is a force of its own: it sets still air moving (test_fluid_turbulence.cpp).
+    options.turbulence = 0.0f;
     // A moving wall would drag the fluid: the walls stand still.
     for (fluid::FaceBoundary& b : options.boundaries)
         b.wallVelocity = glm::vec3(0.0f);
@@ -142,7 +144,8 @@ constexpr int kUniformSteps = 50;
 SolverOptions periodicOptions() {
     SolverOptions o = mixedBoundaryOptions({10, 8, 6, 0.1f});
     o.buoyancy = 0.0f;
-    o.drag = 0.0f; // drag slows a uniform flow down evenly: it would not stay as it was
+    o.turbulence = 0.0f; // a force of its own, as buoyancy
+    o.drag = 0.0f;       // drag slows a uniform flow down evenly: it would not stay as it was
     for (fluid::FaceBoundary& b : o.boundaries)
         b = {fluid::Boundary::Periodic, glm::vec3(0.0f)};
     return o;

@@ -49,12 +49,17 @@ TEST(StageTable, NamesAreUniqueAndRoundTrip) {
 
 TEST(StageTable, StepOrderRunsTheStagesInTheStepInTheTablesOrder) {
     // applyBoundaries runs alone only: the other stages keep the faces as it would leave them.
-    const std::vector<fluid::Stage> expected = {
-        fluid::Stage::MarkSolids,       fluid::Stage::SplatImpulses,
-        fluid::Stage::AdvectVelocity,   fluid::Stage::AdvectPigment,
-        fluid::Stage::ApplyBuoyancy,    fluid::Stage::VorticityConfinement,
-        fluid::Stage::DiffuseViscosity, fluid::Stage::ComputeDivergence,
-        fluid::Stage::SolvePressure,    fluid::Stage::Project};
+    const std::vector<fluid::Stage> expected = {fluid::Stage::MarkSolids,
+                                                fluid::Stage::SplatImpulses,
+                                                fluid::Stage::AdvectVelocity,
+                                                fluid::Stage::AdvectPigment,
+                                                fluid::Stage::ApplyBuoyancy,
+                                                fluid::Stage::VorticityConfinement,
+                                                fluid::Stage::ApplyTurbulence,
+                                                fluid::Stage::DiffuseViscosity,
+                                                fluid::Stage::ComputeDivergence,
+                                                fluid::Stage::SolvePressure,
+                                                fluid::Stage::Project};
     EXPECT_EQ(fluid::stepOrder(), expected);
     EXPECT_EQ(fluid::allStages().size(), fluid::kStageCount);
 }

@@ -1,6 +1,6 @@
 // The pressure equation on a grid of cells of possibly unequal widths (pressure_equation.h): the
 // finite-volume operator A with its boundary rules, its residual and its sparse matrix. On the
-// simulation grid this is exactly the system of docs/fluid.md, step 9 (Bridson 2015, ch. 5); on a
+// simulation grid this is exactly the system of docs/fluid.md, step 10 (Bridson 2015, ch. 5); on a
 // multigrid level it is the same finite-volume rule on the larger cells (Trottenberg et al. 2001,
 // ch. 2: rediscretisation of the coarse-grid operator).
 #include "fluid/reference/pressure_equation.h"

@@ -1,4 +1,4 @@
-// The pressure equation of the projection (docs/fluid.md, step 9 and "Accuracy options") on a grid
+// The pressure equation of the projection (docs/fluid.md, step 10 and "Accuracy options") on a grid
 // of cells of possibly unequal widths: the simulation grid itself, where every cell is one unit
 // wide and the equation is exactly the one the Jacobi sweep solves, or a coarser level of the
 // multigrid hierarchy, whose cells cover up to 2x2x2 cells of the level below. Used by the

@@ -2,7 +2,7 @@
 // Trottenberg, Oosterlee, Schueller, "Multigrid" (2001), ch. 2 (GS-RB smoothing): the cells are
 // coloured by the parity of i + j + k, and one sweep updates every red cell, then every black one,
 //   p_q <- (sum_s c_s p_n(s) + b_q) / sum_s c_s,
-// the Jacobi formula of docs/fluid.md step 9 (c_s = 1 on the simulation grid). A 7-point stencil
+// the Jacobi formula of docs/fluid.md step 10 (c_s = 1 on the simulation grid). A 7-point stencil
 // couples only cells of different colours, so a colour's updates are independent: each reads the
 // values as they stood before its half-sweep, which is Gauss-Seidel in place whenever the colours
 // decouple and stays well defined (and parallel) when they do not: an odd periodic axis wraps a

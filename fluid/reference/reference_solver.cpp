@@ -63,6 +63,7 @@ void ReferenceSolver::step(std::span<const shared::FluidEmitter> emitters) {
         for (Stage stage : stepOrder()) // markSolids first
             runStage(stage, emitters);
     }
+    time_ += double(options_.dt);
 }
 
 Diagnostics computeDiagnostics(const SolverOptions& options, const FieldState& state) {

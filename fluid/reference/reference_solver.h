@@ -47,6 +47,10 @@ public:
     // With Storage::Float16 the stored fields are rounded to half precision on the way in.
     void setState(const FieldState& state);
     FieldState state() const;
+    // Seconds of simulation the steps have covered (step() adds dt after its sub-steps): the
+    // turbulence's noise time. runStage reads it and leaves it.
+    double time() const { return time_; }
+    void setTime(double seconds) { time_ = seconds; }
     const SolverOptions& options() const { return options_; }
 
     // One whole step: every stage of stepOrder(), `substeps` times. Emitters must have passed
@@ -62,6 +66,7 @@ public:
     void advectPigment();
     void applyBuoyancy();
     void vorticityConfinement();
+    void applyTurbulence(); // at time(): the step's start
     void diffuseViscosity();
     void applyBoundaries();
     void computeDivergence();
@@ -107,7 +112,7 @@ public:
     // --- Measuring the pressure solve ---------------------------------------------------------
     // The relative residual ||b - A p|| / ||b|| of the pressure equation A p = b for the current
     // pressure and divergence: (A p)_cell = sum over counted neighbours of (p - p_n) and
-    // b = -h² div (docs/fluid.md, step 9). Without an open face A is singular and b is made
+    // b = -h² div (docs/fluid.md, step 10). Without an open face A is singular and b is made
     // mean-free first (its part in the range of A). 0 when b is 0. After project(), the divergence
     // left is -(b - A p) / h²: this is also ||div after|| / ||div before||.
     double pressureResidual() const;
@@ -217,6 +222,7 @@ private:
     std::pair<double, int> countedNeighbours(const Eigen::ArrayXd& p, glm::ivec3 q) const;
 
     SolverOptions options_;
+    double time_ = 0.0; // time()
     glm::ivec3 cells_;
     double h_;
     std::array<Eigen::ArrayXd, 3> velocity_;

@@ -1,4 +1,4 @@
-// The Jacobi pressure sweep's neighbours (docs/fluid.md, step 9): which cell a neighbour index
+// The Jacobi pressure sweep's neighbours (docs/fluid.md, step 10): which cell a neighbour index
 // reads and whether it counts, shared by solve_pressure.comp and by compute_divergence.comp, which
 // can compute a cold start's first sweep (p = -h² div / count) beside the divergence.
 #ifndef MFX_JACOBI_NEIGHBOURS_GLSL

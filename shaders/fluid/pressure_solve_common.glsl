@@ -5,7 +5,7 @@
 //   c_s = (1 / distance between the centres) * (area of the side),
 // the sides in the order -x, +x, -y, +y, -z, +z, a neighbour across a periodic face wrapped, an
 // open face's ghost counted with p = 0, a wall not counted (c_s = 0). On the simulation grid every
-// counted c_s is 1: the Jacobi sweep's system (docs/fluid.md, step 9).
+// counted c_s is 1: the Jacobi sweep's system (docs/fluid.md, step 10).
 //
 // Every kernel but cycle_coarse_levels and finish_reduction runs one invocation per brick of a
 // level (see levelBrick).

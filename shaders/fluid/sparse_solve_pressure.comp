@@ -1,6 +1,6 @@
 // solvePressure on the sparse grid, one Jacobi sweep over the cells of the listed bricks:
 //   p <- (sum of counted neighbour pressures - h² div) / count
-// as the dense solve (docs/fluid.md, step 9): a neighbour across a wall is not counted, one across
+// as the dense solve (docs/fluid.md, step 10): a neighbour across a wall is not counted, one across
 // an open side of the domain is counted with p = 0, and so is an inactive neighbour inside the
 // domain (docs/fluid.md, "Sparse domain": open air at p = 0); a solid neighbour is not counted
 // and a solid cell holds p = 0 (docs/fluid.md, "Solids"). Twin:

@@ -60,6 +60,8 @@ struct FluidParameters {
     uvec4 boundaryLow;    // boundary kind of the -x, -y, -z faces; w: integrator
     uvec4 boundaryHigh;   // boundary kind of the +x, +y, +z faces; w: unused
     vec4 wallVelocity[6]; // xyz: velocity of the wall on face -x, +x, -y, +y, -z, +z
+    vec4 turbulence;      // curl noise (curl_noise.glsl): x amplitude, y 1 / scale, z the noise's
+                          // time (the step's start time * speed), w scale
 };
 
 // One emitter: pulls velocity and pigment towards its own values inside a sphere, at a rate of
@@ -105,7 +107,8 @@ struct SplatRegion {
 MFX_SHARED_END
 
 #ifdef __cplusplus
-MFX_CHECK_SIZE(FluidParameters, 176);
+MFX_CHECK_SIZE(FluidParameters, 192);
+MFX_CHECK_LAYOUT(FluidParameters, turbulence, 176);
 MFX_CHECK_LAYOUT(FluidParameters, cell, 16);
 MFX_CHECK_LAYOUT(FluidParameters, rates, 32);
 MFX_CHECK_LAYOUT(FluidParameters, boundaryLow, 48);

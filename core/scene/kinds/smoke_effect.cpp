@@ -9,16 +9,39 @@ namespace mfx::scene {
 using detail::Object;
 
 std::vector<std::string> SmokeSpec::keys() {
-    return trailKeys({"grid",         "cell_size",     "jacobi",
-                      "fade",         "drag",          "steps_per_second",
-                      "buoyancy",     "vorticity",     "impulse_k",
-                      "radius",       "strength",      "emission",
-                      "surface_step", "max_emitters",  "sleep_threshold",
-                      "follow",       "look",          "glow",
-                      "cel_bands",    "anisotropy",    "pressure",
-                      "advection",    "storage",       "domain",
-                      "max_bricks",   "live_speed",    "origin",
-                      "collide",      "collide_bones", "collide_thickness"});
+    return trailKeys({"grid",
+                      "cell_size",
+                      "jacobi",
+                      "fade",
+                      "drag",
+                      "steps_per_second",
+                      "buoyancy",
+                      "vorticity",
+                      "impulse_k",
+                      "radius",
+                      "strength",
+                      "emission",
+                      "surface_step",
+                      "max_emitters",
+                      "sleep_threshold",
+                      "follow",
+                      "look",
+                      "glow",
+                      "cel_bands",
+                      "anisotropy",
+                      "pressure",
+                      "advection",
+                      "storage",
+                      "domain",
+                      "max_bricks",
+                      "live_speed",
+                      "origin",
+                      "collide",
+                      "collide_bones",
+                      "collide_thickness",
+                      "turbulence",
+                      "turbulence_scale",
+                      "turbulence_speed"});
 }
 
 const std::vector<std::string>& smokePressureSolvers() {
@@ -56,7 +79,8 @@ std::unique_ptr<EffectKindSpec> SmokeSpec::parse(const Object& o) {
     // validateSparseOptions): given, they make the grid dense; with "domain": "sparse" they are
     // refused, and a sparse grid does not read them.
     const char* denseKey = nullptr;
-    for (const char* key : {"pressure", "advection", "storage", "vorticity", "follow"})
+    for (const char* key : {"pressure", "advection", "storage", "vorticity", "turbulence",
+                            "turbulence_scale", "turbulence_speed", "follow"})
         if (!denseKey && o.given(key)) denseKey = key;
     g.domain = o.choice("domain", g.domain,
                         denseKey && !o.given("domain") ? std::vector<std::string>{"dense"}
@@ -65,7 +89,7 @@ std::unique_ptr<EffectKindSpec> SmokeSpec::parse(const Object& o) {
     if (sparse && denseKey)
         detail::fail(o.at(denseKey), "only for \"domain\": \"dense\" (the sparse domain solves "
                                      "with jacobi and semi-lagrangian advection in fp32, without "
-                                     "vorticity confinement, and stands still)");
+                                     "vorticity confinement or turbulence, and stands still)");
     if (sparse) g.cells = {256, 256, 256};
     if (o.has("grid")) {
         // The dense grid's cells are all stored; the sparse domain's only where there is smoke,
@@ -97,7 +121,13 @@ std::unique_ptr<EffectKindSpec> SmokeSpec::parse(const Object& o) {
     g.collideBones = o.strings("collide_bones");
     g.collideThickness = float(o.number("collide_thickness", g.collideThickness, 0.0, 10.0));
     g.buoyancy = float(o.number("buoyancy", g.buoyancy, -100.0, 100.0));
-    if (!sparse) g.vorticity = float(o.number("vorticity", g.vorticity, 0.0, 100.0));
+    if (!sparse) {
+        g.vorticity = float(o.number("vorticity", g.vorticity, 0.0, 100.0));
+        g.turbulence = float(o.number("turbulence", g.turbulence, 0.0, 1000.0));
+        g.turbulenceScale =
+            float(o.number("turbulence_scale", g.turbulenceScale, 0.0, 100.0, true));
+        g.turbulenceSpeed = float(o.number("turbulence_speed", g.turbulenceSpeed, 0.0, 100.0));
+    }
     if (sparse) {
         g.maxBricks = o.integer("max_bricks", g.maxBricks, 1, 1u << 20);
         g.liveSpeed = float(o.number("live_speed", g.liveSpeed, 0.0, 1000.0));

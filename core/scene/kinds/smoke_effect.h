@@ -42,6 +42,11 @@ struct SmokeGridSpec {
     bool follow = false;          // the grid moves with the character's root, by whole cells
     float buoyancy = 0.0f;
     float vorticity = 0.0f;
+    // Curl-noise turbulence (docs/fluid.md, "applyTurbulence"): its acceleration (m/s^2, 0: off),
+    // the size of its swirls (m) and how many times a second they change.
+    float turbulence = 0.0f;
+    float turbulenceScale = 0.25f;
+    float turbulenceSpeed = 1.0f;
     // The solver's accuracy against its time (README "Accuracy against time"), named as the
     // solver's options name them (fluid/solver_options.h; a test keeps the lists the same).
     std::string pressure = "jacobi";           // jacobi, rbgs, multigrid, mgpcg
