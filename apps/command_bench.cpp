@@ -108,6 +108,7 @@ struct SolverChoice {
     fluid::ByDevice firstSweepInDivergence = fluid::ByDevice::Auto;
     BenchSolids solids = BenchSolids::None; // --solids
     fluid::ByDevice solidLists = fluid::ByDevice::Auto;
+    float turbulence = 0.0f; // --turbulence: m/s^2, 0 the scenario's (off)
 };
 
 // The solids of --solids body: the built-in fighter's capsules (core/anim/body_capsules.h) in the
@@ -158,6 +159,7 @@ makeGridRun(const gpu::Context& ctx, const std::string& scenarioName, std::array
     o.multigrid.residualInRestriction = choice.residualInRestriction;
     o.firstSweepInDivergence = choice.firstSweepInDivergence;
     o.solidLists = choice.solidLists;
+    if (choice.turbulence > 0.0f) o.turbulence = choice.turbulence;
     auto solverResult = fluid::SmokeSolver::create(ctx, o);
     if (!solverResult) return solverResult.error();
     run->solver = std::move(solverResult).value();
@@ -263,9 +265,10 @@ Result<std::vector<GridResult>> benchGrid(const gpu::Context& ctx, const std::st
 int runBenchSolver(const cli::ParsedArgs& parsed) {
     const std::string domain = parsed.value("domain", "dense");
     if (domain == "sparse") {
-        for (const char* denseOnly : {"store", "copy-mib", "markdown", "workgroups", "coarse-group",
-                                      "brick", "coarse-cells", "residual-in-restriction",
-                                      "first-sweep-in-divergence", "solids", "solid-lists"})
+        for (const char* denseOnly :
+             {"store", "copy-mib", "markdown", "workgroups", "coarse-group", "brick",
+              "coarse-cells", "residual-in-restriction", "first-sweep-in-divergence", "solids",
+              "solid-lists", "turbulence"})
             if (parsed.has(denseOnly)) {
                 printError(std::string("--") + denseOnly + " is an option of the dense domain");
                 return kExitUsage;
@@ -292,8 +295,10 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
     auto brick = cli::parseUnsigned(parsed.value("brick", "0"), 0, 4, "--brick");
     auto coarseCells =
         cli::parseUnsigned(parsed.value("coarse-cells", "0"), 0, 4096, "--coarse-cells");
-    if (reportFirstError(grids, jacobi, steps, workgroups, copyMib, coarseGroup, brick,
-                         coarseCells))
+    auto turbulence =
+        cli::parseNumber(parsed.value("turbulence", "0"), 0.0, 1000.0, "--turbulence");
+    if (reportFirstError(grids, jacobi, steps, workgroups, copyMib, coarseGroup, brick, coarseCells,
+                         turbulence))
         return kExitUsage;
     if (brick.value() == 3) {
         printError("--brick must be 0 (by device), 1, 2 or 4, not 3");
@@ -393,11 +398,11 @@ int runBenchSolver(const cli::ParsedArgs& parsed) {
     for (const auto& cells : grids.value())
         for (const auto& workgroup : workgroups.value()) {
             double ratio = 0.0;
-            auto r =
-                benchGrid(ctx, scenarioName, cells, workgroup,
-                          {jacobi.value(), *pressure, *store, coarseGroup.value(), brick.value(),
-                           coarseCells.value(), *fused, *firstSweep, benchSolids, *solidLists},
-                          steps.value(), &ratio);
+            auto r = benchGrid(ctx, scenarioName, cells, workgroup,
+                               {jacobi.value(), *pressure, *store, coarseGroup.value(),
+                                brick.value(), coarseCells.value(), *fused, *firstSweep,
+                                benchSolids, *solidLists, float(turbulence.value())},
+                               steps.value(), &ratio);
             if (!r) {
                 printError(r.error().message);
                 return kExitFailure;

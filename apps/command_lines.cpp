@@ -151,6 +151,9 @@ CommandLine benchSolverCommandLine() {
         0, CommandLine::kDevice);
     command.option("grids", "LIST", "comma-separated grids, N or NXxNYxNZ (default 32,64,96,128)")
         .option("jacobi", "N", "Jacobi (or red-black) sweeps per step (default 20)")
+        .option("turbulence", "A",
+                "dense: curl-noise turbulence of A m/s² on (default 0: the scenario's, off), to "
+                "time its stage")
         .option("pressure", "NAME",
                 "pressure solver: jacobi, rbgs, multigrid or mgpcg (default jacobi; multigrid "
                 "and mgpcg with their default options)")
