@@ -677,9 +677,21 @@ void SmokeSolver::applyTurbulence(VkCommandBuffer cmd) {
     if (options_.turbulence == 0.0f) return;
     SmokeFields& f = fields_;
     auto& v = f.velocity[size_t(f.currentVelocity)];
+    // The potential on every edge once, then each component's faces from it.
+    const glm::uvec3 corners = f.cells + glm::uvec3(1);
+    const VkDeviceSize bytes = VkDeviceSize(corners.x) * corners.y * corners.z * sizeof(glm::vec4);
+    if (turbulencePotential_.size < bytes)
+        turbulencePotential_ =
+            gpu::createBuffer(ctx_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                              gpu::MemoryUsage::DeviceLocal, "turbulence potential");
+    const gpu::DescriptorWrite potential[] = {gpu::bindBuffer(0, parameters_),
+                                              gpu::bindBuffer(1, turbulencePotential_)};
+    dispatch(cmd, programs_.get("turbulence_potential"), potential, corners);
+    fieldBarrier(cmd);
     for (uint32_t c = 0; c < 3; ++c) {
         const gpu::DescriptorWrite writes[] = {gpu::bindBuffer(0, parameters_), storage(1, v[c]),
-                                               gpu::bindBuffer(2, f.scratch[c]), storage(3, v[c])};
+                                               gpu::bindBuffer(2, f.scratch[c]), storage(3, v[c]),
+                                               gpu::bindBuffer(4, turbulencePotential_)};
         dispatchStage(cmd, {"apply_turbulence", c, 0, direct_}, writes,
                       faceExtent(options_.grid, int(c)));
     }
@@ -908,7 +920,8 @@ uint64_t SmokeSolver::memoryBytes() const {
     uint64_t bytes = fields_.memoryBytes() + parameters_.size + ownEmitters_.size +
                      solidsBuffer_.size + solidBoxBlocks_.size + solidCells_.size +
                      solidCorners_.size + solidHolders_.size + solidBits_.size + solidBricks_.size +
-                     solidBlocks_.size + solidLists_.size + noSolidCells_.size + noSolidList_.size;
+                     solidBlocks_.size + solidLists_.size + noSolidCells_.size + noSolidList_.size +
+                     turbulencePotential_.size;
     if (multigrid_) bytes += multigrid_->memoryBytes();
     return bytes;
 }

@@ -224,7 +224,10 @@ private:
     VkBuffer emitterBuffer_ = VK_NULL_HANDLE;
     VkDeviceSize emitterBufferSize_ = 0;
     uint32_t emitterCount_ = 0;
-    double time_ = 0.0;                      // time()
+    double time_ = 0.0; // time()
+    // applyTurbulence: the noise's potential on every edge, one vec4 per grid corner (made on
+    // first use).
+    gpu::Buffer turbulencePotential_;
     gpu::Buffer splatRegions_;               // SplatRegion per target, written by emitter_bounds
     std::vector<shared::FluidSolid> solids_; // what markSolids records
     gpu::Buffer solidsBuffer_;               // where it records them (kMaxSolids; once solids come)

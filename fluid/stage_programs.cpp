@@ -39,6 +39,7 @@ const Kernel* findKernel(std::string_view name) {
         {"advect_velocity", advect_velocity_comp, advect_velocity_comp_half, Extra::Variant},
         {"advect_pigment", advect_pigment_comp, advect_pigment_comp_half, Extra::Variant},
         {"apply_buoyancy", apply_buoyancy_comp, apply_buoyancy_comp_half},
+        {"turbulence_potential", turbulence_potential_comp, {}},
         {"apply_turbulence", apply_turbulence_comp, apply_turbulence_comp_half},
         {"compute_vorticity", compute_vorticity_comp, compute_vorticity_comp_half},
         {"confinement_force", confinement_force_comp, {}},

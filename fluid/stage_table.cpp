@@ -232,7 +232,7 @@ std::span<const StageEntry> stageTable() {
          &SmokeSolver::vorticityConfinement, nullptr,
          referenceStage<&ReferenceSolver::vorticityConfinement>, vorticityBytes,
          "velocity read and written once (curl and force need nothing else)", true},
-        {Stage::ApplyTurbulence, "apply_turbulence", "apply_turbulence", "",
+        {Stage::ApplyTurbulence, "apply_turbulence", "turbulence_potential apply_turbulence", "",
          &SmokeSolver::applyTurbulence, nullptr, referenceStage<&ReferenceSolver::applyTurbulence>,
          turbulenceBytes, "velocity read and written once (the curl noise is computed)", true},
         {Stage::DiffuseViscosity, "diffuse_viscosity", "diffuse_viscosity", "",

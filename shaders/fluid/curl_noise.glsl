@@ -3,8 +3,9 @@
 // The potential is gradient noise sampled on the MAC grid's edges and its curl taken with the
 // grid's own differences, so the discrete divergence of the result is zero up to rounding (each
 // edge value enters the divergence of a cell twice with opposite signs). docs/fluid.md,
-// "applyTurbulence". Twin: fluid/reference/apply_turbulence.cpp, the same integer hash and the
-// same formulas in double precision.
+// "applyTurbulence". Used by turbulence_potential.comp, which writes the potential on every edge
+// for apply_turbulence.comp to difference. Twin: fluid/reference/apply_turbulence.cpp, the same
+// integer hash and the same formulas in double precision.
 #ifndef MFX_CURL_NOISE_GLSL
 #define MFX_CURL_NOISE_GLSL
 
@@ -86,18 +87,6 @@ float edgePotential(int c, ivec3 e) {
     vec3 x = vec3(e) * cellSize();
     x[c] += 0.5 * cellSize();
     return noisePotential(x, c);
-}
-
-// Component c of curl psi on face q of component c, by the grid's differences:
-//   u_x = (psi_z(j+1) - psi_z(j)) / h - (psi_y(k+1) - psi_y(k)) / h, and cyclically.
-float curlNoiseFace(int c, ivec3 q) {
-    int a = (c + 1) % 3, b = (c + 2) % 3;
-    ivec3 da = ivec3(0), db = ivec3(0);
-    da[a] = 1;
-    db[b] = 1;
-    return ((edgePotential(b, q + da) - edgePotential(b, q)) -
-            (edgePotential(a, q + db) - edgePotential(a, q))) *
-           inverseCellSize();
 }
 
 #endif
