@@ -30,7 +30,7 @@ void SpeedLinesPass::advance(VkCommandBuffer cmd, const sim::SceneSimulation& si
         if (isSheet(effect)) return; // its edges are its two lines
         const trajectory::Queue& queue = *effect.queue;
         Joins& joins = joins_[&queue];
-        joins.valid = false;
+        joins.framesRecorded = 0;
         const std::vector<trajectory::LiveSegment> live = queue.liveSegments(); // newest first
         if (live.empty()) return;
         const VkDeviceSize ringVertices = queue.vertices().size / sizeof(shared::TrajectoryVertex);
@@ -61,8 +61,7 @@ void SpeedLinesPass::advance(VkCommandBuffer cmd, const sim::SceneSimulation& si
             cmd,
             uint32_t((invocations + MFX_RIBBON_JOINS_GROUP_SIZE - 1) / MFX_RIBBON_JOINS_GROUP_SIZE),
             1, 1);
-        joins.newestFrame = live.front().frame;
-        joins.valid = true;
+        joins.framesRecorded = queue.framesRecorded();
         recorded = true;
     });
     if (recorded) // the joins, to the vertex stage that reads them
@@ -73,10 +72,9 @@ void SpeedLinesPass::advance(VkCommandBuffer cmd, const sim::SceneSimulation& si
 
 const SpeedLinesPass::Joins* SpeedLinesPass::joinsFor(const TrajectoryEffect& effect) const {
     const auto j = joins_.find(effect.queue.get());
-    if (j == joins_.end() || !j->second.valid) return nullptr;
-    const std::vector<trajectory::LiveSegment> live = effect.queue->liveSegments();
-    if (live.empty() || live.front().frame != j->second.newestFrame) return nullptr;
-    return &j->second;
+    const bool current = j != joins_.end() && j->second.framesRecorded != 0 &&
+                         j->second.framesRecorded == effect.queue->framesRecorded();
+    return current ? &j->second : nullptr;
 }
 
 gpu::Buffer SpeedLinesPass::makeStyle(const scene::EffectSpec& spec) const {

@@ -43,12 +43,11 @@ private:
     static bool isSheet(const TrajectoryEffect& effect);
 
     // An effect's joins: the direction at each ring vertex, the chain of live segments it was
-    // found for (host-visible), and the newest segment's frame then (a draw uses the joins only
-    // while the queue still holds that newest segment).
+    // found for (host-visible), and the queue's frames recorded then (a draw uses the joins only
+    // while the queue has recorded nothing since; 0: never found).
     struct Joins {
         gpu::Buffer directions, chain;
-        uint64_t newestFrame = 0;
-        bool valid = false;
+        uint64_t framesRecorded = 0;
     };
     const Joins* joinsFor(const TrajectoryEffect& effect) const;
 
