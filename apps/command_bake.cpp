@@ -540,7 +540,7 @@ int runBake(const cli::ParsedArgs& parsed) {
     int exitCode = kExitOk;
     if (!loadSceneArgument(parsed, argument, exitCode)) return exitCode;
     const scene::Scene& s = argument.scene;
-    const uint32_t frameCount = scene::frameCount(s, argument.character);
+    const uint32_t frameCount = scene::frameCount(s, argument.cast);
     if (Status status = readSceneOptions(parsed, s, frameCount, options); !status) {
         printError(status.error().message);
         return kExitUsage;

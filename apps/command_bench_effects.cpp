@@ -114,7 +114,7 @@ int runBenchEffects(const cli::ParsedArgs& parsed) {
         std::string effect = with.scene.effects.front().type();
         for (size_t e = 1; e < with.scene.effects.size(); ++e)
             effect += std::string("+") + with.scene.effects[e].type();
-        SceneArgument alone{with.scene, with.character};
+        SceneArgument alone{with.scene, with.cast};
         alone.scene.effects.clear();
         Row row{effect, files[i]};
         const VkSampleCountFlagBits wanted = VkSampleCountFlagBits(samples.value());

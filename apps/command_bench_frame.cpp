@@ -234,12 +234,13 @@ int runBenchFrame(const cli::ParsedArgs& parsed) {
     int exitCode = kExitOk;
     if (!loadSceneArgument(sceneArgs, argument, exitCode, "960x540")) return exitCode;
     scene::Scene& s = argument.scene;
-    s.character.loop = true;
+    for (scene::CharacterSpec& c : s.characters)
+        c.loop = true;
     s.output.frames = warmup.value() + timed.value();
     SceneArgument sparseArgument;
     if (sparseCells.value() > 0) {
         sparseArgument.scene = sparseScene(s, sparseCells.value());
-        sparseArgument.character = argument.character;
+        sparseArgument.cast = argument.cast;
     }
     std::ofstream jsonFile;
     if (!openOutputFile(parsed.value("json"), jsonFile)) return kExitFailure;

@@ -167,7 +167,7 @@ int runRender(const cli::ParsedArgs& parsed) {
                 s.output.height, outDir.c_str(), frameName(sim.frameCount() - 1).c_str(),
                 video.c_str());
     if (vdb.on) std::printf("wrote %u OpenVDB files into %s\n", vdb.files, vdb.dir.c_str());
-    reportMotionlessEffects(sim.scene(), argument.character, sim.frameCount());
+    reportMotionlessEffects(sim.scene(), argument.cast, sim.frameCount());
     if (statsFile.is_open())
         statsFile << nlohmann::json{{"device", ctx.info().name},
                                     {"scene", s.file},

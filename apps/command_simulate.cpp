@@ -51,7 +51,7 @@ int runSimulate(const cli::ParsedArgs& parsed) {
     if (!readVdbOutput(parsed, vdb)) return kExitFailure;
     const std::unique_ptr<gpu::Context> context = createContext(parsed);
     if (!context) return kExitFailure;
-    auto created = sim::SceneSimulation::create(*context, s, argument.character);
+    auto created = sim::SceneSimulation::create(*context, s, argument.cast);
     if (!created) {
         printError(created.error().message);
         return kExitFailure;
@@ -86,7 +86,7 @@ int runSimulate(const cli::ParsedArgs& parsed) {
                 gpuTotal, sim.trajectories().size(), sim.smokeGrids().size(),
                 double(sim.fluidBytes()) / (1024.0 * 1024.0), sleepingFrames);
     if (vdb.on) std::printf("wrote %u OpenVDB files into %s\n", vdb.files, vdb.dir.c_str());
-    reportMotionlessEffects(sim.scene(), argument.character, sim.frameCount());
+    reportMotionlessEffects(sim.scene(), argument.cast, sim.frameCount());
     if (statsFile.is_open())
         statsFile << nlohmann::json{{"device", context->info().name},
                                     {"scene", s.file},

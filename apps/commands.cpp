@@ -97,12 +97,12 @@ Result<SceneArgument> prepareSceneArgument(const cli::ParsedArgs& parsed, const 
     if (parsed.has("character") && !parsed.value("character").empty()) {
         const std::string file = parsed.value("character");
         // Relative to where the command runs, not to the scene file.
-        out.scene.character.source =
+        out.scene.characters.front().source =
             file == "fighter" ? file : std::filesystem::absolute(file).string();
-        if (!parsed.has("clip")) out.scene.character.clip.clear();
+        if (!parsed.has("clip")) out.scene.characters.front().clip.clear();
     }
     if (parsed.has("clip") && !parsed.value("clip").empty())
-        out.scene.character.clip = parsed.value("clip");
+        out.scene.characters.front().clip = parsed.value("clip");
     // --size, --frames and --fps, where given (and the command has them), over the scene's (the
     // values are checked by loadSceneArgument; one that does not parse is not applied).
     scene::OutputSpec& output = out.scene.output;
@@ -119,18 +119,18 @@ Result<SceneArgument> prepareSceneArgument(const cli::ParsedArgs& parsed, const 
     if (parsed.has("fps"))
         if (auto fps = cli::parseNumber(parsed.value("fps"), 1.0, 240.0, "--fps"))
             output.fps = float(fps.value());
-    std::string scaleNote;
-    Result<anim::Character> character = scene::loadCharacter(out.scene, &scaleNote);
-    if (!character) return character.error();
-    out.character = std::move(character).value();
+    std::vector<std::string> scaleNotes;
+    Result<scene::Cast> cast = scene::loadCast(out.scene, &scaleNotes);
+    if (!cast) return cast.error();
+    out.cast = std::move(cast).value();
     std::vector<std::string> notes;
-    if (Status fitted = scene::fitScene(out.scene, out.character, &notes); !fitted)
+    if (Status fitted = scene::fitScene(out.scene, out.cast, &notes); !fitted)
         return fitted.error();
     if (!lines) return out;
-    if (!scaleNote.empty()) lines->push_back(scaleNote);
+    lines->insert(lines->end(), scaleNotes.begin(), scaleNotes.end());
     if (preview) {
         // One line: the clip, the size and the bones the preview's effects were bound to.
-        const anim::Clip& clip = scene::sceneClip(out.scene, out.character);
+        const anim::Clip& clip = scene::sceneClip(out.scene.characters.front(), out.cast.front());
         std::string bones = notes.empty() ? std::string() : notes.front();
         const size_t bound = bones.find("\": ");
         if (bound != std::string::npos) bones = bones.substr(bound + 3);
@@ -138,7 +138,7 @@ Result<SceneArgument> prepareSceneArgument(const cli::ParsedArgs& parsed, const 
         std::snprintf(text, sizeof text,
                       "preview of %s: clip \"%s\" (%.3g s), %.2f m tall; effects ",
                       parsed.positional[0].c_str(), clip.name.c_str(), double(clip.duration),
-                      double(scene::characterHeight(out.scene, out.character)));
+                      double(scene::characterHeight(out.scene, 0, out.cast.front())));
         lines->push_back(text + bones);
     } else {
         lines->insert(lines->end(), notes.begin(), notes.end());
@@ -149,9 +149,9 @@ Result<SceneArgument> prepareSceneArgument(const cli::ParsedArgs& parsed, const 
 std::vector<cli::OptionSpec> characterOptions() {
     return {{"character", "FILE",
              "put this character (a .gltf/.glb file, or \"fighter\") in the scene instead of "
-             "its own, playing its first clip unless --clip names one"},
+             "its (first) own, playing its first clip unless --clip names one"},
             {"clip", "NAME",
-             "play the character's clip NAME (default: the scene's, else the "
+             "play the (first) character's clip NAME (default: the scene's, else the "
              "first)"}};
 }
 
@@ -228,9 +228,9 @@ void reportBudget(const sim::SimulationFrameStats& stats) {
                          g.budgetLine.c_str());
 }
 
-void reportMotionlessEffects(const scene::Scene& scene, const anim::Character& character,
+void reportMotionlessEffects(const scene::Scene& scene, std::span<const anim::Character> cast,
                              uint32_t frames) {
-    const std::vector<std::string> still = scene::motionlessEffects(scene, character, frames);
+    const std::vector<std::string> still = scene::motionlessEffects(scene, cast, frames);
     if (still.empty()) return;
     std::string list;
     for (const std::string& s : still)
@@ -263,7 +263,7 @@ createSceneSimulation(const gpu::Context& ctx, const SceneArgument& argument, in
         exitCode = kExitUsage;
         return nullptr;
     }
-    auto created = sim::SceneSimulation::create(ctx, argument.scene, argument.character);
+    auto created = sim::SceneSimulation::create(ctx, argument.scene, argument.cast);
     if (!created) {
         printError(created.error().message);
         exitCode = kExitFailure;

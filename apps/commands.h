@@ -39,26 +39,27 @@ bool openOutputFile(const std::string& path, std::ofstream& file);
 // printed on stdout.
 struct SceneArgument {
     scene::Scene scene;
-    anim::Character character;
+    scene::Cast cast; // one character per scene.characters entry
 };
 bool loadSceneArgument(const cli::ParsedArgs& parsed, SceneArgument& out, int& exitCode,
                        const char* defaultSize = nullptr);
 // What loadSceneArgument reads once the options have been checked, without printing: the scene
-// and character, or the error; `lines` (when not null) gets the notes it would print (the
+// and its characters, or the error; `lines` (when not null) gets the notes it would print (the
 // character's scaling, the choices fitScene made). A viewer reloads its scene through it.
 Result<SceneArgument> readSceneArgument(const cli::ParsedArgs& parsed, const char* defaultSize,
                                         std::vector<std::string>* lines);
 // The second half of readSceneArgument: `scene` (as read) with the command line's options
-// applied, its character loaded and fitted (a viewer's panel edits a scene without a file).
+// applied, its characters loaded and fitted (a viewer's panel edits a scene without a file).
 Result<SceneArgument> prepareSceneArgument(const cli::ParsedArgs& parsed, const char* defaultSize,
                                            scene::Scene scene, std::vector<std::string>* lines);
 
-// The --character and --clip options of the commands that take a scene or a character file.
+// The --character and --clip options of the commands that take a scene or a character file (they
+// change the scene's first character).
 std::vector<cli::OptionSpec> characterOptions();
 
 // At the end of a run over `frames` frames: one line naming the effects that showed no motion
 // (their vertices never move while they are live, or they are never live), if there are any.
-void reportMotionlessEffects(const scene::Scene& scene, const anim::Character& character,
+void reportMotionlessEffects(const scene::Scene& scene, std::span<const anim::Character> cast,
                              uint32_t frames);
 
 // For each sparse smoke grid of `stats` that first wanted more bricks than its budget this frame:

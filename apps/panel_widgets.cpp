@@ -50,6 +50,9 @@ PanelWidget widgetFor(const ParamInfo& p, const std::vector<ParamInfo>& table) {
         if (p.key == "type") return w; // None
         w.kind = PanelWidget::Kind::Combo;
         return w;
+    case T::CharacterName: // the document's table lists the scene's characters
+        w.kind = PanelWidget::Kind::Combo;
+        return w;
     case T::Colour:
         w.kind = PanelWidget::Kind::Colour;
         w.min = 0.0;

@@ -236,11 +236,16 @@ PanelRequests ViewPanel::build(const PanelView& view) {
     }
     if (doc)
         for (const std::string& name : scene::sceneSections()) {
-            const bool lights = name == "lights";
+            // A scene of several characters lists them as "characters": one section each.
+            const bool cast = name == "character" && doc->document().contains("characters");
+            const std::string list = cast ? "characters" : name;
+            const bool many = name == "lights" || cast;
             const size_t count =
-                lights && doc->document().contains("lights") ? doc->document()["lights"].size() : 1;
+                many && doc->document().contains(list) && doc->document()[list].is_array()
+                    ? doc->document()[list].size()
+                    : 1;
             for (size_t i = 0; i < count; ++i) {
-                const std::string section = lights ? "lights[" + std::to_string(i) + "]" : name;
+                const std::string section = many ? list + "[" + std::to_string(i) + "]" : name;
                 if (ImGui::CollapsingHeader(section.c_str())) editSection(*doc, section, out);
             }
         }

@@ -13,7 +13,7 @@ ViewSession::ViewSession(const gpu::Context& ctx, const cli::ParsedArgs& parsed,
       argument_(std::make_unique<SceneArgument>(std::move(first))) {}
 
 Status ViewSession::start() {
-    auto created = sim::SceneSimulation::create(ctx_, argument_->scene, argument_->character);
+    auto created = sim::SceneSimulation::create(ctx_, argument_->scene, argument_->cast);
     if (!created) return created.error();
     sim_ = std::move(created).value();
     if (!player_)
@@ -61,7 +61,7 @@ Status ViewSession::replace(scene::Scene scene, std::vector<std::string>* lines)
 Status ViewSession::use(Result<SceneArgument> read) {
     if (!read) return read.error();
     auto argument = std::make_unique<SceneArgument>(std::move(read).value());
-    auto created = sim::SceneSimulation::create(ctx_, argument->scene, argument->character);
+    auto created = sim::SceneSimulation::create(ctx_, argument->scene, argument->cast);
     if (!created) return created.error();
     std::unique_ptr<sim::SceneSimulation> sim = std::move(created).value();
     // The effects hidden now stay hidden, by name.
@@ -89,8 +89,9 @@ std::vector<std::filesystem::path> ViewSession::files() const {
     std::vector<std::filesystem::path> out;
     const scene::Scene& s = scene();
     if (!s.file.empty() && s.file[0] != '(') out.emplace_back(s.file);
-    if (std::filesystem::path character = scene::characterFile(s); !character.empty())
-        out.push_back(character);
+    for (const scene::CharacterSpec& c : s.characters)
+        if (std::filesystem::path character = scene::characterFile(s, c); !character.empty())
+            out.push_back(character);
     return out;
 }
 
@@ -116,18 +117,21 @@ void ViewSession::zoom(float steps) {
 }
 
 void ViewSession::frameCharacter() {
-    const scene::Bounds pose = scene::poseBounds(argument_->character, sim_->framePose());
-    if (pose.empty()) return;
-    const glm::mat4 placement = sim_->placement();
     scene::Bounds world{glm::vec3(1e30f), glm::vec3(-1e30f)};
-    for (int corner = 0; corner < 8; ++corner) {
-        const glm::vec3 p((corner & 1) ? pose.high.x : pose.low.x,
-                          (corner & 2) ? pose.high.y : pose.low.y,
-                          (corner & 4) ? pose.high.z : pose.low.z);
-        const glm::vec3 w = glm::vec3(placement * glm::vec4(p, 1.0f));
-        world.low = glm::min(world.low, w);
-        world.high = glm::max(world.high, w);
+    for (size_t c = 0; c < argument_->cast.size(); ++c) {
+        const scene::Bounds pose = scene::poseBounds(argument_->cast[c], sim_->framePose(c));
+        if (pose.empty()) continue;
+        const glm::mat4 placement = sim_->placement(c);
+        for (int corner = 0; corner < 8; ++corner) {
+            const glm::vec3 p((corner & 1) ? pose.high.x : pose.low.x,
+                              (corner & 2) ? pose.high.y : pose.low.y,
+                              (corner & 4) ? pose.high.z : pose.low.z);
+            const glm::vec3 w = glm::vec3(placement * glm::vec4(p, 1.0f));
+            world.low = glm::min(world.low, w);
+            world.high = glm::max(world.high, w);
+        }
     }
+    if (world.empty()) return;
     orbitCamera().frame(world.centre(), 0.5f * glm::length(world.size()),
                         scene().camera.fovDegrees);
 }

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Makes the README's pictures of scenes with the program itself: the gallery
 # (docs/images/gallery/*.png: one frame of each scene in docs/scenes/gallery/ and of the default
-# scene, docs/scenes/hero.json, at 400x225), the default scene's frame at the top (640x360) and
-# the one-effect scenes of "The effects, one at a time" (docs/images/effect_*.png, 480x270). Look
+# scene, docs/scenes/hero.json, at 400x225), the default scene's frame at the top (640x360), the
+# versus scene's frames (docs/images/versus/, 320x180, and one at 640x360) and the one-effect scenes of "The effects, one at a time" (docs/images/effect_*.png, 480x270). Look
 # at every picture before committing it.
 #   docs/gallery.sh [path/to/motionfx]   (default: build/apps/motionfx)
 set -euo pipefail
@@ -47,6 +47,15 @@ shot docs/images/default_scene_frame44 docs/scenes/hero.json 44 640x360
 for effect in lines:20 blur:20 particles:20 smoke:20 afterimage:20 swept:12 shell:16; do
     shot "docs/images/effect_${effect%%:*}" "docs/scenes/${effect%%:*}.json" "${effect##*:}" 480x270
 done
+# The versus scene as frames of its video (README "Hits"): one render at 320x180, six frames (the
+# kick coming, the hit, the hit-stop's sparks, the rival knocked back, the slash).
+"$MOTIONFX" render docs/scenes/versus.json --size 320x180 --frames 45 --out "$work/versus" >/dev/null
+mkdir -p docs/images/versus
+for f in 8 11 13 17 40 44; do
+    cp "$work/versus/$(printf 'frame_%04d.png' "$f")" "docs/images/versus/frame_$f.png"
+    echo "docs/images/versus/frame_$f.png <- docs/scenes/versus.json, frame $f"
+done
+shot docs/images/versus_frame13 docs/scenes/versus.json 13 640x360
 # The viewer with its parameter panel (README "The parameter panel"), under a virtual X server.
 xvfb-run -a -s "-screen 0 1400x1100x24" "$MOTIONFX" view --size 1280x1000 --quit-after 41 \
     --screenshot-panel --screenshot docs/images/view_panel.png >/dev/null

@@ -15,10 +15,11 @@ Result<SmokeGrid> SmokeGrid::create(const gpu::Context& ctx, SmokeGridSettings s
     auto solver = createGridSolver(ctx, settings.options, {settings.sparse, settings.maxBricks});
     if (!solver) return solver.error();
     grid.solver_ = std::move(solver).value();
-    // Transfer source for the simulation's emitter capture.
+    // Transfer source for the simulation's emitter capture, destination for the impacts' bursts.
     grid.emitters_ = gpu::createBuffer(
         ctx, VkDeviceSize(settings.emitterCapacity) * sizeof(shared::FluidEmitter),
-        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+            VK_BUFFER_USAGE_TRANSFER_DST_BIT,
         gpu::MemoryUsage::DeviceLocal, "smoke emitters");
     grid.activity_ =
         gpu::createBuffer(ctx, 2 * sizeof(uint32_t),

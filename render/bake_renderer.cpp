@@ -25,7 +25,7 @@ BakeRenderer::BakeRenderer(const gpu::Context& ctx, const sim::SceneSimulation& 
     : layer_(createRenderTarget(ctx, width, height, supportedSamples(ctx, samples))),
       effects_(ctx, simulation, layer_.samples),
       camera_(makeCamera(simulation.scene().camera, float(width) / float(height))) {
-    if (holdout) holdout_.emplace(ctx, simulation.character(), simulation.scene(), layer_.samples);
+    if (holdout) holdout_.emplace(ctx, simulation.cast(), simulation.scene(), layer_.samples);
     // One ray a pixel: a cell is small, and what it holds is all there is of the effect.
     SmokeLook look;
     look.resolution = SmokeResolution::Full;
@@ -36,7 +36,7 @@ void BakeRenderer::record(VkCommandBuffer cmd, sim::SceneSimulation& simulation,
     simulation.recordFrame(cmd, frame);
     effects_.setCamera(camera_);
     effects_.advance(cmd, simulation, frame);
-    if (holdout_) holdout_->skin(cmd, simulation.framePose(), simulation.placement());
+    if (holdout_) holdout_->skin(cmd, simulation.framePoses(), simulation.placements());
     beginLayer(cmd, effects_.fadesAgainstDepth());
     effects_.drawEffects(cmd, layer_, simulation, simulation.frameTime(frame));
     effects_.drawSmoke(cmd, layer_, simulation);

@@ -7,8 +7,10 @@
 #include "render/render_target.h"
 #include "shaders/embedded.h"
 
+#include <algorithm>
 #include <cstring>
 #include <map>
+#include <tuple>
 
 namespace mfx::render {
 
@@ -19,9 +21,9 @@ constexpr VkBufferUsageFlags kStorage =
 
 } // namespace
 
-CharacterPass::CharacterPass(const gpu::Context& ctx, const anim::Character& character,
+CharacterPass::CharacterPass(const gpu::Context& ctx, std::span<const anim::Character> cast,
                              const scene::Scene& scene, VkSampleCountFlagBits samples)
-    : ctx_(ctx), character_(character), scene_(scene), skinning_(ctx) {
+    : ctx_(ctx), cast_(cast), scene_(scene), skinning_(ctx) {
     gpu::GraphicsProgramDesc desc;
     desc.name = "character";
     desc.vertex = shaders::character_vert;
@@ -36,9 +38,14 @@ CharacterPass::CharacterPass(const gpu::Context& ctx, const anim::Character& cha
     desc.depthWrite = true;
     desc.samples = samples;
     program_ = gpu::createGraphicsProgram(ctx, desc);
-    const scene::CharacterSpec& look = scene.character;
-    outlined_ =
-        scene::characterStyle(look) == scene::CharacterStyle::Toon && look.outlineWidth > 0.0f;
+    auto outlines = [&](size_t c) {
+        const scene::CharacterSpec& look = scene.characters[c];
+        return scene::characterStyle(look) == scene::CharacterStyle::Toon &&
+               look.outlineWidth > 0.0f;
+    };
+    const size_t characters = std::min(cast.size(), scene.characters.size());
+    for (size_t c = 0; c < characters; ++c)
+        outlined_ = outlined_ || outlines(c);
     if (outlined_) {
         gpu::GraphicsProgramDesc outline = desc;
         outline.name = "outline";
@@ -87,11 +94,28 @@ CharacterPass::CharacterPass(const gpu::Context& ctx, const anim::Character& cha
                   gpu::bindImage(1, shadowMap_, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                                  shadowSampler_.get())};
 
+    for (size_t c = 0; c < characters; ++c)
+        addCharacter(ctx, c, outlines(c));
+    const scene::StageSpec& stage = scene.stage;
+    if (stage.floor)
+        addStageQuad(ctx, glm::vec3(stage.floorCentre.x, stage.floorHeight, stage.floorCentre.z),
+                     glm::vec3(0, 0, stage.floorHalfSize), glm::vec3(stage.floorHalfSize, 0, 0),
+                     stage.floorColour);
+    if (stage.backdrop)
+        addStageQuad(ctx, stage.backdropCentre, stage.backdropHalfWidth,
+                     glm::vec3(0, stage.backdropHalfHeight, 0), stage.backdropColour);
+}
+
+// Character `c`'s primitives as parts (with their outline hulls when `outlined`).
+void CharacterPass::addCharacter(const gpu::Context& ctx, size_t c, bool outlined) {
+    const anim::Character& character = cast_[c];
     for (const anim::Mesh& mesh : character.meshes)
         for (const anim::Primitive& p : mesh.primitives) {
             if (p.positions.empty() || p.indices.empty()) continue;
             Part part;
             part.primitive = &p;
+            part.character = c;
+            part.outlined = outlined;
             part.vertexCount = uint32_t(p.positions.size());
             part.indexCount = uint32_t(p.indices.size());
             part.jointCount =
@@ -104,7 +128,7 @@ CharacterPass::CharacterPass(const gpu::Context& ctx, const anim::Character& cha
                                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
                                                 VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
                                             gpu::MemoryUsage::DeviceLocal, "skinned");
-            if (outlined_) {
+            if (part.outlined) {
                 std::vector<shared::SkinVertexIn> hull = packed;
                 const std::vector<glm::vec3> welded =
                     anim::weldedNormals(p.positions, p.normals, glm::vec3(0.0f, 1.0f, 0.0f));
@@ -130,14 +154,6 @@ CharacterPass::CharacterPass(const gpu::Context& ctx, const anim::Character& cha
                                              gpu::MemoryUsage::Upload, "character palette");
             parts_.push_back(std::move(part));
         }
-    const scene::StageSpec& stage = scene.stage;
-    if (stage.floor)
-        addStageQuad(ctx, glm::vec3(stage.floorCentre.x, stage.floorHeight, stage.floorCentre.z),
-                     glm::vec3(0, 0, stage.floorHalfSize), glm::vec3(stage.floorHalfSize, 0, 0),
-                     stage.floorColour);
-    if (stage.backdrop)
-        addStageQuad(ctx, stage.backdropCentre, stage.backdropHalfWidth,
-                     glm::vec3(0, stage.backdropHalfHeight, 0), stage.backdropColour);
 }
 
 // A rectangle centre ± u ± v; its normal u × v.
@@ -164,37 +180,41 @@ void CharacterPass::addStageQuad(const gpu::Context& ctx, glm::vec3 centre, glm:
     stage_.push_back(std::move(mesh));
 }
 
-void CharacterPass::skin(VkCommandBuffer cmd, const anim::Pose& pose, const glm::mat4& placement) {
-    // One palette per skin (or rigid node), however many primitives it moves.
-    std::map<std::pair<int, int>, std::vector<shared::SkinJoint>> palettes;
+void CharacterPass::skin(VkCommandBuffer cmd, std::span<const anim::Pose> poses,
+                         std::span<const glm::mat4> placements) {
+    // One palette per character and skin (or rigid node), however many primitives it moves.
+    std::map<std::tuple<size_t, int, int>, std::vector<shared::SkinJoint>> palettes;
     for (Part& part : parts_) {
+        if (part.character >= poses.size() || part.character >= placements.size()) continue;
         const anim::Primitive& p = *part.primitive;
-        const auto key = p.skin >= 0 ? std::make_pair(p.skin, -1) : std::make_pair(-1, p.node);
+        const anim::Pose& pose = poses[part.character];
+        const auto key = p.skin >= 0 ? std::make_tuple(part.character, p.skin, -1)
+                                     : std::make_tuple(part.character, -1, p.node);
         auto it = palettes.find(key);
         if (it == palettes.end()) {
             std::vector<glm::mat4> matrices =
-                p.skin >= 0 ? anim::jointMatrices(character_, p.skin, pose)
+                p.skin >= 0 ? anim::jointMatrices(cast_[part.character], p.skin, pose)
                             : std::vector<glm::mat4>{p.node >= 0 ? pose.world[size_t(p.node)]
                                                                  : glm::mat4(1.0f)};
             for (glm::mat4& m : matrices)
-                m = placement * m;
+                m = placements[part.character] * m;
             it = palettes.emplace(key, anim::packPalette(anim::dualQuatPalette(matrices))).first;
         }
         std::memcpy(part.palette.mapped, it->second.data(),
                     it->second.size() * sizeof(shared::SkinJoint));
         skinning_.record(cmd, part.palette, part.jointCount, part.input, part.output,
                          part.vertexCount);
-        if (outlined_)
+        if (part.outlined)
             skinning_.record(cmd, part.palette, part.jointCount, part.outlineInput,
                              part.outlineOutput, part.vertexCount);
     }
 }
 
 void CharacterPass::shadow(VkCommandBuffer cmd) {
-    // Around where the character stands, big enough for a kick or a sword's reach (fitScene
-    // sizes it to the character's animated bounds when it frames the camera).
-    const glm::vec3 centre =
-        scene_.stage.shadowCentre.value_or(scene_.character.position + glm::vec3(0.0f, 1.0f, 0.0f));
+    // Around where the first character stands, big enough for a kick or a sword's reach
+    // (fitScene sizes it to the characters' animated bounds when it frames the camera).
+    const glm::vec3 centre = scene_.stage.shadowCentre.value_or(scene_.characters.front().position +
+                                                                glm::vec3(0.0f, 1.0f, 0.0f));
     const scene::LightSpec key = scene_.lights.empty() ? scene::LightSpec{} : scene_.lights.front();
     lightViewProjection_ = lightViewProjection(key, centre, scene_.stage.shadowRadius);
     shadowReady_ = key.shadow;
@@ -242,15 +262,14 @@ void CharacterPass::draw(VkCommandBuffer cmd, const SceneCamera& camera, bool wi
     std::memcpy(frame_.mapped, &frame, sizeof frame);
     program_.bind(cmd, resources_);
     const VkDeviceSize offset = 0;
-    const scene::CharacterSpec& look = scene_.character;
-    const bool toon = scene::characterStyle(look) == scene::CharacterStyle::Toon;
+    // `look`: the character's, null for the stage.
     auto drawMesh = [&](const gpu::Buffer& vertices, const gpu::Buffer& indices, uint32_t count,
-                        glm::vec3 colour, bool character) {
+                        glm::vec3 colour, const scene::CharacterSpec* look) {
         shared::SceneObject object{};
         object.model = glm::mat4(1.0f);
         object.baseColor = glm::vec4(colour, 1.0f);
-        if (character && toon)
-            object.style = glm::vec4(MFX_STYLE_TOON, float(look.toonBands), look.rim, 0.0f);
+        if (look && scene::characterStyle(*look) == scene::CharacterStyle::Toon)
+            object.style = glm::vec4(MFX_STYLE_TOON, float(look->toonBands), look->rim, 0.0f);
         program_.push(cmd, object);
         VkBuffer vb = vertices.get();
         vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
@@ -258,22 +277,24 @@ void CharacterPass::draw(VkCommandBuffer cmd, const SceneCamera& camera, bool wi
         vkCmdDrawIndexed(cmd, count, 1, 0, 0, 0);
     };
     for (const StageMesh& m : stage_)
-        if (withStage) drawMesh(m.vertices, m.indices, m.indexCount, m.colour, false);
+        if (withStage) drawMesh(m.vertices, m.indices, m.indexCount, m.colour, nullptr);
     for (const Part& part : parts_)
-        drawMesh(part.output, part.indices, part.indexCount, glm::vec3(part.primitive->baseColor),
-                 true);
+        drawMesh(part.output, part.indices, part.indexCount,
+                 glm::vec3(part.primitive->baseColor) * scene_.characters[part.character].tint,
+                 &scene_.characters[part.character]);
 }
 
 void CharacterPass::drawOutline(VkCommandBuffer cmd, uint32_t width, uint32_t height) {
     if (!outlined_) return;
     outlineProgram_.bind(cmd, {gpu::bindBuffer(0, frame_)}); // written by draw()
-    shared::OutlineDraw d{};
-    d.colour = glm::vec4(scene_.character.outlineColour, 1.0f);
-    d.width =
-        glm::vec4(scene_.character.outlineWidth, 2.0f / float(width), 2.0f / float(height), 0.0f);
-    outlineProgram_.push(cmd, d);
     const VkDeviceSize offset = 0;
     for (const Part& part : parts_) {
+        if (!part.outlined) continue;
+        const scene::CharacterSpec& look = scene_.characters[part.character];
+        shared::OutlineDraw d{};
+        d.colour = glm::vec4(look.outlineColour, 1.0f);
+        d.width = glm::vec4(look.outlineWidth, 2.0f / float(width), 2.0f / float(height), 0.0f);
+        outlineProgram_.push(cmd, d);
         VkBuffer vb = part.outlineOutput.get();
         vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
         vkCmdBindIndexBuffer(cmd, part.indices.get(), 0, VK_INDEX_TYPE_UINT32);

@@ -51,7 +51,7 @@ protected:
 };
 
 // One registered kind of pass: the effect types it draws (scene "type" names) and how to make it
-// for a simulation's scene and character, drawing into targets of `samples` samples.
+// for a simulation's scene and cast, drawing into targets of `samples` samples.
 struct EffectPassKind {
     const char* name;
     int drawOrder;
@@ -67,8 +67,9 @@ struct EffectPassKind {
 //   static constexpr const char* kPassName;  // for tables and errors
 //   static constexpr int kDrawOrder;         // passes draw in increasing order
 //   static std::vector<std::string> drawnTypes(); // the scene effect types it draws
-// and a constructor (ctx, scene, character, samples) or, for a pass that needs neither the scene
-// nor the character, (ctx, samples).
+// and a constructor (ctx, scene, cast, samples) (the cast: std::span<const anim::Character>, one
+// per scene.characters entry) or, for a pass that needs neither the scene nor the cast,
+// (ctx, samples).
 template <class... Passes>
 struct EffectPassList {};
 

@@ -11,7 +11,7 @@ namespace mfx::render {
 
 namespace {
 
-// A pass made from the simulation's scene and character, or from nothing of the simulation where
+// A pass made from the simulation's scene and cast, or from nothing of the simulation where
 // its constructor takes neither.
 template <class Pass>
 std::unique_ptr<EffectKindPass> make(const gpu::Context& ctx,
@@ -20,7 +20,7 @@ std::unique_ptr<EffectKindPass> make(const gpu::Context& ctx,
     if constexpr (std::is_constructible_v<Pass, const gpu::Context&, VkSampleCountFlagBits>)
         return std::make_unique<Pass>(ctx, samples);
     else
-        return std::make_unique<Pass>(ctx, simulation.scene(), simulation.character(), samples);
+        return std::make_unique<Pass>(ctx, simulation.scene(), simulation.cast(), samples);
 }
 
 template <class Pass>

@@ -1,5 +1,7 @@
 #include "render/frame_renderer.h"
 
+#include "core/scene/scene_hits.h"
+
 namespace mfx::render {
 
 FrameRenderer::FrameRenderer(const gpu::Context& ctx, const sim::SceneSimulation& simulation,
@@ -7,15 +9,16 @@ FrameRenderer::FrameRenderer(const gpu::Context& ctx, const sim::SceneSimulation
     : ctx_(ctx),
       target_(createRenderTarget(ctx, width, height, supportedSamples(ctx, wantedSamples))),
       output_(createOutputTarget(ctx, width, height)),
-      scenePass_(ctx, simulation.character(), simulation.scene(), target_.samples),
+      scenePass_(ctx, simulation.cast(), simulation.scene(), target_.samples),
       effects_(ctx, simulation, target_.samples), bloomPass_(ctx), toneMapPass_(ctx),
       post_(simulation.scene().post),
       camera_(makeCamera(simulation.scene().camera, float(width) / float(height))),
-      timer_(ctx, uint32_t(std::size(kFramePassNames))) {
+      cameraSpec_(simulation.scene().camera), timer_(ctx, uint32_t(std::size(kFramePassNames))) {
     effects_.setCamera(camera_);
 }
 
 void FrameRenderer::setCamera(const scene::CameraSpec& camera) {
+    cameraSpec_ = camera;
     camera_ = makeCamera(camera, float(target_.width) / float(target_.height));
     effects_.setCamera(camera_);
 }
@@ -32,10 +35,19 @@ void FrameRenderer::recordDraw(VkCommandBuffer cmd, const sim::SceneSimulation& 
 
 void FrameRenderer::recordFrame(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
                                 float time, const uint32_t* frame) {
+    // The hits' shake, at the time drawn.
+    if (const glm::vec3 shake = scene::cameraShake(simulation.scene(), time);
+        shake != glm::vec3(0.0f) || camera_.eye != cameraSpec_.position) {
+        scene::CameraSpec shaken = cameraSpec_;
+        shaken.position += shake;
+        shaken.target += shake;
+        camera_ = makeCamera(shaken, float(target_.width) / float(target_.height));
+        effects_.setCamera(camera_);
+    }
     timer_.reset(cmd);
     {
         gpu::ScopedPass pass(timer_, cmd, "skin");
-        scenePass_.skin(cmd, simulation.framePose(), simulation.placement());
+        scenePass_.skin(cmd, simulation.framePoses(), simulation.placements());
         if (frame) effects_.advance(cmd, simulation, *frame);
     }
     {

@@ -29,9 +29,9 @@ inline constexpr const char* kFramePassNames[] = {"skin",    "shadow", "scene", 
 class FrameRenderer {
 public:
     // A target of `width` × `height` with up to `wantedSamples` samples per pixel (fewer where the
-    // device allows fewer), for the scene and character of `simulation`. The character must
+    // device allows fewer), for the scene and characters of `simulation`. The characters must
     // outlive the renderer; the simulation need not: the renderer draws any later simulation of
-    // the same scene and character (a restarted view).
+    // the same scene and characters (a restarted view).
     FrameRenderer(const gpu::Context& ctx, const sim::SceneSimulation& simulation, uint32_t width,
                   uint32_t height, VkSampleCountFlagBits wantedSamples = VK_SAMPLE_COUNT_4_BIT);
 
@@ -66,6 +66,7 @@ public:
     }
     const SceneCamera& camera() const { return camera_; }
     // Draws from `camera` from now on instead of the scene's camera (a viewer's orbit camera).
+    // Either is shaken by the scene's hits (scene::cameraShake) at the time drawn.
     void setCamera(const scene::CameraSpec& camera);
 
 private:
@@ -82,6 +83,7 @@ private:
     ToneMapPass toneMapPass_;
     scene::PostSpec post_;
     SceneCamera camera_;
+    scene::CameraSpec cameraSpec_; // the scene's or setCamera's, before any shake
     gpu::GpuTimer timer_;
     uint32_t draws_ = 0;
 };

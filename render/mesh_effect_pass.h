@@ -45,7 +45,9 @@ public:
         const bool reset = step == FrameHistory::Step::Restart;
         beginFrame(simulation, reset);
         for (Effect& effect : effects_) {
-            effect.skin(cmd, skinning_, character_, simulation.framePose(), simulation.placement());
+            const size_t c = scene::effectCharacter(simulation.scene(),
+                                                    simulation.scene().effects[effect.index]);
+            effect.skin(cmd, skinning_, cast_[c], simulation.framePose(c), simulation.placement(c));
             recordEffect(cmd, simulation, frame, effect, reset);
         }
         computeToDrawBarrier(cmd);
@@ -61,10 +63,10 @@ public:
     }
 
 protected:
-    MeshEffectPass(const gpu::Context& ctx, const anim::Character& character)
-        : ctx_(ctx), character_(character), skinning_(ctx) {}
+    MeshEffectPass(const gpu::Context& ctx, std::span<const anim::Character> cast)
+        : ctx_(ctx), cast_(cast), skinning_(ctx) {}
 
-    // The scene's effects of the pass's kind whose selection of the character's vertices
+    // The scene's effects of the pass's kind whose selection of their character's vertices
     // (scene::effectSource) is not empty: their index in scene.effects, settings and selection.
     // Each pass's constructor makes its effects from these (the simulation refuses a scene with
     // an empty selection first), and a scene without the kind makes none and pays for nothing.
@@ -78,7 +80,9 @@ protected:
         for (size_t i = 0; i < scene.effects.size(); ++i) {
             const Kind* kind = scene.effects[i].template as<Kind>();
             if (!kind) continue;
-            Result<trajectory::Source> selected = scene::effectSource(character_, scene.effects[i]);
+            const size_t c = scene::effectCharacter(scene, scene.effects[i]);
+            if (c >= cast_.size()) continue;
+            Result<trajectory::Source> selected = scene::effectSource(cast_[c], scene.effects[i]);
             if (selected && !selected.value().vertices.empty())
                 out.push_back({i, kind, std::move(selected).value()});
         }
@@ -112,7 +116,7 @@ protected:
     }
 
     const gpu::Context& ctx_;
-    const anim::Character& character_;
+    std::span<const anim::Character> cast_;
     anim::SkinVertices skinning_;
     gpu::Program draw_; // the built triangles' pipeline
     gpu::Buffer frame_;

@@ -37,7 +37,9 @@ struct MfxRuntime_T {
 
 struct MfxEffects_T {
     MfxRuntime runtime = nullptr;
-    mfx::anim::Character character; // the simulation keeps a reference to it: declared first
+    // The scene's characters (the host's animation drives the first); the simulation keeps a
+    // reference to them: declared first.
+    mfx::scene::Cast cast;
     std::unique_ptr<mfx::sim::SceneSimulation> simulation;
     std::vector<std::string> names;
     // The drawing into the host's frames, made by the first mfxRecordFrame (again when the
@@ -207,13 +209,13 @@ MfxResult mfxCreateEffects(MfxRuntime runtime, const MfxEffectsDesc* desc, MfxEf
     return guarded(runtime, [&] {
         auto scene = readScene(*desc);
         if (!scene) return fail(runtime, MFX_ERROR_SCENE, scene.error().message);
-        auto character = mfx::scene::loadCharacter(scene.value());
-        if (!character) return fail(runtime, MFX_ERROR_SCENE, character.error().message);
+        auto cast = mfx::scene::loadCast(scene.value());
+        if (!cast) return fail(runtime, MFX_ERROR_SCENE, cast.error().message);
         auto made = std::make_unique<MfxEffects_T>();
         made->runtime = runtime;
-        made->character = std::move(character).value();
+        made->cast = std::move(cast).value();
         auto simulation =
-            mfx::sim::SceneSimulation::create(*runtime->context, scene.value(), made->character);
+            mfx::sim::SceneSimulation::create(*runtime->context, scene.value(), made->cast);
         if (!simulation) return fail(runtime, MFX_ERROR_SCENE, simulation.error().message);
         made->simulation = std::move(simulation).value();
         for (const mfx::scene::EffectSpec& effect : made->simulation->scene().effects)
@@ -263,7 +265,7 @@ MfxResult mfxGetCharacterMeshSize(MfxEffects effects, uint32_t* vertexCount, uin
         return fail(effects->runtime, MFX_ERROR_INVALID_ARGUMENT,
                     "mfxGetCharacterMeshSize: both counts to fill must be given");
     uint64_t vertices = 0, indices = 0;
-    for (const mfx::anim::Mesh& mesh : effects->character.meshes)
+    for (const mfx::anim::Mesh& mesh : effects->cast.front().meshes)
         for (const mfx::anim::Primitive& primitive : mesh.primitives) {
             vertices += primitive.positions.size();
             indices += primitive.indices.size();
@@ -286,18 +288,18 @@ MfxResult mfxGetCharacterMesh(MfxEffects effects, double time, float* positions,
                         std::to_string(time));
     return guarded(runtime, [&] {
         const mfx::sim::SceneSimulation& simulation = *effects->simulation;
-        const mfx::anim::Pose pose = simulation.poseAt(float(time));
+        const mfx::anim::Pose pose = simulation.poseAt(0, float(time));
         const glm::mat4 placement = simulation.placement();
         const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(placement)));
         size_t vertex = 0, index = 0;
-        for (const mfx::anim::Mesh& mesh : effects->character.meshes)
+        for (const mfx::anim::Mesh& mesh : effects->cast.front().meshes)
             for (const mfx::anim::Primitive& primitive : mesh.primitives) {
                 if (indices != nullptr)
                     for (uint32_t i : primitive.indices)
                         indices[index++] = uint32_t(vertex) + i;
                 if (positions != nullptr || normals != nullptr)
                     for (const mfx::anim::SkinnedVertex& v :
-                         mfx::anim::skinPrimitive(effects->character, primitive, pose)) {
+                         mfx::anim::skinPrimitive(effects->cast.front(), primitive, pose)) {
                         const glm::vec3 p = glm::vec3(placement * glm::vec4(v.position, 1.0f));
                         const glm::vec3 n = glm::normalize(normalMatrix * v.normal);
                         for (int c = 0; c < 3; ++c) {
@@ -332,12 +334,12 @@ MfxResult mfxGetSceneCamera(MfxEffects effects, float aspect, MfxCamera* camera)
 }
 
 uint32_t mfxGetCharacterNodeCount(MfxEffects effects) {
-    return effects != nullptr ? uint32_t(effects->character.nodes.size()) : 0;
+    return effects != nullptr ? uint32_t(effects->cast.front().nodes.size()) : 0;
 }
 
 const char* mfxGetCharacterNodeName(MfxEffects effects, uint32_t index) {
-    if (effects == nullptr || index >= effects->character.nodes.size()) return nullptr;
-    return effects->character.nodes[index].name.c_str();
+    if (effects == nullptr || index >= effects->cast.front().nodes.size()) return nullptr;
+    return effects->cast.front().nodes[index].name.c_str();
 }
 
 MfxResult mfxGetCharacterNodeMatrices(MfxEffects effects, double time, float* matrices) {
@@ -353,7 +355,7 @@ MfxResult mfxGetCharacterNodeMatrices(MfxEffects effects, double time, float* ma
                     "got " +
                         std::to_string(time));
     return guarded(runtime, [&] {
-        const mfx::anim::Pose pose = effects->simulation->poseAt(float(time));
+        const mfx::anim::Pose pose = effects->simulation->poseAt(0, float(time));
         for (size_t node = 0; node < pose.world.size(); ++node)
             std::memcpy(matrices + 16 * node, glm::value_ptr(pose.world[node]), 16 * sizeof(float));
         return MFX_SUCCESS;
@@ -386,7 +388,7 @@ MfxResult mfxRecordFrame(MfxEffects effects, const MfxFrameDesc* desc) {
     // The host's pose, checked whole before anything is recorded.
     std::optional<mfx::anim::Pose> pose;
     if (desc->nodeMatrices != nullptr || desc->nodeMatrixCount != 0) {
-        const size_t nodes = effects->character.nodes.size();
+        const size_t nodes = effects->cast.front().nodes.size();
         if (desc->nodeMatrices == nullptr || desc->nodeMatrixCount != nodes)
             return invalid("MfxFrameDesc.nodeMatrixCount is " +
                            std::to_string(desc->nodeMatrixCount) +
@@ -398,11 +400,11 @@ MfxResult mfxRecordFrame(MfxEffects effects, const MfxFrameDesc* desc) {
             for (size_t k = 0; k < 16; ++k)
                 if (!std::isfinite(desc->nodeMatrices[16 * node + k]))
                     return invalid("MfxFrameDesc.nodeMatrices: node " + std::to_string(node) +
-                                   " (" + effects->character.nodes[node].name +
+                                   " (" + effects->cast.front().nodes[node].name +
                                    ") has a value that is not a finite number");
             world[node] = glm::make_mat4(desc->nodeMatrices + 16 * node);
         }
-        pose = mfx::anim::poseFromWorld(effects->character, std::move(world));
+        pose = mfx::anim::poseFromWorld(effects->cast.front(), std::move(world));
     }
     return guarded(runtime, [&] {
         mfx::sim::SceneSimulation& simulation = *effects->simulation;

@@ -1,6 +1,7 @@
 #include "sim/scene_simulation.h"
 
 #include "core/scene/effect_source.h"
+#include "core/scene/kinds/impact_effect.h"
 #include "core/scene/scene_fit.h"
 
 #include "core/anim/bone_groups.h"
@@ -22,6 +23,9 @@ namespace mfx::sim {
 namespace {
 
 constexpr uint32_t kMaxPasses = 512;
+// An impact's burst into the smoke: emitters per hit, and hits a step takes at most.
+constexpr uint32_t kBurstEmitters = 7;
+constexpr uint32_t kBurstsPerStep = 4;
 
 // Every stride-th vertex of `source` (triangles dropped: only volumes use them, and volumes keep
 // every vertex).
@@ -128,20 +132,26 @@ uint32_t SimulationFrameStats::fluidDispatches() const {
     return n;
 }
 
-Result<std::unique_ptr<SceneSimulation>> SceneSimulation::create(const gpu::Context& ctx,
-                                                                 const scene::Scene& scene,
-                                                                 const anim::Character& character) {
-    std::unique_ptr<SceneSimulation> sim(new SceneSimulation(ctx, scene, character));
+Result<std::unique_ptr<SceneSimulation>>
+SceneSimulation::create(const gpu::Context& ctx, const scene::Scene& scene,
+                        std::span<const anim::Character> cast) {
+    if (cast.size() != scene.characters.size())
+        return Error{scene.file + ": " + std::to_string(cast.size()) + " characters given for " +
+                     std::to_string(scene.characters.size()) + " in the scene"};
+    std::unique_ptr<SceneSimulation> sim(new SceneSimulation(ctx, scene, cast));
     // Bone groups and patterns resolved, automatic bones, strides, camera and stage chosen (a
     // scene the caller fitted already is left as it is).
-    if (Status fitted = scene::fitScene(sim->scene_, character); !fitted) return fitted.error();
-    sim->frames_ = scene::frameCount(sim->scene_, character);
+    if (Status fitted = scene::fitScene(sim->scene_, cast); !fitted) return fitted.error();
+    sim->frames_ = scene::frameCount(sim->scene_, cast);
+    sim->framePoses_.resize(cast.size());
     for (size_t i = 0; i < sim->scene_.effects.size(); ++i) {
         const scene::EffectSpec& e = sim->scene_.effects[i];
         const std::string where =
             sim->scene_.file + ": effects[" + std::to_string(i) + "] (\"" + e.name + "\"): ";
         TrajectoryEffect effect;
         effect.spec = &e;
+        effect.character = scene::effectCharacter(sim->scene_, e);
+        const anim::Character& character = cast[effect.character];
         Result<trajectory::Source> selected = scene::effectSource(character, e, &effect.surface);
         if (!selected) return Error{where + selected.error().message};
         // Kinds without a trail keep their own per-vertex history in their pass (the afterimage,
@@ -196,6 +206,13 @@ Result<std::unique_ptr<SceneSimulation>> SceneSimulation::create(const gpu::Cont
             specs.push_back(sim->trajectories_[i].smoke);
         fluid::SmokeGridSettings settings = gridSettings(
             specs, sim->scene_.output.fps, "smoke" + std::to_string(sim->grids_.size()));
+        // Room for the impacts' bursts (kBurstsPerStep a step).
+        if (std::any_of(sim->scene_.effects.begin(), sim->scene_.effects.end(),
+                        [](const scene::EffectSpec& e) {
+                            const auto* impact = e.as<scene::ImpactSpec>();
+                            return impact && impact->smokeImpulse > 0.0f;
+                        }))
+            settings.emitterCapacity += kBurstsPerStep * kBurstEmitters;
         const std::string name = settings.name;
         auto grid = fluid::SmokeGrid::create(ctx, std::move(settings));
         if (!grid) return Error{sim->scene_.file + ": " + name + ": " + grid.error().message};
@@ -203,18 +220,31 @@ Result<std::unique_ptr<SceneSimulation>> SceneSimulation::create(const gpu::Cont
         sim->grids_.back().effects = effects;
         const scene::SmokeGridSpec& spec = specs.front()->grid;
         if (spec.collide) {
-            std::vector<std::string> emitting;
-            bool wholeBody = false;
-            for (size_t i : effects) {
-                const std::vector<std::string>& bones = sim->trajectories_[i].spec->bones;
-                wholeBody = wholeBody || bones.empty();
-                emitting.insert(emitting.end(), bones.begin(), bones.end());
+            // Each character: the capsules its effects in this grid leave free (collide_bones
+            // names that character's bones), or every one of a character none of them follows
+            // (none where collide_bones picks the bones).
+            SmokeGrid& g = sim->grids_.back();
+            g.capsules.resize(cast.size());
+            for (size_t c = 0; c < cast.size(); ++c) {
+                std::vector<std::string> emitting;
+                bool wholeBody = false, follows = false;
+                for (size_t i : effects) {
+                    if (sim->trajectories_[i].character != c) continue;
+                    follows = true;
+                    const std::vector<std::string>& bones = sim->trajectories_[i].spec->bones;
+                    wholeBody = wholeBody || bones.empty();
+                    emitting.insert(emitting.end(), bones.begin(), bones.end());
+                }
+                if (!follows) {
+                    if (spec.collideBones.empty()) g.capsules[c] = anim::fitBodyCapsules(cast[c]);
+                    continue;
+                }
+                auto capsules = collisionCapsules(cast[c], spec.collideBones, emitting, wholeBody);
+                if (!capsules)
+                    return Error{sim->scene_.file + ": " + name + ": " + capsules.error().message};
+                g.capsules[c] = std::move(capsules).value();
             }
-            auto capsules = collisionCapsules(character, spec.collideBones, emitting, wholeBody);
-            if (!capsules)
-                return Error{sim->scene_.file + ": " + name + ": " + capsules.error().message};
-            sim->grids_.back().capsules = std::move(capsules).value();
-            sim->grids_.back().collideThickness = spec.collideThickness;
+            g.collideThickness = spec.collideThickness;
         }
         sim->placeGrid(sim->grids_.back());
     }
@@ -223,8 +253,15 @@ Result<std::unique_ptr<SceneSimulation>> SceneSimulation::create(const gpu::Cont
     return sim;
 }
 
-glm::mat4 SceneSimulation::placement() const {
-    return scene::characterPlacement(scene_);
+glm::mat4 SceneSimulation::placement(size_t c) const {
+    return scene::characterPlacement(scene_.characters[c]);
+}
+
+std::vector<glm::mat4> SceneSimulation::placements() const {
+    std::vector<glm::mat4> out;
+    for (size_t c = 0; c < cast_.size(); ++c)
+        out.push_back(placement(c));
+    return out;
 }
 
 bool SceneSimulation::effectLive(const scene::EffectSpec& e, float time) const {
@@ -236,16 +273,14 @@ bool SceneSimulation::effectLive(const scene::EffectSpec& e, float time) const {
 // stage.floorHeight) when the stage has one and the bounds allow.
 void SceneSimulation::placeGrid(SmokeGrid& grid) {
     glm::vec3 low(std::numeric_limits<float>::max()), high(std::numeric_limits<float>::lowest());
-    const anim::Clip& clip = scene::sceneClip(scene_, character_);
     for (size_t i : grid.effects) {
         const TrajectoryEffect& effect = trajectories_[i];
+        const size_t c = effect.character;
         for (uint32_t f : scene::liveSampledFrames(scene_, *effect.spec, frames_)) {
-            const float t = frameTime(f);
-            const anim::Pose pose = anim::samplePose(
-                character_, &clip, scene::clipTimeAt(scene_, character_, t), anim::Wrap::Clamp);
+            const anim::Pose pose = poseAt(c, frameTime(f));
             const auto transforms = trajectory::vertexTransforms(
                 effect.source,
-                trajectory::sourcePalette(character_, effect.source, pose, placement()));
+                trajectory::sourcePalette(cast_[c], effect.source, pose, placement(c)));
             for (size_t v = 0; v < transforms.size(); ++v) {
                 const glm::vec3 p =
                     anim::applyTransform(transforms[v],
@@ -257,16 +292,16 @@ void SceneSimulation::placeGrid(SmokeGrid& grid) {
             }
         }
     }
-    grid.grid.place(low, high, scene_.character.position,
+    // A grid follows the character of its first effect.
+    const size_t c = trajectories_[grid.effects.front()].character;
+    grid.grid.place(low, high, scene_.characters[c].position,
                     scene_.stage.floor ? std::optional<float>(scene_.stage.floorHeight)
                                        : std::nullopt,
-                    rootPosition(poseAt(frameTime(0))));
+                    rootPosition(c, poseAt(c, frameTime(0))));
 }
 
-anim::Pose SceneSimulation::poseAt(float time) const {
-    const anim::Clip& clip = scene::sceneClip(scene_, character_);
-    return anim::samplePose(character_, &clip, scene::clipTimeAt(scene_, character_, time),
-                            anim::Wrap::Clamp);
+anim::Pose SceneSimulation::poseAt(size_t c, float time) const {
+    return scene::characterPose(scene_, c, cast_[c], time);
 }
 
 void SceneSimulation::addPass(const std::string& name, uint32_t dispatches) {
@@ -284,14 +319,15 @@ void SceneSimulation::recordFrame(VkCommandBuffer cmd, uint32_t frame, const ani
     const float t = frameTime(frame);
     givenPose_ = given != nullptr;
     if (givenPose_) {
-        previousPose_ = framePose_.world.size() == given->world.size()
-                            ? std::move(framePose_)
-                            : poseAt(frame > 0 ? frameTime(frame - 1) : t);
-        framePose_ = *given;
+        previousPose_ = framePoses_[0].world.size() == given->world.size()
+                            ? std::move(framePoses_[0])
+                            : poseAt(0, frame > 0 ? frameTime(frame - 1) : t);
+        framePoses_[0] = *given;
     } else {
-        framePose_ = poseAt(t);
+        framePoses_[0] = poseAt(0, t);
     }
-    const anim::Pose& pose = framePose_;
+    for (size_t c = 1; c < cast_.size(); ++c)
+        framePoses_[c] = poseAt(c, t);
     timer_.reset(cmd);
     // The drawn effects: one segment per frame.
     for (TrajectoryEffect& effect : trajectories_) {
@@ -304,8 +340,10 @@ void SceneSimulation::recordFrame(VkCommandBuffer cmd, uint32_t frame, const ani
         const std::string name =
             effect.spec->name + "/" + trajectory::methodName(effect.queue->options().method);
         timer_.begin(cmd, name);
+        const size_t c = effect.character;
         effect.queue->record(
-            cmd, trajectory::sourcePalette(character_, effect.source, pose, placement()), t);
+            cmd, trajectory::sourcePalette(cast_[c], effect.source, framePoses_[c], placement(c)),
+            t);
         timer_.end(cmd);
         addPass(name, 1);
     }
@@ -313,9 +351,9 @@ void SceneSimulation::recordFrame(VkCommandBuffer cmd, uint32_t frame, const ani
         recordSmoke(cmd, grid, frame);
 }
 
-glm::vec3 SceneSimulation::rootPosition(const anim::Pose& pose) const {
-    if (character_.nodes.empty()) return glm::vec3(placement()[3]);
-    return glm::vec3(placement() * pose.world[0][3]);
+glm::vec3 SceneSimulation::rootPosition(size_t c, const anim::Pose& pose) const {
+    if (cast_[c].nodes.empty()) return glm::vec3(placement(c)[3]);
+    return glm::vec3(placement(c) * pose.world[0][3]);
 }
 
 // A grid takes stepsPerFrame steps per frame at a fixed rate (steps_per_second rounded up to a
@@ -327,7 +365,9 @@ void SceneSimulation::recordSmoke(VkCommandBuffer cmd, SmokeGrid& grid, uint32_t
     g.beginFrame();
     grid.emittersThisFrame = 0;
     grid.capturedSteps.clear();
-    if (g.recordFollow(cmd, rootPosition(framePose_))) addPass(g.name() + "/shift", 0);
+    const size_t followed = trajectories_[grid.effects.front()].character;
+    if (g.recordFollow(cmd, rootPosition(followed, framePoses_[followed])))
+        addPass(g.name() + "/shift", 0);
     const uint32_t n = g.settings().stepsPerFrame;
     const float rate = scene_.output.fps * float(n);
     bool anyLiveThisFrame = false;
@@ -336,14 +376,18 @@ void SceneSimulation::recordSmoke(VkCommandBuffer cmd, SmokeGrid& grid, uint32_t
         if (step < 0) continue;
         const float t = float(step) / rate;
         bool anyLive = false;
-        // The frame's last step is at the frame's time, whose pose recordFrame already has; the
-        // others sample the clip, or blend a given pose with the previous frame's.
-        const anim::Pose stepPose = k + 1 == n ? anim::Pose{}
-                                    : givenPose_
-                                        ? anim::interpolatePose(character_, previousPose_,
-                                                                framePose_, float(k + 1) / float(n))
-                                        : poseAt(t);
-        const anim::Pose& pose = k + 1 == n ? framePose_ : stepPose;
+        // The frame's last step is at the frame's time, whose poses recordFrame already has; the
+        // others sample the clips, or blend a given pose with the previous frame's.
+        std::vector<anim::Pose> stepPoses;
+        if (k + 1 < n) {
+            stepPoses.resize(cast_.size());
+            for (size_t c = 0; c < cast_.size(); ++c)
+                stepPoses[c] = c == 0 && givenPose_
+                                   ? anim::interpolatePose(cast_[0], previousPose_, framePoses_[0],
+                                                           float(k + 1) / float(n))
+                                   : poseAt(c, t);
+        }
+        const std::vector<anim::Pose>& poses = k + 1 == n ? framePoses_ : stepPoses;
         for (size_t i : grid.effects) {
             TrajectoryEffect& effect = trajectories_[i];
             effect.live = effectLive(*effect.spec, t);
@@ -355,24 +399,36 @@ void SceneSimulation::recordSmoke(VkCommandBuffer cmd, SmokeGrid& grid, uint32_t
             const std::string name = g.name() + "/" + effect.spec->name + "/" +
                                      trajectory::methodName(effect.queue->options().method);
             timer_.begin(cmd, name);
+            const size_t c = effect.character;
             effect.queue->record(
-                cmd, trajectory::sourcePalette(character_, effect.source, pose, placement()), t);
+                cmd, trajectory::sourcePalette(cast_[c], effect.source, poses[c], placement(c)), t);
             timer_.end(cmd);
             addPass(name, 1);
         }
         anyLiveThisFrame = anyLiveThisFrame || anyLive;
-        if (!grid.capsules.empty()) {
-            // The body where the step ends, moving as it did since the last step.
-            const anim::Pose& before = grid.lastStepPose.world.empty() ? pose : grid.lastStepPose;
-            const std::vector<shared::FluidSolid> solids =
-                fluid::bodySolids(grid.capsules, before, pose, 1.0f / rate, g.origin(),
-                                  grid.collideThickness, placement());
+        if (grid.collides()) {
+            // The bodies where the step ends, moving as they did since the last step.
+            std::vector<shared::FluidSolid> solids;
+            for (size_t c = 0; c < cast_.size(); ++c) {
+                if (grid.capsules[c].empty()) continue;
+                const anim::Pose& before =
+                    grid.lastStepPoses.size() == cast_.size() ? grid.lastStepPoses[c] : poses[c];
+                const std::vector<shared::FluidSolid> body =
+                    fluid::bodySolids(grid.capsules[c], before, poses[c], 1.0f / rate, g.origin(),
+                                      grid.collideThickness, placement(c));
+                solids.insert(solids.end(), body.begin(), body.end());
+            }
             // A pose that is not finite (a host's) has no solids this step.
             grid.lastSolids = g.setSolids(solids) ? solids : std::vector<shared::FluidSolid>{};
             if (grid.lastSolids.empty()) (void)g.setSolids({});
-            grid.lastStepPose = pose;
+            grid.lastStepPoses = poses;
         }
-        if (anyLive) g.wake();
+        // A hit in this step may burst into the smoke (recordBursts): the grid wakes for it.
+        const bool hitNow =
+            std::any_of(scene_.hits.begin(), scene_.hits.end(), [&](const scene::Hit& h) {
+                return h.time > t - 1.0f / rate && h.time <= t;
+            });
+        if (anyLive || hitNow) g.wake();
         if (!g.awake()) continue;
         uint32_t emitters = 0;
         for (size_t i : grid.effects) {
@@ -392,6 +448,7 @@ void SceneSimulation::recordSmoke(VkCommandBuffer cmd, SmokeGrid& grid, uint32_t
             timer_.end(cmd);
             addPass(name, 1);
         }
+        emitters += recordBursts(cmd, grid, t - 1.0f / rate, t, emitters);
         grid.emittersThisFrame += emitters;
         if (grid.captured) captureStep(cmd, grid, uint64_t(step), emitters);
         g.recordStep(cmd, emitters, &timer_);
@@ -401,6 +458,57 @@ void SceneSimulation::recordSmoke(VkCommandBuffer cmd, SmokeGrid& grid, uint32_t
     if (g.awake() && !anyLiveThisFrame)
         if (const uint32_t dispatches = g.recordMeasureActivity(cmd, &timer_))
             addPass(g.name() + "/measure_activity", dispatches);
+}
+
+// The impacts' smoke bursts of the hits in (from, to]: each hit inside the grid's box pushes the
+// air along the blow within its smoke_radius and pigments it, and six emitters around it push it
+// outwards across the blow, so the burst opens up (ImpactSpec). Written after the step's segment
+// emitters (from `first` on); returns how many.
+uint32_t SceneSimulation::recordBursts(VkCommandBuffer cmd, SmokeGrid& grid, float from, float to,
+                                       uint32_t first) {
+    fluid::SmokeGrid& g = grid.grid;
+    const fluid::GridShape& shape = g.options().grid;
+    const glm::vec3 size = glm::vec3(shape.cellsX, shape.cellsY, shape.cellsZ) * shape.cellSize;
+    std::vector<shared::FluidEmitter> records;
+    for (const scene::Hit& hit : scene_.hits) {
+        if (!(hit.time > from && hit.time <= to)) continue;
+        const auto* impact = scene_.effects[hit.effect].as<scene::ImpactSpec>();
+        if (!impact || impact->smokeImpulse <= 0.0f) continue;
+        const glm::vec3 p = hit.point - g.origin();
+        if (glm::any(glm::lessThan(p, glm::vec3(0.0f))) || glm::any(glm::greaterThan(p, size)))
+            continue;
+        if (records.size() + kBurstEmitters > size_t(kBurstsPerStep) * kBurstEmitters) break;
+        const glm::vec3 axis = glm::length(hit.direction) > 1e-6f ? glm::normalize(hit.direction)
+                                                                  : glm::vec3(0.0f, 1.0f, 0.0f);
+        const glm::vec3 helper =
+            std::abs(axis.y) < 0.9f ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
+        const glm::vec3 u = glm::normalize(glm::cross(axis, helper)), v = glm::cross(axis, u);
+        const float r = impact->smokeRadius, speed = impact->smokeImpulse;
+        // Strong enough to set the air's velocity and pigment within the one step.
+        const float strength = 8.0f * scene_.output.fps * float(g.settings().stepsPerFrame);
+        records.push_back(
+            {glm::vec4(p, r), glm::vec4(axis * speed, strength), impact->smokeColour});
+        for (int k = 0; k < 6; ++k) {
+            const float a = 6.2831853f * float(k) / 6.0f;
+            const glm::vec3 out = u * std::cos(a) + v * std::sin(a);
+            records.push_back({glm::vec4(p + out * r, 0.75f * r),
+                               glm::vec4((0.6f * out + 0.4f * axis) * speed, strength),
+                               impact->smokeColour});
+        }
+    }
+    if (records.empty()) return 0;
+    const VkDeviceSize bytes = records.size() * sizeof(shared::FluidEmitter);
+    const VkDeviceSize offset = VkDeviceSize(first) * sizeof(shared::FluidEmitter);
+    if (offset + bytes > g.emitters().size) return 0;
+    // After the previous step's splat read the buffer, before this step's reads it.
+    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    vkCmdUpdateBuffer(cmd, g.emitters().get(), offset, bytes, records.data());
+    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    addPass(g.name() + "/impact_bursts", 0);
+    return uint32_t(records.size());
 }
 
 void SceneSimulation::setCaptureEmitters(bool capture) {

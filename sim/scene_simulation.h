@@ -1,5 +1,7 @@
 // A scene's motion and smoke, frame by frame, on the GPU: only what the scene's effects call for.
 //
+//   * every effect follows one character of the scene's cast (its "character"; the first by
+//     default): its vertices, poses and placement are that character's;
 //   * every effect whose kind has a trail (core/scene/effect_spec.h) gets a trajectory queue over
 //     the vertices its bones and meshes select (speed-lines: lines, blur: volumes, particles:
 //     points, smoke: the newest segment only); outside its time window an effect writes no
@@ -31,8 +33,10 @@
 #include "fluid/segment_emitters.h"
 #include "fluid/smoke_grid.h"
 
+#include <algorithm>
 #include <atomic>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -85,6 +89,7 @@ public:
         const scene::EffectSpec* spec = nullptr;
         const scene::TrailSpec* trail = nullptr; // its kind's trail (never null)
         const scene::SmokeSpec* smoke = nullptr; // its kind's settings for smoke, else null
+        size_t character = 0;                    // the cast member it follows
         trajectory::Source source;
         std::unique_ptr<trajectory::Queue> queue;
         bool live = false;                 // wrote a segment this frame
@@ -102,19 +107,32 @@ public:
         // of each slot.
         gpu::Buffer captured;
         std::vector<std::pair<uint64_t, uint32_t>> capturedSteps;
-        // "collide": the body's capsules the smoke flows around (empty: none), the smallest
-        // thickness, and the pose of the last step (the solids' velocities are their motion since).
-        std::vector<anim::BodyCapsule> capsules;
+        // "collide": each character's body capsules the smoke flows around (by cast member; all
+        // empty: none), the smallest thickness, and the poses of the last step (the solids'
+        // velocities are their motion since).
+        std::vector<std::vector<anim::BodyCapsule>> capsules;
         float collideThickness = 0.0f;
-        anim::Pose lastStepPose;
+        std::vector<anim::Pose> lastStepPoses;
+        bool collides() const {
+            return std::any_of(capsules.begin(), capsules.end(),
+                               [](const auto& c) { return !c.empty(); });
+        }
         std::vector<shared::FluidSolid> lastSolids; // the last step's, in the grid's coordinates
     };
 
+    // The cast has one character per scene.characters entry, in its order, and must outlive the
+    // simulation.
+    static Result<std::unique_ptr<SceneSimulation>> create(const gpu::Context& ctx,
+                                                           const scene::Scene& scene,
+                                                           std::span<const anim::Character> cast);
     static Result<std::unique_ptr<SceneSimulation>>
-    create(const gpu::Context& ctx, const scene::Scene& scene, const anim::Character& character);
+    create(const gpu::Context& ctx, const scene::Scene& scene, const anim::Character& character) {
+        return create(ctx, scene, std::span<const anim::Character>(&character, 1));
+    }
 
     const scene::Scene& scene() const { return scene_; }
-    const anim::Character& character() const { return character_; }
+    std::span<const anim::Character> cast() const { return cast_; }
+    const anim::Character& character(size_t c = 0) const { return cast_[c]; }
     // The index in scene().effects of a trajectory effect's spec.
     size_t effectIndex(const TrajectoryEffect& effect) const {
         return size_t(effect.spec - scene_.effects.data());
@@ -123,22 +141,25 @@ public:
     float frameTime(uint32_t frame) const { return float(frame) / scene_.output.fps; }
 
     // Records frame `frame`; frames are recorded in order, each after the previous one finished.
-    // With `pose` (a host's animation: every node's world matrix, before placement()), the
-    // character is in that pose at the frame instead of the scene clip's, and a grid's steps
-    // between the previous frame and this one take the poses between the two
-    // (anim::interpolatePose); the previous frame's pose is the clip's when it had none.
+    // With `pose` (a host's animation: every node's world matrix, before placement()), the first
+    // character is in that pose at the frame instead of its clip's, and a grid's steps between
+    // the previous frame and this one take the poses between the two (anim::interpolatePose); the
+    // previous frame's pose is the clip's when it had none. The other characters play their clips.
     void recordFrame(VkCommandBuffer cmd, uint32_t frame, const anim::Pose* pose = nullptr);
     // After the frame's submission has finished: its statistics (and the sleep decisions).
     SimulationFrameStats finishFrame();
     // recordFrame, submit, wait, finishFrame.
     SimulationFrameStats runFrame(uint32_t frame);
 
-    // Where the character stands, and its pose at a scene time (for drawing it).
-    glm::mat4 placement() const;
-    anim::Pose poseAt(float time) const;
-    glm::vec3 rootPosition(const anim::Pose& pose) const; // the first node, in the world
-    // The pose of the frame last recorded (what a renderer draws with it).
-    const anim::Pose& framePose() const { return framePose_; }
+    // Where character `c` stands, and its pose at a scene time (for drawing it).
+    glm::mat4 placement(size_t c = 0) const;
+    anim::Pose poseAt(size_t c, float time) const;
+    // Its first node, in the world, in `pose`.
+    glm::vec3 rootPosition(size_t c, const anim::Pose& pose) const;
+    // Character `c`'s pose at the frame last recorded (what a renderer draws with it).
+    const anim::Pose& framePose(size_t c = 0) const { return framePoses_[c]; }
+    std::span<const anim::Pose> framePoses() const { return framePoses_; }
+    std::vector<glm::mat4> placements() const; // of every character
 
     // Emitter capture, for replaying a scene's impulses in another solver run (fluid/
     // scene_scenario.h). A grid's emitter buffer is rewritten by every step, so when a frame takes
@@ -166,8 +187,9 @@ public:
     uint64_t serial() const { return serial_; }
 
 private:
-    SceneSimulation(const gpu::Context& ctx, scene::Scene scene, const anim::Character& character)
-        : ctx_(ctx), scene_(std::move(scene)), character_(character) {}
+    SceneSimulation(const gpu::Context& ctx, scene::Scene scene,
+                    std::span<const anim::Character> cast)
+        : ctx_(ctx), scene_(std::move(scene)), cast_(cast) {}
     static uint64_t nextSerial() {
         static std::atomic<uint64_t> counter{0};
         return ++counter;
@@ -175,11 +197,13 @@ private:
     void addPass(const std::string& name, uint32_t dispatches);
     void recordSmoke(VkCommandBuffer cmd, SmokeGrid& grid, uint32_t frame);
     void captureStep(VkCommandBuffer cmd, SmokeGrid& grid, uint64_t step, uint32_t count);
+    uint32_t recordBursts(VkCommandBuffer cmd, SmokeGrid& grid, float from, float to,
+                          uint32_t first);
     void placeGrid(SmokeGrid& grid);
 
     const gpu::Context& ctx_;
     scene::Scene scene_;
-    const anim::Character& character_;
+    std::span<const anim::Character> cast_;
     uint64_t serial_ = nextSerial();
     uint32_t frames_ = 0;
     std::vector<TrajectoryEffect> trajectories_;
@@ -188,9 +212,9 @@ private:
     gpu::GpuTimer timer_;
     std::vector<PassRecord> recorded_; // names and dispatches of this frame's passes
     uint32_t currentFrame_ = 0;
-    anim::Pose framePose_;
-    anim::Pose previousPose_; // the previous frame's, for a given pose's steps
-    bool givenPose_ = false;  // framePose_ came from recordFrame's caller
+    std::vector<anim::Pose> framePoses_; // by cast member
+    anim::Pose previousPose_;            // the first's previous frame, for a given pose's steps
+    bool givenPose_ = false;             // framePoses_[0] came from recordFrame's caller
 };
 
 } // namespace mfx::sim

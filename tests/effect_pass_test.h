@@ -58,7 +58,7 @@ protected:
         auto sim = sim::SceneSimulation::create(ctx(), scene_, *character_);
         ASSERT_TRUE(sim) << sim.error().message;
         sim_ = std::move(sim).value();
-        pass_ = std::make_unique<Pass>(ctx(), scene_, *character_);
+        pass_ = std::make_unique<Pass>(ctx(), scene_, sim_->cast());
         ASSERT_FALSE(pass_->empty());
     }
     // Records frames first..last in order (the pass's history advances once a frame).

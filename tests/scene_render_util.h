@@ -26,9 +26,9 @@ inline void playFrames(const gpu::Context& ctx, render::FrameRenderer& renderer,
     }
 }
 
-// A scene, its character, simulation and renderer, which draw the frames played.
+// A scene, its characters, simulation and renderer, which draw the frames played.
 struct DrawnScene {
-    std::unique_ptr<anim::Character> character; // outlives the simulation and the renderer
+    std::unique_ptr<scene::Cast> cast; // outlives the simulation and the renderer
     std::unique_ptr<sim::SceneSimulation> simulation;
     std::unique_ptr<render::FrameRenderer> renderer;
 
@@ -47,11 +47,11 @@ inline Result<DrawnScene> drawScene(const gpu::Context& ctx, scene::Scene s, uin
                                     VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_4_BIT) {
     s.output.width = width;
     s.output.height = height;
-    Result<anim::Character> character = scene::loadCharacter(s);
-    if (!character) return character.error();
+    Result<scene::Cast> cast = scene::loadCast(s);
+    if (!cast) return cast.error();
     DrawnScene drawn;
-    drawn.character = std::make_unique<anim::Character>(std::move(character).value());
-    auto simulation = sim::SceneSimulation::create(ctx, s, *drawn.character);
+    drawn.cast = std::make_unique<scene::Cast>(std::move(cast).value());
+    auto simulation = sim::SceneSimulation::create(ctx, s, *drawn.cast);
     if (!simulation) return simulation.error();
     drawn.simulation = std::move(simulation).value();
     drawn.renderer =

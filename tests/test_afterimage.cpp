@@ -269,7 +269,7 @@ TEST_F(AfterimageTest, ASceneWithoutTheEffectHasNoPass) {
     scene::Scene s = swordScene(R"({"type": "speed_lines", "meshes": ["sword"]})");
     Result<anim::Character> c = scene::loadCharacter(s);
     ASSERT_TRUE(c);
-    EXPECT_TRUE(render::AfterimagePass(ctx(), s, c.value()).empty());
+    EXPECT_TRUE(render::AfterimagePass(ctx(), s, {&c.value(), 1}).empty());
 }
 
 // The scene file's refusals: one line naming the effect's key.

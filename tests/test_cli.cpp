@@ -504,7 +504,7 @@ TEST(CliExportFighter, WritesAGlbThatInspectReads) {
     const RunResult r = runMotionfx("export-fighter \"" + file + "\"");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_EQ(r.err, "");
-    EXPECT_NE(r.out.find("2 meshes, 21 joints, 6 clips"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("2 meshes, 21 joints, 7 clips"), std::string::npos) << r.out;
     const RunResult inspected = runMotionfx("inspect \"" + file + "\"");
     ASSERT_EQ(inspected.exitCode, 0) << inspected.err;
     for (const char* line : {"joints       21 in 1 skins", "sword: ", "roundhouse_kick: 0.9 s"})

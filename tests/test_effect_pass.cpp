@@ -37,9 +37,9 @@ std::vector<uint8_t> renderFrame(gpu::Context& ctx, const scene::Scene& s, uint3
     render::CharacterPass scenePass(ctx, character.value(), s);
     const render::SceneCamera camera = render::makeCamera(s.camera, float(width) / float(height));
     const float t = sim.value()->frameTime(frame);
-    const anim::Pose pose =
-        anim::samplePose(character.value(), &scene::sceneClip(s, character.value()),
-                         scene::clipTimeAt(s, character.value(), t), anim::Wrap::Clamp);
+    const anim::Pose pose = anim::samplePose(
+        character.value(), &scene::sceneClip(s.characters[0], character.value()),
+        scene::clipTimeAt(s.characters[0], character.value(), t), anim::Wrap::Clamp);
     gpu::submitOneShot(ctx, [&](VkCommandBuffer cmd) {
         scenePass.skin(cmd, pose, glm::mat4(1.0f));
         scenePass.shadow(cmd);

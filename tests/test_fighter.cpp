@@ -30,7 +30,8 @@ TEST(Fighter, IsAValidCharacterOfTheAdvertisedShape) {
     EXPECT_LE(triangles, 10000u);
     for (const char* name : {"hips", "head", "hand_r", "hand_l", "foot_r", "foot_l"})
         EXPECT_TRUE(c.findNode(name).has_value()) << name;
-    for (const char* name : {"idle", "roundhouse_kick", "straight_punch", "sword_slash", "spin"}) {
+    for (const char* name :
+         {"idle", "roundhouse_kick", "straight_punch", "sword_slash", "spin", "hit_react"}) {
         const anim::Clip* clip = c.findClip(name);
         ASSERT_NE(clip, nullptr) << name;
         EXPECT_GE(clip->duration, 0.4f) << name;
@@ -163,6 +164,29 @@ TEST(Fighter, TheComboIsTheKickThenTheSlash) {
             const glm::vec3 got = jointWorld(c, "kick_slash", t, joint);
             EXPECT_LT(glm::length(got - expected), 1e-4f) << joint << " at " << t << " s";
         }
+}
+
+// The hit reaction: from the stance the head is thrown back (-z, away from a blow from the front)
+// within 0.08 s, and the clip ends in the stance again (every clip joins the others without a
+// jump).
+TEST(Fighter, TheHitReactionThrowsTheHeadBackAndRecovers) {
+    const anim::Character c = anim::makeFighter();
+    const anim::Clip* react = c.findClip("hit_react");
+    ASSERT_NE(react, nullptr);
+    const glm::vec3 stance = jointWorld(c, "idle", 0.0f, "head");
+    const glm::vec3 start = jointWorld(c, "hit_react", 0.0f, "head");
+    const glm::vec3 jolt = jointWorld(c, "hit_react", 0.08f, "head");
+    const glm::vec3 end = jointWorld(c, "hit_react", react->duration, "head");
+    RecordProperty("headThrownBackMetres", std::to_string(start.z - jolt.z));
+    EXPECT_LT(glm::length(start - stance), 1e-4f);
+    EXPECT_GT(start.z - jolt.z, 0.15f);
+    EXPECT_LT(jolt.y, start.y);
+    EXPECT_LT(glm::length(end - stance), 1e-4f);
+    for (const char* joint : {"hand_l", "hand_r", "foot_l", "foot_r", "hips"})
+        EXPECT_LT(glm::length(jointWorld(c, "hit_react", react->duration, joint) -
+                              jointWorld(c, "idle", 0.0f, joint)),
+                  1e-4f)
+            << joint;
 }
 
 } // namespace

@@ -164,8 +164,8 @@ TEST(FlipbookFlow, FindsATranslationOfSeveralPixels) {
     for (uint32_t y = 0; y < 64; ++y)
         for (uint32_t x = 0; x < 64; ++x)
             if (std::hypot(float(x) + 0.5f - 28.0f, float(y) + 0.5f - 30.0f) < 8.0f) {
-                sx += flow.xy[(y * 64 + x) * 2];
-                sy += flow.xy[(y * 64 + x) * 2 + 1];
+                sx += double(flow.xy[(y * 64 + x) * 2]);
+                sy += double(flow.xy[(y * 64 + x) * 2 + 1]);
                 n += 1;
             }
     EXPECT_NEAR(sx / n, 6.0, 0.25);

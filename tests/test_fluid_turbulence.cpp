@@ -105,7 +105,9 @@ TEST_F(TurbulenceTest, ItsDivergenceIsAtRoundingLevelBelowTheProjectionsResidual
         EXPECT_LT(reference, 1e-6);
         EXPECT_LT(device, 1e-6);
         EXPECT_LT(device, 1e-3 * jacobi);
-        if (mixed) EXPECT_LT(device, 10.0 * cg); // the exact solve's rounding level
+        if (mixed) {
+            EXPECT_LT(device, 10.0 * cg); // the exact solve's rounding level
+        }
     }
 }
 
@@ -141,9 +143,9 @@ TEST(Turbulence, ChangesAtItsSpeedAndScalesWithItsAmplitude) {
     const fluid::SolverOptions options = turbulenceOnly(closedBoxOptions());
     const fluid::FieldState at = turbulenceFromRest(options, 1.0);
     const fluid::FieldState soon =
-        turbulenceFromRest(options, 1.0 + 0.01 / options.turbulenceSpeed);
+        turbulenceFromRest(options, 1.0 + 0.01 / double(options.turbulenceSpeed));
     const fluid::FieldState later =
-        turbulenceFromRest(options, 1.0 + 1.0 / options.turbulenceSpeed);
+        turbulenceFromRest(options, 1.0 + 1.0 / double(options.turbulenceSpeed));
     const double near = fluid::difference(soon, at).velocity.relL2;
     const double far = fluid::difference(later, at).velocity.relL2;
     std::printf("relative change of the force: %.3g after 1/100 of a layer, %.3g after a layer\n",

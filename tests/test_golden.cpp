@@ -108,7 +108,7 @@ protected:
             playFrames(ctx(), *d.renderer, *d.simulation, 0,
                        std::min(restartAfter, d.simulation->frameCount()));
             d.simulation.reset();
-            auto again = sim::SceneSimulation::create(ctx(), s, *d.character);
+            auto again = sim::SceneSimulation::create(ctx(), s, *d.cast);
             EXPECT_TRUE(again) << (again ? "" : again.error().message);
             if (!again) return {};
             d.simulation = std::move(again).value();

@@ -75,6 +75,8 @@ json randomValue(const ParamInfo& p, const std::vector<ParamInfo>& table, std::m
     }
     case T::String:
         return unit(rng) < 0.5 ? json("fighter") : json("edited");
+    case T::CharacterName:
+        return unit(rng) < 0.75 ? json("p1") : json("no_such_character");
     case T::Objects: {
         const size_t count = 2 + size_t(unit(rng) * double(p.maxCount - 1)) % (p.maxCount - 1);
         std::vector<double> at;

@@ -40,6 +40,8 @@ std::set<PanelWidget::Kind> kindsFor(ParamInfo::Type t) {
         return {K::NameList};
     case T::String:
         return {K::Text};
+    case T::CharacterName:
+        return {K::Combo};
     case T::Objects:
         return {K::Gradient, K::Curve};
     }

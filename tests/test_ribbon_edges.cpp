@@ -178,7 +178,8 @@ TEST_F(RibbonJoinsTest, TheOuterEdgeContinuesAcrossTheWeldBetweenTwoFrames) {
     const float perMetre = glm::distance(pixel(corner + 0.1f * bisector), c) / 0.1f;
     const float contour = std::sqrt(0.5f);
     const float expected = contour * 0.1f * perMetre;
-    std::printf("corner reach along the bisector: %.2f px (expected %.2f px)\n", reached, expected);
+    std::printf("corner reach along the bisector: %.2f px (expected %.2f px)\n", double(reached),
+                double(expected));
     // Within 1.5 px: the bisector runs along a pixel diagonal, sampled every 0.25 px between pixel
     // centres (a notch would leave it short by the whole 13 px).
     EXPECT_NEAR(reached, expected, 1.5f);
@@ -198,9 +199,10 @@ TEST_F(RibbonJoinsTest, TheOuterEdgeContinuesAcrossTheWeldBetweenTwoFrames) {
     // Away from the corner the edge is half the width out, on both straight runs.
     for (const glm::vec2& e : edge) {
         const float fromCorner = std::abs(e.x - glm::distance(path.front(), c));
-        if (fromCorner > 0.15f * perMetre)
+        if (fromCorner > 0.15f * perMetre) {
             EXPECT_NEAR(e.y, contour * 0.1f * perMetre, 1.0f)
                 << "at " << e.x << " px along the path";
+        }
     }
 }
 
@@ -232,7 +234,8 @@ TEST(SheetEnds, AreTheVerticesNearestToAndFarthestFromTheJointTheyHangFrom) {
                                         .position,
                                     at);
     }
-    std::printf("sheet ends: %.3f m and %.3f m from the hand\n", distance[0], distance[1]);
+    std::printf("sheet ends: %.3f m and %.3f m from the hand\n", double(distance[0]),
+                double(distance[1]));
     EXPECT_LT(distance[0], 0.1f); // at the grip
     EXPECT_GT(distance[1], 0.9f); // the blade's tip
 }
@@ -368,7 +371,8 @@ TEST_F(SlashEdgeTest, TheHeroSlashArcsOuterEdgeIsOneSmoothCurveAt1920x1080) {
     std::printf("slash arc, frame 40, 1920x1080, the arm's last 212 columns: largest distance of "
                 "its outline from a smooth curve (quadratic over +-%.0f px), above / below: "
                 "sheet %.2f / %.2f px; the ribbons as before %.2f / %.2f px\n",
-                window, after.upper, after.lower, before.upper, before.lower);
+                double(window), double(after.upper), double(after.lower), double(before.upper),
+                double(before.lower));
     ASSERT_GE(after.columns, 200u);
     ASSERT_GE(before.columns, 200u);
     EXPECT_LE(after.upper, 1.0f);

@@ -29,11 +29,11 @@ TEST(SceneFile, SpeedLinesAloneIsACompleteScene) {
     EXPECT_TRUE(s.effects[0].automaticBones); // fitScene binds it to the fastest limb
     EXPECT_TRUE(s.effects[0].meshes.empty());
     EXPECT_EQ(s.effects[0].name, "speed_lines#0");
-    EXPECT_EQ(s.character.source, "fighter");
+    EXPECT_EQ(s.characters[0].source, "fighter");
     EXPECT_EQ(s.output.width, 1280u);
     const anim::Character fighter = anim::makeFighter();
     EXPECT_TRUE(scene::checkNames(s, fighter).ok());
-    EXPECT_EQ(scene::sceneClip(s, fighter).name, "roundhouse_kick");
+    EXPECT_EQ(scene::sceneClip(s.characters[0], fighter).name, "roundhouse_kick");
     EXPECT_EQ(scene::frameCount(s, fighter), 27u); // 0.9 s at 30 fps
 }
 
@@ -61,9 +61,9 @@ TEST(SceneFile, EveryKeyIsRead) {
             {"type": "motion_particles", "size": 0.03},
             {"type": "motion_blur"}
         ]})");
-    EXPECT_EQ(s.character.clip, "sword_slash");
-    EXPECT_FLOAT_EQ(*s.character.end, 0.7f);
-    EXPECT_TRUE(s.character.loop);
+    EXPECT_EQ(s.characters[0].clip, "sword_slash");
+    EXPECT_FLOAT_EQ(*s.characters[0].end, 0.7f);
+    EXPECT_TRUE(s.characters[0].loop);
     EXPECT_FLOAT_EQ(s.camera.fovDegrees, 35.0f);
     EXPECT_FALSE(s.lights[0].shadow);
     EXPECT_FALSE(s.stage.floor);
@@ -92,8 +92,8 @@ TEST(SceneFile, EveryKeyIsRead) {
     EXPECT_TRUE(scene::checkNames(s, fighter).ok());
     // Half speed over 0.6 s of clip: 1.2 s of scene; the clip time loops.
     EXPECT_FLOAT_EQ(scene::sceneDuration(s, fighter), 1.2f);
-    EXPECT_NEAR(scene::clipTimeAt(s, fighter, 0.4f), 0.3f, 1e-6f);
-    EXPECT_NEAR(scene::clipTimeAt(s, fighter, 1.4f), 0.2f, 1e-5f);
+    EXPECT_NEAR(scene::clipTimeAt(s.characters[0], fighter, 0.4f), 0.3f, 1e-6f);
+    EXPECT_NEAR(scene::clipTimeAt(s.characters[0], fighter, 1.4f), 0.2f, 1e-5f);
 }
 
 // "domain": "sparse": a virtual domain of 256^3 cells unless "grid" says otherwise (rounded up to
@@ -159,12 +159,12 @@ TEST(SceneFile, DefaultSceneIsTheHeroCombo) {
     EXPECT_EQ(s.effects[1].name, "slash arc");
     EXPECT_TRUE(s.effects[1].as<scene::SpeedLinesSpec>()->ribbon.sheet); // the sword's sweep
     EXPECT_EQ(s.effects[2].as<scene::SmokeSpec>()->shading.preset, scene::SmokePreset::Energy);
-    EXPECT_EQ(scene::characterStyle(s.character), scene::CharacterStyle::Toon);
+    EXPECT_EQ(scene::characterStyle(s.characters[0]), scene::CharacterStyle::Toon);
     EXPECT_GT(s.post.bloom, 0.0f);
     EXPECT_EQ(s.post.toneMap, scene::ToneMap::Aces);
     const Result<anim::Character> c = scene::loadCharacter(s);
     ASSERT_TRUE(c.ok()) << c.error().message;
-    EXPECT_EQ(scene::sceneClip(s, c.value()).name, "kick_slash");
+    EXPECT_EQ(scene::sceneClip(s.characters[0], c.value()).name, "kick_slash");
 }
 
 TEST(SceneFile, KickSceneIsTheKickWithLinesBlurAndSmoke) {
@@ -175,7 +175,7 @@ TEST(SceneFile, KickSceneIsTheKickWithLinesBlurAndSmoke) {
     EXPECT_TRUE(s.effects[2].is<scene::SmokeSpec>());
     const Result<anim::Character> c = scene::loadCharacter(s);
     ASSERT_TRUE(c.ok()) << c.error().message;
-    EXPECT_EQ(scene::sceneClip(s, c.value()).name, "roundhouse_kick");
+    EXPECT_EQ(scene::sceneClip(s.characters[0], c.value()).name, "roundhouse_kick");
 }
 
 TEST(SceneFile, ReadmeExampleParses) {
@@ -218,7 +218,7 @@ const BadScene kBadScenes[] = {
     {"EffectsNotAnArray", R"({"effects": {"type": "smoke"}})",
      "effects: expected an array of effects, got an object"},
     {"UnknownTopKey", R"({"effects": [], "camra": {}})",
-     "camra: unknown key; keys here are: character, camera"},
+     "camra: unknown key; keys here are: character, characters, camera"},
     {"EffectWithoutType", R"({"effects": [{"bones": ["foot_r"]}]})", "effects[0].type: missing"},
     {"UnknownEffectType", R"({"effects": [{"type": "sparkles"}]})",
      "effects[0].type: \"sparkles\" is not one of: speed_lines, motion_blur"},
@@ -263,7 +263,7 @@ const BadScene kBadScenes[] = {
     {"SmokeKeyOnSpeedLines", R"({"effects": [{"type": "speed_lines", "jacobi": 20}]})",
      "effects[0].jacobi: not a key of speed_lines effects"},
     {"UnknownEffectKey", R"({"effects": [{"type": "motion_blur", "colour_": [1, 0, 0]}]})",
-     "effects[0].colour_: unknown key; keys here are: type, name, bones"},
+     "effects[0].colour_: unknown key; keys here are: type, name, character, bones"},
     {"EndBeforeStart", R"({"effects": [{"type": "smoke", "start": 2, "end": 1}]})",
      "effects[0].end: 1 is not after start (2)"},
     {"CameraLooksNowhere",

@@ -54,8 +54,8 @@ void kickInAndOut(const gpu::Context& ctx, uint32_t frames, const std::string& e
     auto with = simulate(ctx, kickScene(extra, frames), fighter); // on by default
     auto without = simulate(ctx, kickScene(R"(, "collide": false)" + extra, frames), fighter);
     ASSERT_TRUE(with && without);
-    ASSERT_FALSE(with->smokeGrids()[0].capsules.empty());
-    EXPECT_TRUE(without->smokeGrids()[0].capsules.empty());
+    ASSERT_TRUE(with->smokeGrids()[0].collides());
+    EXPECT_FALSE(without->smokeGrids()[0].collides());
     double largestWith = 0.0, largestWithout = 0.0;
     for (uint32_t f = 0; f < frames; ++f) {
         const sim::SimulationFrameStats stats = with->runFrame(f);
@@ -108,8 +108,8 @@ TEST_F(SceneCollideTest, CollideBonesPickTheCapsulesAndABadEntryIsRefused) {
                                   2),
                         fighter);
     ASSERT_TRUE(all && leg);
-    const size_t allCapsules = all->smokeGrids()[0].capsules.size();
-    const size_t legCapsules = leg->smokeGrids()[0].capsules.size();
+    const size_t allCapsules = all->smokeGrids()[0].capsules[0].size();
+    const size_t legCapsules = leg->smokeGrids()[0].capsules[0].size();
     // Without "collide_bones", every capsule but those of the bones the smoke comes from (the
     // foot's, foot_r and toe_r: smoke born inside a solid would be cleared where it is born).
     const std::vector<anim::BodyCapsule> every = anim::fitBodyCapsules(fighter);
@@ -120,7 +120,7 @@ TEST_F(SceneCollideTest, CollideBonesPickTheCapsulesAndABadEntryIsRefused) {
     const size_t emitting = size_t(std::count_if(every.begin(), every.end(), emits));
     EXPECT_GT(emitting, 0u);
     EXPECT_EQ(allCapsules, every.size() - emitting);
-    for (const anim::BodyCapsule& c : all->smokeGrids()[0].capsules)
+    for (const anim::BodyCapsule& c : all->smokeGrids()[0].capsules[0])
         EXPECT_FALSE(emits(c)) << fighter.nodes[size_t(c.node)].name;
     EXPECT_GT(legCapsules, 0u);
     EXPECT_LT(legCapsules, allCapsules);

@@ -70,6 +70,8 @@ json otherValue(const ParamInfo& p, int attempt) {
         return json::array({"foot_r", "toe_r"});
     case T::String:
         return "edited " + std::to_string(attempt);
+    case T::CharacterName: // the second of the two characters of the effects' documents
+        return "p2";
     case T::Objects:
         return json();
     }
@@ -147,7 +149,9 @@ TEST(SceneDocument, EveryKeyOfEveryEffectKindRoundTripsThroughSaveAndLoad) {
         int n = 0;
         for (json effect : choiceContexts(kind.type)) {
             effect["type"] = kind.type;
-            const json doc = {{"effects", json::array({effect})}};
+            // Two characters: an effect may follow the second, and an impact land on it.
+            const json doc = {{"characters", json::array({json::object(), json::object()})},
+                              {"effects", json::array({effect})}};
             roundTripEveryKey(doc.dump(), "effects[0]",
                               std::string(kind.type) + "_" + std::to_string(n++));
         }
@@ -158,6 +162,13 @@ TEST(SceneDocument, EveryKeyOfEverySectionRoundTrips) {
     const std::string start = R"({"lights": [{}], "effects": []})";
     for (const std::string& section : scene::sceneSections())
         roundTripEveryKey(start, section == "lights" ? "lights[0]" : section, section);
+}
+
+// A character of a "characters" list: each of its keys set, saved and read back, as the
+// single "character"'s are.
+TEST(SceneDocument, EveryKeyOfACharacterInAListRoundTrips) {
+    const std::string start = R"({"characters": [{"name": "hero"}, {}], "effects": []})";
+    roundTripEveryKey(start, "characters[1]", "characters");
 }
 
 TEST(SceneDocument, SavesOnlyTheKeysSetInTheReadersOrder) {

@@ -43,8 +43,8 @@ const scene::SmokeSpec& smokeOf(const scene::EffectSpec& e) {
 }
 
 float heightAtStart(const scene::Scene& s, const anim::Character& c) {
-    const anim::Pose pose =
-        anim::samplePose(c, &scene::sceneClip(s, c), s.character.start, anim::Wrap::Clamp);
+    const anim::Pose pose = anim::samplePose(c, &scene::sceneClip(s.characters[0], c),
+                                             s.characters[0].start, anim::Wrap::Clamp);
     return scene::poseBounds(c, pose).size().y;
 }
 
@@ -72,7 +72,7 @@ TEST(ScaleCharacter, EveryVertexOfEveryPoseMovesByTheFactor) {
 TEST(CharacterScale, TheFighterIsLeftAlone) {
     const scene::Scene s = scene::kickScene();
     std::string note = "unset";
-    EXPECT_EQ(scene::chooseCharacterScale(s, anim::makeFighter(), "fighter", &note), 1.0f);
+    EXPECT_EQ(scene::chooseCharacterScale(s, 0, anim::makeFighter(), "fighter", &note), 1.0f);
     EXPECT_EQ(note, "");
 }
 
@@ -82,7 +82,7 @@ TEST(CharacterScale, OutliersAreBroughtToAHumanHeightWithANote) {
         anim::Character c = anim::makeFighter();
         anim::scaleCharacter(c, factor);
         std::string note;
-        const float chosen = scene::chooseCharacterScale(s, c, "big.glb", &note);
+        const float chosen = scene::chooseCharacterScale(s, 0, c, "big.glb", &note);
         anim::scaleCharacter(c, chosen);
         EXPECT_NEAR(heightAtStart(s, c), scene::kDefaultHeight, 1e-3f) << factor;
         EXPECT_EQ(note.rfind("big.glb is ", 0), 0u) << note;
@@ -97,11 +97,11 @@ TEST(CharacterScale, HeightAndScaleKeysOverrideTheDefault) {
     const anim::Character fighter = anim::makeFighter();
     scene::Scene s = parse(R"({"character": {"height": 1.2}, "effects": []})");
     std::string note;
-    const float toHeight = scene::chooseCharacterScale(s, fighter, "fighter", &note);
+    const float toHeight = scene::chooseCharacterScale(s, 0, fighter, "fighter", &note);
     EXPECT_NEAR(toHeight * heightAtStart(s, fighter), 1.2f, 1e-4f);
     EXPECT_NE(note.find("to 1.20 m (character.height)"), std::string::npos) << note;
     s = parse(R"({"character": {"scale": 2.5}, "effects": []})");
-    EXPECT_EQ(scene::chooseCharacterScale(s, fighter, "fighter", &note), 2.5f);
+    EXPECT_EQ(scene::chooseCharacterScale(s, 0, fighter, "fighter", &note), 2.5f);
     EXPECT_NE(note.find("scaled by 2.5"), std::string::npos) << note;
 }
 
@@ -126,7 +126,7 @@ TEST(FitScene, AGiantOnPurposeGetsItsLengthDefaultsScaled) {
         {"type": "speed_lines", "bones": ["foot_r"], "width": 0.05}]})");
     scene::Scene s = parsed;
     std::string note;
-    Result<anim::Character> giant = scene::loadCharacter(s, &note);
+    Result<anim::Character> giant = scene::loadCharacter(s, 0, &note);
     ASSERT_TRUE(giant.ok()) << giant.error().message;
     std::vector<std::string> notes;
     ASSERT_TRUE(scene::fitScene(s, giant.value(), &notes).ok());

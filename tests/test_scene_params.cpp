@@ -146,6 +146,12 @@ void checkRange(const std::string& section, const json& givenContext, const Para
         expectRead(section, context, p, "something", true);
         expectRead(section, context, p, 2, false);
         break;
+    case T::CharacterName: // the scenes written here have one character, named "p1"
+        // An impact's target is another character than the one it follows (p1 too).
+        expectRead(section, context, p, "p1", p.key != "target");
+        expectRead(section, context, p, "p2", false);
+        expectRead(section, context, p, 2, false);
+        break;
     case T::Objects: // their keys are checked one by one
         expectRead(section, context, p, json::array(), p.minCount == 0);
         break;

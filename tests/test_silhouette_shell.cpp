@@ -185,7 +185,7 @@ TEST_F(SilhouetteShellTest, ASceneWithoutTheEffectHasNoPass) {
     scene::Scene s = kickScene("{\"type\": \"speed_lines\", " + kLeg + "}");
     Result<anim::Character> c = scene::loadCharacter(s);
     ASSERT_TRUE(c);
-    EXPECT_TRUE(render::SilhouetteShellPass(ctx(), s, c.value()).empty());
+    EXPECT_TRUE(render::SilhouetteShellPass(ctx(), s, {&c.value(), 1}).empty());
 }
 
 // A cube whose faces have their own vertices (24, as a flat-shaded mesh has): every corner copy

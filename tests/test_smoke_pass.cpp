@@ -53,7 +53,7 @@ Shot shoot(gpu::Context& ctx, const fluid::SmokeSolver* smoke, glm::vec3 centre,
     s.camera.target = glm::vec3(0.0f, 0.8f, 0.0f);
     // Lit: the chest a mid tone that white smoke in front visibly brightens (the toon style's lit
     // band is near white there).
-    s.character.style = scene::CharacterStyle::Lit;
+    s.characters[0].style = scene::CharacterStyle::Lit;
     s.lights[0].intensity = keyLight;
     const render::SceneCamera camera = render::makeCamera(s.camera, float(kWidth) / kHeight);
     render::RenderTarget target = render::createRenderTarget(ctx, kWidth, kHeight);

@@ -157,7 +157,7 @@ TEST_F(SweptVolumeTest, ASceneWithoutTheEffectHasNoPass) {
     scene::Scene s = swordScene(R"({"type": "speed_lines", "meshes": ["sword"]})");
     Result<anim::Character> c = scene::loadCharacter(s);
     ASSERT_TRUE(c);
-    EXPECT_TRUE(render::SweptVolumePass(ctx(), s, c.value()).empty());
+    EXPECT_TRUE(render::SweptVolumePass(ctx(), s, {&c.value(), 1}).empty());
 }
 
 // A cube whose faces have their own vertices (24, as a flat-shaded mesh has): its 12 edges and 6

@@ -72,11 +72,11 @@ scene::Scene objectScene(float distance, uint32_t bands, float outline) {
     s.lights[0].shadow = false;
     s.camera.position = glm::vec3(0.0f, 0.0f, distance);
     s.camera.target = glm::vec3(0.0f);
-    s.character.style = scene::CharacterStyle::Toon;
-    s.character.toonBands = bands;
-    s.character.rim = 0.0f;
-    s.character.outlineWidth = outline;
-    s.character.outlineColour = glm::vec3(0.0f, 1.0f, 0.0f);
+    s.characters[0].style = scene::CharacterStyle::Toon;
+    s.characters[0].toonBands = bands;
+    s.characters[0].rim = 0.0f;
+    s.characters[0].outlineWidth = outline;
+    s.characters[0].outlineColour = glm::vec3(0.0f, 1.0f, 0.0f);
     return s;
 }
 
@@ -146,7 +146,7 @@ TEST_F(ToonShadingTest, ALitSphereShowsTheRampsLevels) {
 
 TEST_F(ToonShadingTest, TheLitStyleIsAGradient) {
     scene::Scene s = objectScene(3.0f, 3, 0.0f);
-    s.character.style = scene::CharacterStyle::Lit;
+    s.characters[0].style = scene::CharacterStyle::Lit;
     const std::vector<uint8_t> rgba = draw(sphere(), s, "lit");
     EXPECT_LE(levels(rgba, 0.02).size(), 1u) << "no tone covers 2% of a smooth shading";
     EXPECT_GT(levels(rgba, 0.0).size(), 40u);
@@ -188,10 +188,10 @@ TEST_F(ToonShadingTest, ImportedCharactersAreOutlinedAllRound) {
             scene::previewScene(std::string(MFX_SOURCE_DIR) + "/../shared/assets/" + file);
         s.effects.clear();
         s.stage.floor = s.stage.backdrop = false;
-        s.character.style = scene::CharacterStyle::Toon;
-        s.character.rim = 0.0f;
-        s.character.outlineColour = glm::vec3(0.0f, 1.0f, 0.0f);
-        s.character.outlineWidth = 2.0f;
+        s.characters[0].style = scene::CharacterStyle::Toon;
+        s.characters[0].rim = 0.0f;
+        s.characters[0].outlineColour = glm::vec3(0.0f, 1.0f, 0.0f);
+        s.characters[0].outlineWidth = 2.0f;
         s.output.frames = 3;
         s.post.bloom = 0.0f; // its glow would be the first pixel off the background
         Result<DrawnScene> drawn = drawScene(ctx(), s, kSize, kSize, VK_SAMPLE_COUNT_1_BIT);

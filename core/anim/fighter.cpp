@@ -396,6 +396,67 @@ Clip straightPunch() {
         .build();
 }
 
+// Struck from the front: the blow's jolt (0-0.08 s: hips knocked back and down, spine, chest and
+// head thrown back and turned, arms flung open, knees buckling), held a moment (0.08-0.25), then
+// the recovery to the stance (0.25-0.75).
+Clip hitReaction() {
+    const Stance s;
+    return ClipBuilder("hit_react")
+        .translateHips({{0.0f, s.hips},
+                        {0.08f, s.hips + glm::vec3(0.0f, -0.05f, -0.12f)},
+                        {0.25f, s.hips + glm::vec3(0.0f, -0.06f, -0.14f)},
+                        {0.75f, s.hips}})
+        .rotate("hips", {{0.0f, euler(0, 0, 0)},
+                         {0.08f, euler(8, 12, 0)},
+                         {0.25f, euler(6, 10, 0)},
+                         {0.75f, euler(0, 0, 0)}})
+        .rotate("spine", {{0.0f, euler(0, 0, 0)},
+                          {0.08f, euler(-18, 8, -4)},
+                          {0.25f, euler(-14, 6, -3)},
+                          {0.75f, euler(0, 0, 0)}})
+        .rotate("chest", {{0.0f, euler(0, 0, 0)},
+                          {0.08f, euler(-22, 14, -8)},
+                          {0.25f, euler(-16, 10, -6)},
+                          {0.75f, euler(0, 0, 0)}})
+        .rotate("neck", {{0.0f, euler(0, 0, 0)},
+                         {0.08f, euler(-30, -12, 6)},
+                         {0.25f, euler(-18, -8, 4)},
+                         {0.75f, euler(0, 0, 0)}})
+        .rotate("upper_arm_l", {{0.0f, s.upperArmL},
+                                {0.08f, euler(0, -60, -25)},
+                                {0.25f, euler(0, -50, -35)},
+                                {0.75f, s.upperArmL}})
+        .rotate("forearm_l", {{0.0f, s.forearmL},
+                              {0.08f, euler(0, -40, 0)},
+                              {0.25f, euler(0, -60, 0)},
+                              {0.75f, s.forearmL}})
+        .rotate("upper_arm_r", {{0.0f, s.upperArmR},
+                                {0.08f, euler(0, 60, 25)},
+                                {0.25f, euler(0, 50, 35)},
+                                {0.75f, s.upperArmR}})
+        .rotate("forearm_r", {{0.0f, s.forearmR},
+                              {0.08f, euler(0, 40, 0)},
+                              {0.25f, euler(0, 60, 0)},
+                              {0.75f, s.forearmR}})
+        .rotate("thigh_l", {{0.0f, s.thighL},
+                            {0.08f, euler(-35, 0, 0)},
+                            {0.25f, euler(-38, 0, 0)},
+                            {0.75f, s.thighL}})
+        .rotate(
+            "shin_l",
+            {{0.0f, s.shinL}, {0.08f, euler(55, 0, 0)}, {0.25f, euler(60, 0, 0)}, {0.75f, s.shinL}})
+        .rotate("foot_l", {{0.0f, s.footL}, {0.08f, euler(-20, 0, 0)}, {0.75f, s.footL}})
+        .rotate("thigh_r", {{0.0f, s.thighR},
+                            {0.08f, euler(-30, 0, 0)},
+                            {0.25f, euler(-34, 0, 0)},
+                            {0.75f, s.thighR}})
+        .rotate(
+            "shin_r",
+            {{0.0f, s.shinR}, {0.08f, euler(50, 0, 0)}, {0.25f, euler(56, 0, 0)}, {0.75f, s.shinR}})
+        .rotate("foot_r", {{0.0f, s.footR}, {0.08f, euler(-20, 0, 0)}, {0.75f, s.footR}})
+        .build();
+}
+
 // Wind-up over the right shoulder (0-0.3 s), a diagonal cut down across the body (0.3-0.42),
 // follow-through low left and recovery (0.42-0.8).
 Clip swordSlash() {
@@ -510,7 +571,7 @@ Character makeFighter() {
     c.skins.push_back(skin);
     c.meshes.push_back(makeBody());
     c.meshes.push_back(makeSword());
-    c.clips = {idle(), roundhouseKick(), straightPunch(), swordSlash(), spin()};
+    c.clips = {idle(), roundhouseKick(), straightPunch(), swordSlash(), spin(), hitReaction()};
     c.clips.push_back(sequence("kick_slash", {roundhouseKick(), swordSlash()}));
     return c;
 }

@@ -26,13 +26,14 @@ std::span<const EffectKindEntry> effectKinds() {
         entry<AfterimageSpec>(),      // Smith 2016
         entry<SweptVolumeSpec>(),     // Wloka and Zeleznik 1996
         entry<SilhouetteShellSpec>(), // Jones 2004
+        entry<ImpactSpec>(),          // where a blow lands: sparks, flash, ring, hit-stop
     };
     return kinds;
 }
 
 const std::vector<std::string>& commonEffectKeys() {
     static const std::vector<std::string> keys = {
-        "type", "name", "bones", "meshes", "min_bone_weight", "start", "end"};
+        "type", "name", "character", "bones", "meshes", "min_bone_weight", "start", "end"};
     return keys;
 }
 
@@ -43,6 +44,7 @@ namespace {
 // The keys every effect has.
 struct CommonKeys {
     std::string name;
+    std::string character;
     std::vector<std::string> bones, meshes;
     float minBoneWeight = 0.5f;
     float start = 0.0f;
@@ -53,6 +55,8 @@ struct CommonKeys {
 CommonKeys readCommonKeys(const Object& o, const std::string& type, size_t index) {
     CommonKeys c;
     c.name = o.string("name", type + "#" + std::to_string(index));
+    // Checked against the scene's characters once they are all read (scene.cpp).
+    c.character = o.characterName("character");
     c.bones = o.strings("bones");
     c.meshes = o.strings("meshes");
     const bool bones = o.has("bones"), meshes = o.has("meshes");
@@ -102,6 +106,7 @@ EffectSpec readEffect(const Object& o, size_t index) {
     const CommonKeys common = readCommonKeys(o, type, index);
     EffectSpec e(kind.parse(o));
     e.name = common.name;
+    e.character = common.character;
     e.bones = common.bones;
     e.meshes = common.meshes;
     e.automaticBones = common.automaticBones;

@@ -92,6 +92,7 @@ public:
     explicit EffectSpec(std::unique_ptr<EffectKindSpec> kind) : kind_{std::move(kind)} {}
 
     std::string name;                // default: type and index, e.g. "speed_lines#0"
+    std::string character;           // the name of the character it follows; empty: the first
     std::vector<std::string> bones;  // empty: the whole character
     std::vector<std::string> meshes; // empty: every mesh
     float minBoneWeight = 0.5f;

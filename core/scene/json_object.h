@@ -171,6 +171,18 @@ public:
         if (!v.is_string()) fail(at(key), "expected a string, got " + typeOf(v));
         return v.get<std::string>();
     }
+    // The name of one of the scene's characters, checked against them once the scene is read;
+    // absent: "" (the first).
+    std::string characterName(const std::string& key) const {
+        if (described_) {
+            record(key, ParamInfo::Type::CharacterName, json()).absentDiffers = true;
+            if (!given(key)) return {};
+        }
+        if (!has(key)) return {};
+        const json& v = j_.at(key);
+        if (!v.is_string()) fail(at(key), "expected a character's name, got " + typeOf(v));
+        return v.get<std::string>();
+    }
     std::string choice(const std::string& key, const std::string& fallback,
                        const std::vector<std::string>& choices) const {
         if (described_) {

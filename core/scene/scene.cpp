@@ -7,6 +7,7 @@
 #include "core/scene/default_scene_json.h"
 #include "core/scene/effect_kinds.h"
 #include "core/scene/json_object.h"
+#include "core/scene/kinds/impact_effect.h"
 #include "core/scene/kinds/smoke_effect.h"
 #include "core/scene/kinds/trail_effects.h"
 #include "core/scene/scene_document.h"
@@ -30,9 +31,11 @@ namespace {
 using namespace detail;
 
 void readCharacter(const Object& o, CharacterSpec& c) {
-    o.onlyKeys({"source", "clip", "start", "end", "speed", "loop", "position", "yaw_degrees",
-                "height", "scale", "style", "toon_bands", "rim", "outline_width",
-                "outline_colour"});
+    o.onlyKeys({"name", "source", "clip", "start", "end", "speed", "delay", "loop", "position",
+                "yaw_degrees", "height", "scale", "style", "tint", "toon_bands", "rim",
+                "outline_width", "outline_colour"});
+    c.name = o.string("name", c.name);
+    if (c.name.empty()) fail(o.at("name"), "must not be empty");
     c.source = o.string("source", c.source);
     if (c.source.empty()) fail(o.at("source"), "must name \"fighter\" or a .gltf/.glb file");
     c.clip = o.string("clip", c.clip);
@@ -42,6 +45,7 @@ void readCharacter(const Object& o, CharacterSpec& c) {
         fail(o.at("end"),
              formatNumber(*c.end) + " is not after start (" + formatNumber(c.start) + ")");
     c.speed = float(o.number("speed", c.speed, 0.0, 100.0, true));
+    c.delay = float(o.number("delay", c.delay, 0.0, 1e4));
     c.loop = o.boolean("loop", c.loop);
     c.position = o.vec3("position", c.position);
     c.yawDegrees = float(o.number("yaw_degrees", c.yawDegrees, -3600.0, 3600.0));
@@ -53,6 +57,7 @@ void readCharacter(const Object& o, CharacterSpec& c) {
     if (o.has("style"))
         c.style = o.choice("style", "", {"toon", "lit"}) == "toon" ? CharacterStyle::Toon
                                                                    : CharacterStyle::Lit;
+    c.tint = glm::vec3(o.colour("tint", glm::vec4(c.tint, 1.0f)));
     c.toonBands = o.integer("toon_bands", c.toonBands, 2, 4);
     c.rim = float(o.number("rim", c.rim, 0.0, 4.0));
     c.outlineWidth = float(o.number("outline_width", c.outlineWidth, 0.0, 16.0));
@@ -107,12 +112,54 @@ void readPost(const Object& o, PostSpec& post) {
     post.toneMap = toneMap == "aces" ? ToneMap::Aces : ToneMap::None;
 }
 
+// An impact's target is another character of the scene.
+void checkImpact(const Scene& s, size_t i, const ImpactSpec& impact) {
+    const std::string path = "effects[" + std::to_string(i) + "]";
+    std::vector<std::string> cast;
+    for (const CharacterSpec& c : s.characters)
+        cast.push_back(c.name);
+    const std::string& attacker = s.characters[effectCharacter(s, s.effects[i])].name;
+    if (!impact.target.empty()) {
+        if (std::find(cast.begin(), cast.end(), impact.target) == cast.end())
+            fail(path + ".target",
+                 "no character \"" + impact.target + "\"; characters are: " + join(cast));
+        if (impact.target == attacker)
+            fail(path + ".target", "\"" + impact.target +
+                                       "\" is the character the impact follows; a blow lands "
+                                       "on another");
+    }
+}
+
 Scene readScene(const json& doc, const std::string& where) {
     Scene s;
     s.file = where;
     const Object top(doc, "");
-    top.onlyKeys({"character", "camera", "lights", "stage", "output", "post", "effects"});
-    if (top.has("character")) readCharacter(Object(top.raw("character"), "character"), s.character);
+    top.onlyKeys(
+        {"character", "characters", "camera", "lights", "stage", "output", "post", "effects"});
+    if (top.has("character") && top.has("characters"))
+        fail("characters", "give \"character\" (one) or \"characters\" (a list), not both");
+    if (top.has("character"))
+        readCharacter(Object(top.raw("character"), "character"), s.characters.front());
+    if (top.has("characters")) {
+        const json& list = top.raw("characters");
+        if (!list.is_array())
+            fail("characters", "expected an array of characters, got " + typeOf(list));
+        if (list.empty() || list.size() > kMaxCharacters)
+            fail("characters", std::to_string(list.size()) + " characters; 1 to " +
+                                   std::to_string(kMaxCharacters));
+        s.characters.clear();
+        for (size_t i = 0; i < list.size(); ++i) {
+            const std::string path = "characters[" + std::to_string(i) + "]";
+            CharacterSpec c;
+            c.name = "p" + std::to_string(i + 1);
+            readCharacter(Object(list[i], path), c);
+            for (size_t j = 0; j < i; ++j)
+                if (s.characters[j].name == c.name)
+                    fail(path + ".name", "\"" + c.name + "\" is the name of characters[" +
+                                             std::to_string(j) + "]; give each a name of its own");
+            s.characters.push_back(c);
+        }
+    }
     if (top.has("camera")) readCamera(Object(top.raw("camera"), "camera"), s.camera);
     s.camera.automatic = !top.has("camera");
     if (top.has("lights")) {
@@ -144,8 +191,19 @@ Scene readScene(const json& doc, const std::string& where) {
         EffectSpec e = readEffect(Object(effects[i], path), i);
         if (!names.insert(e.name).second)
             fail(path + ".name", "\"" + e.name + "\" is the name of an earlier effect");
+        if (!e.character.empty() &&
+            std::none_of(s.characters.begin(), s.characters.end(),
+                         [&](const CharacterSpec& c) { return c.name == e.character; })) {
+            std::vector<std::string> cast;
+            for (const CharacterSpec& c : s.characters)
+                cast.push_back(c.name);
+            fail(path + ".character",
+                 "no character \"" + e.character + "\"; characters are: " + join(cast));
+        }
         s.effects.push_back(e);
     }
+    for (size_t i = 0; i < s.effects.size(); ++i)
+        if (const ImpactSpec* impact = s.effects[i].as<ImpactSpec>()) checkImpact(s, i, *impact);
     return s;
 }
 
@@ -162,14 +220,21 @@ std::string parseMessage(const std::string& what) {
 }
 
 // Where playback ends in the clip: character.end, at most the clip's end.
-float clipEnd(const Scene& scene, const anim::Clip& clip) {
-    return scene.character.end ? std::min(*scene.character.end, clip.duration) : clip.duration;
+float clipEnd(const CharacterSpec& spec, const anim::Clip& clip) {
+    return spec.end ? std::min(*spec.end, clip.duration) : clip.duration;
 }
 
-// The frames the clip lasts at the scene's speed and fps, rounded up, in float as frameCount has
-// always counted them (a slow speed or a long clip can make it any size, infinity included).
-float unboundedFrames(const Scene& scene, const anim::Character& character) {
-    return std::ceil(sceneDuration(scene, character) * scene.output.fps);
+// The frames a clip lasts at its speed and the scene's fps, rounded up, in float as frameCount
+// has always counted them (a slow speed or a long clip can make it any size, infinity included).
+float unboundedFrames(const Scene& scene, const CharacterSpec& spec,
+                      const anim::Character& character) {
+    return std::ceil(characterDuration(spec, character) * scene.output.fps);
+}
+
+// "character" for a scene of one character, else "characters[c]": where errors point.
+std::string characterPath(const Scene& scene, size_t c) {
+    return scene.characters.size() == 1 ? std::string("character")
+                                        : "characters[" + std::to_string(c) + "]";
 }
 
 } // namespace
@@ -308,7 +373,8 @@ Scene defaultScene() {
 Scene previewScene(const std::string& file) {
     Scene s = kickScene();
     s.file = "(preview of " + file + ")";
-    s.character.source = file; // the preview's "file" is no folder: read from the working one
+    s.characters.front().source =
+        file; // the preview's "file" is no folder: read from the working one
     s.effects[0].name = "speed lines";
     s.effects[1].name = "blur";
     s.effects[2].name = "smoke";
@@ -328,68 +394,91 @@ bool isCharacterFile(const std::string& path) {
     return extension == ".gltf" || extension == ".glb";
 }
 
-std::filesystem::path characterFile(const Scene& scene) {
-    if (scene.character.source == "fighter") return {};
-    std::filesystem::path path(scene.character.source);
+size_t effectCharacter(const Scene& scene, const EffectSpec& e) {
+    for (size_t c = 0; c < scene.characters.size(); ++c)
+        if (scene.characters[c].name == e.character) return c;
+    return 0;
+}
+
+std::filesystem::path characterFile(const Scene& scene, const CharacterSpec& character) {
+    if (character.source == "fighter") return {};
+    std::filesystem::path path(character.source);
     if (path.is_relative() && !scene.file.empty() && scene.file[0] != '(')
         path = std::filesystem::path(scene.file).parent_path() / path;
     return path;
 }
 
-Result<anim::Character> loadCharacter(const Scene& scene, std::string* note) {
+Result<anim::Character> loadCharacter(const Scene& scene, size_t c, std::string* note) {
+    if (c >= scene.characters.size())
+        return Error{scene.file + ": no character " + std::to_string(c) + " (the scene has " +
+                     std::to_string(scene.characters.size()) + ")"};
+    const CharacterSpec& spec = scene.characters[c];
     anim::Character character;
-    if (scene.character.source == "fighter") {
+    if (spec.source == "fighter") {
         character = anim::makeFighter();
     } else {
-        Result<anim::Character> imported = anim::importGltf(characterFile(scene));
-        if (!imported) return Error{scene.file + ": character.source: " + imported.error().message};
+        Result<anim::Character> imported = anim::importGltf(characterFile(scene, spec));
+        if (!imported)
+            return Error{scene.file + ": " + characterPath(scene, c) +
+                         ".source: " + imported.error().message};
         character = std::move(imported).value();
     }
-    if (Status names = checkNames(scene, character); !names) return names.error();
-    const std::string where =
-        scene.character.source == "fighter"
-            ? std::string("the built-in fighter")
-            : std::filesystem::path(scene.character.source).filename().string();
-    const float factor = chooseCharacterScale(scene, character, where, note);
+    if (Status names = checkNames(scene, c, character); !names) return names.error();
+    const std::string where = spec.source == "fighter"
+                                  ? std::string("the built-in fighter")
+                                  : std::filesystem::path(spec.source).filename().string();
+    const float factor = chooseCharacterScale(scene, c, character, where, note);
     if (factor != 1.0f) anim::scaleCharacter(character, factor);
     return character;
 }
 
-Status checkClip(const Scene& scene, const anim::Character& character) {
-    if (character.clips.empty())
-        return Error{scene.file + ": character.source: \"" + scene.character.source +
-                     "\" has no animation clip"};
-    if (!scene.character.clip.empty() && !character.findClip(scene.character.clip)) {
-        std::vector<std::string> clips;
-        for (const anim::Clip& c : character.clips)
-            clips.push_back(c.name);
-        return Error{scene.file + ": character.clip: no clip \"" + scene.character.clip +
-                     "\"; clips are: " + join(clips)};
+Result<Cast> loadCast(const Scene& scene, std::vector<std::string>* notes) {
+    Cast cast;
+    for (size_t c = 0; c < scene.characters.size(); ++c) {
+        std::string note;
+        Result<anim::Character> character = loadCharacter(scene, c, &note);
+        if (!character) return character.error();
+        cast.push_back(std::move(character).value());
+        if (notes && !note.empty()) notes->push_back(note);
     }
-    const anim::Clip& clip = sceneClip(scene, character);
-    if (scene.character.start >= clip.duration && clip.duration > 0.0f)
-        return Error{scene.file + ": character.start: " + formatNumber(scene.character.start) +
+    return cast;
+}
+
+Status checkClip(const Scene& scene, size_t c, const anim::Character& character) {
+    const CharacterSpec& spec = scene.characters.at(c);
+    const std::string path = scene.file + ": " + characterPath(scene, c);
+    if (character.clips.empty())
+        return Error{path + ".source: \"" + spec.source + "\" has no animation clip"};
+    if (!spec.clip.empty() && !character.findClip(spec.clip)) {
+        std::vector<std::string> clips;
+        for (const anim::Clip& clip : character.clips)
+            clips.push_back(clip.name);
+        return Error{path + ".clip: no clip \"" + spec.clip + "\"; clips are: " + join(clips)};
+    }
+    const anim::Clip& clip = sceneClip(spec, character);
+    if (spec.start >= clip.duration && clip.duration > 0.0f)
+        return Error{path + ".start: " + formatNumber(spec.start) +
                      " is not before the end of clip \"" + clip.name + "\" (" +
                      formatNumber(clip.duration) + " s)"};
     if (!scene.output.frames) {
-        const float frames = unboundedFrames(scene, character);
+        const float frames = unboundedFrames(scene, spec, character);
         if (!(frames <= float(kMaxFrames)))
-            return Error{scene.file + ": character.speed: clip \"" + clip.name + "\" from " +
-                         formatNumber(scene.character.start) + " s to " +
-                         formatNumber(clipEnd(scene, clip)) + " s at speed " +
-                         formatNumber(scene.character.speed) + " lasts " +
+            return Error{path + ".speed: clip \"" + clip.name + "\" from " +
+                         formatNumber(spec.start) + " s to " + formatNumber(clipEnd(spec, clip)) +
+                         " s at speed " + formatNumber(spec.speed) + " lasts " +
                          formatNumber(double(frames)) + " frames at " +
                          formatNumber(scene.output.fps) + " fps; at most " +
                          std::to_string(kMaxFrames) +
-                         " (give a faster speed, an earlier character.end or output.frames)"};
+                         " (give a faster speed, an earlier end or output.frames)"};
     }
     return Ok{};
 }
 
-Status checkNames(const Scene& scene, const anim::Character& character) {
-    if (Status clip = checkClip(scene, character); !clip) return clip;
+Status checkNames(const Scene& scene, size_t c, const anim::Character& character) {
+    if (Status clip = checkClip(scene, c, character); !clip) return clip;
     for (size_t i = 0; i < scene.effects.size(); ++i) {
         const EffectSpec& e = scene.effects[i];
+        if (effectCharacter(scene, e) != c) continue;
         const std::string path = "effects[" + std::to_string(i) + "]";
         for (size_t b = 0; b < e.bones.size(); ++b)
             if (auto bones = anim::resolveBoneEntry(character, e.bones[b]); !bones)
@@ -413,32 +502,61 @@ Status checkNames(const Scene& scene, const anim::Character& character) {
     return Ok{};
 }
 
-const anim::Clip& sceneClip(const Scene& scene, const anim::Character& character) {
-    if (!scene.character.clip.empty())
-        if (const anim::Clip* c = character.findClip(scene.character.clip)) return *c;
-    if (scene.character.source == "fighter")
+Status checkNames(const Scene& scene, std::span<const anim::Character> cast) {
+    if (cast.size() != scene.characters.size())
+        return Error{scene.file + ": " + std::to_string(cast.size()) + " characters loaded for " +
+                     std::to_string(scene.characters.size()) + " in the scene"};
+    for (size_t c = 0; c < cast.size(); ++c)
+        if (Status names = checkNames(scene, c, cast[c]); !names) return names;
+    return Ok{};
+}
+
+const anim::Clip& sceneClip(const CharacterSpec& spec, const anim::Character& character) {
+    if (!spec.clip.empty())
+        if (const anim::Clip* c = character.findClip(spec.clip)) return *c;
+    if (spec.source == "fighter")
         if (const anim::Clip* c = character.findClip("roundhouse_kick")) return *c;
     return character.clips.front();
 }
 
-float sceneDuration(const Scene& scene, const anim::Character& character) {
-    const anim::Clip& clip = sceneClip(scene, character);
-    return std::max(clipEnd(scene, clip) - scene.character.start, 0.0f) / scene.character.speed;
+float characterDuration(const CharacterSpec& spec, const anim::Character& character) {
+    const anim::Clip& clip = sceneClip(spec, character);
+    return spec.delay + std::max(clipEnd(spec, clip) - spec.start, 0.0f) / spec.speed;
 }
 
-uint32_t frameCount(const Scene& scene, const anim::Character& character) {
+float sceneDuration(const Scene& scene, std::span<const anim::Character> cast) {
+    float longest = 0.0f;
+    for (size_t c = 0; c < cast.size() && c < scene.characters.size(); ++c)
+        longest = std::max(longest, characterDuration(scene.characters[c], cast[c]));
+    return longest;
+}
+
+float performanceTime(const Scene& scene, float sceneTime) {
+    float t = sceneTime;
+    for (const Hit& hit : scene.hits) {
+        const float start = float(hit.frame) / scene.output.fps;
+        if (sceneTime > start)
+            t -= std::min(sceneTime - start, float(hit.holdFrames) / scene.output.fps);
+    }
+    return t;
+}
+
+uint32_t frameCount(const Scene& scene, std::span<const anim::Character> cast) {
     if (scene.output.frames) return *scene.output.frames;
-    const float frames = unboundedFrames(scene, character);
+    float held = 0.0f;
+    for (const Hit& hit : scene.hits)
+        held += float(hit.holdFrames);
+    const float frames = std::ceil(sceneDuration(scene, cast) * scene.output.fps) + held;
     return frames <= float(kMaxFrames) ? std::max(1u, uint32_t(frames)) : kMaxFrames;
 }
 
-float clipTimeAt(const Scene& scene, const anim::Character& character, float sceneTime) {
-    const anim::Clip& clip = sceneClip(scene, character);
-    const float start = scene.character.start;
-    const float end = clipEnd(scene, clip);
+float clipTimeAt(const CharacterSpec& spec, const anim::Character& character, float sceneTime) {
+    const anim::Clip& clip = sceneClip(spec, character);
+    const float start = spec.start;
+    const float end = clipEnd(spec, clip);
     const float span = std::max(end - start, 1e-6f);
-    float t = sceneTime * scene.character.speed;
-    if (scene.character.loop)
+    float t = std::max(sceneTime - spec.delay, 0.0f) * spec.speed;
+    if (spec.loop)
         t = std::fmod(std::max(t, 0.0f), span);
     else
         t = std::clamp(t, 0.0f, span);

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -26,20 +27,27 @@ enum class CharacterStyle {
 };
 
 struct CharacterSpec {
+    // What effects name it by ("character" of an effect); default "p1", "p2", ... by its place.
+    std::string name = "p1";
     std::string source = "fighter"; // "fighter" (built in) or a .gltf/.glb path
     std::string clip;               // empty: roundhouse_kick for the fighter, else the first
     float start = 0.0f;             // clip seconds where playback starts
     std::optional<float> end;       // clip seconds where it ends (default: the clip's end)
     float speed = 1.0f;             // playback speed
-    bool loop = false;              // past `end`, wrap to `start` (else hold the last pose)
-    glm::vec3 position{0.0f};       // world placement
-    float yawDegrees = 0.0f;        // rotation about +y
+    // Scene seconds before the clip starts playing (it holds its first pose until then): a
+    // fighter's reaction timed to the blow that lands on it.
+    float delay = 0.0f;
+    bool loop = false;        // past `end`, wrap to `start` (else hold the last pose)
+    glm::vec3 position{0.0f}; // world placement
+    float yawDegrees = 0.0f;  // rotation about +y
     // Size (scene_fit.h): the height in metres to scale the character to, or the factor to scale
     // it by; neither: outliers are brought to a human height, others left alone.
     std::optional<float> height;
     std::optional<float> scale;
     // Shading: default toon for the built-in fighter, lit for a character file (characterStyle).
     std::optional<CharacterStyle> style;
+    // Multiplies the colours of its materials (linear RGB): two of the same fighter told apart.
+    glm::vec3 tint{1.0f};
     uint32_t toonBands = 3;    // levels of the diffuse ramp, 2-4
     float rim = 0.6f;          // strength of the toon rim light, 0: none
     float outlineWidth = 2.0f; // toon outline width in pixels of the output, 0: none
@@ -79,7 +87,7 @@ struct StageSpec {
     glm::vec3 backdropCentre{0.0f, 10.0f, -4.0f};
     glm::vec3 backdropHalfWidth{40.0f, 0.0f, 0.0f}; // horizontal, along the backdrop
     float backdropHalfHeight = 10.0f;
-    std::optional<glm::vec3> shadowCentre; // default: character.position + (0, 1, 0)
+    std::optional<glm::vec3> shadowCentre; // default: the first character's position + (0, 1, 0)
     float shadowRadius = 2.5f;             // half-size of the key light's shadow box
 };
 
@@ -105,15 +113,38 @@ struct PostSpec {
     ToneMap toneMap = ToneMap::Aces; // None: no tone map (a clamp)
 };
 
+// The most characters a scene has ("characters"; the single "character" is one).
+constexpr size_t kMaxCharacters = 4;
+
+// Where an impact effect's blow lands on another character (core/scene/scene_hits.h: found by
+// fitScene, not a key of the scene file).
+struct Hit {
+    size_t effect = 0;     // the impact, in scene.effects
+    size_t attacker = 0;   // the character it follows, in scene.characters
+    size_t target = 0;     // the character struck
+    uint32_t frame = 0;    // the scene frame it lands in: time in ((frame - 1) / fps, frame / fps]
+    float time = 0.0f;     // scene seconds
+    glm::vec3 point{0.0f}; // world: on the attacker's surface where it touches
+    glm::vec3 direction{0.0f}; // of the blow: the attacker's point relative to the target's
+    float speed = 0.0f;        // m/s
+    std::string attackerBone, targetBone;
+    uint32_t holdFrames = 0; // hit-stop: frames frame + 1 .. frame + holdFrames hold the clips
+};
+
 struct Scene {
     std::string file; // where it came from ("(built-in default)" for the default scene)
-    CharacterSpec character;
+    // Never empty: "character" gives one, "characters" one to kMaxCharacters (names unique).
+    std::vector<CharacterSpec> characters{CharacterSpec{}};
     CameraSpec camera;
     std::vector<LightSpec> lights{LightSpec{}};
     StageSpec stage;
     OutputSpec output;
     PostSpec post;
     std::vector<EffectSpec> effects;
+    // The impacts' hits in time order, set once by fitScene (hitsFound) when the scene has an
+    // impact; their hit-stops hold every character's clip (characterPose, frameCount).
+    std::vector<Hit> hits;
+    bool hitsFound = false;
 };
 
 // Parses and checks a scene's JSON text; `where` names it in errors (a file name).
@@ -140,30 +171,60 @@ Scene previewScene(const std::string& file);
 // Whether a command's first word names a character file (.gltf or .glb) rather than a scene.
 bool isCharacterFile(const std::string& path);
 
-// Loads the scene's character (the built-in fighter or a glTF file relative to the scene file's
-// folder), scales it to a sane size (scene_fit.h: chooseCharacterScale; `note`, when not null,
-// gets the line saying so) and checks the clip and every effect's bone and mesh names against it
-// (checkNames).
-Result<anim::Character> loadCharacter(const Scene& scene, std::string* note = nullptr);
-// The character file loadCharacter reads (relative paths against the scene file's folder); empty
-// for the built-in fighter.
-std::filesystem::path characterFile(const Scene& scene);
-// Checks that the character has the scene's clip, that playback starts inside it, and that the
-// frames it lasts (without output.frames) are at most kMaxFrames.
-Status checkClip(const Scene& scene, const anim::Character& character);
-// checkClip, then every effect's bone (plain names, groups and patterns) and mesh names.
-Status checkNames(const Scene& scene, const anim::Character& character);
+// The scene's characters, loaded, in the order of scene.characters (what the simulation, the
+// fitting and the renderers are given).
+using Cast = std::vector<anim::Character>;
+
+// The index in scene.characters of the character effect `e` follows (its "character"; the first
+// when it names none). The reader has checked the name.
+size_t effectCharacter(const Scene& scene, const EffectSpec& e);
+
+// Loads character `c` of the scene (the built-in fighter or a glTF file relative to the scene
+// file's folder), scales it to a sane size (scene_fit.h: chooseCharacterScale; `note`, when not
+// null, gets the line saying so) and checks its clip and the bone and mesh names of the effects
+// that follow it (checkNames).
+Result<anim::Character> loadCharacter(const Scene& scene, size_t c = 0,
+                                      std::string* note = nullptr);
+// Every character of the scene (loadCharacter); `notes` gets the non-empty notes.
+Result<Cast> loadCast(const Scene& scene, std::vector<std::string>* notes = nullptr);
+// The file loadCharacter reads for `character` (relative paths against the scene file's folder);
+// empty for the built-in fighter.
+std::filesystem::path characterFile(const Scene& scene, const CharacterSpec& character);
+// Checks that character `c` has its clip, that playback starts inside it, and that the frames it
+// lasts (without output.frames) are at most kMaxFrames.
+Status checkClip(const Scene& scene, size_t c, const anim::Character& character);
+// checkClip, then the bone (plain names, groups and patterns) and mesh names of every effect that
+// follows character `c`.
+Status checkNames(const Scene& scene, size_t c, const anim::Character& character);
+// checkNames for every character; the cast must have one character per scene.characters entry.
+Status checkNames(const Scene& scene, std::span<const anim::Character> cast);
+inline Status checkNames(const Scene& scene, const anim::Character& character) {
+    return checkNames(scene, std::span<const anim::Character>(&character, 1));
+}
 
 // The most frames a scene renders (output.frames, or its clip's length at its speed and fps): every
 // per-frame loop over a scene is bounded by it. checkClip refuses a scene whose clip runs longer.
 constexpr uint32_t kMaxFrames = 100000;
 
-// Seconds of scene time the output covers, and the clip time at a scene time.
-float sceneDuration(const Scene& scene, const anim::Character& character);
-// The frames the output has: output.frames, else the duration at the scene's fps, at most
-// kMaxFrames (checkClip has refused a longer scene; the bound keeps this defined regardless).
-uint32_t frameCount(const Scene& scene, const anim::Character& character);
-float clipTimeAt(const Scene& scene, const anim::Character& character, float sceneTime);
-const anim::Clip& sceneClip(const Scene& scene, const anim::Character& character);
+// Seconds of scene time a character's clip plays for (from start to end at its speed), and the
+// clip time at a scene time.
+float characterDuration(const CharacterSpec& spec, const anim::Character& character);
+float clipTimeAt(const CharacterSpec& spec, const anim::Character& character, float sceneTime);
+const anim::Clip& sceneClip(const CharacterSpec& spec, const anim::Character& character);
+// The performance's time at scene time `sceneTime`: the scene time less the hit-stops (scene.hits)
+// before it; it stands still while one lasts. Every character's clip plays at it.
+float performanceTime(const Scene& scene, float sceneTime);
+// Seconds of scene time the output covers: the longest character's (without hit-stops).
+float sceneDuration(const Scene& scene, std::span<const anim::Character> cast);
+inline float sceneDuration(const Scene& scene, const anim::Character& character) {
+    return sceneDuration(scene, std::span<const anim::Character>(&character, 1));
+}
+// The frames the output has: output.frames, else the duration at the scene's fps and the
+// hit-stops' frames, at most kMaxFrames (checkClip has refused a longer clip; the bound keeps
+// this defined regardless).
+uint32_t frameCount(const Scene& scene, std::span<const anim::Character> cast);
+inline uint32_t frameCount(const Scene& scene, const anim::Character& character) {
+    return frameCount(scene, std::span<const anim::Character>(&character, 1));
+}
 
 } // namespace mfx::scene

@@ -21,8 +21,16 @@ std::pair<std::string, size_t> splitSection(const std::string& section) {
     return {section.substr(0, open), size_t(std::stoul(index))};
 }
 
-const char* const kTopOrder[] = {"character", "camera", "lights", "stage",
-                                 "output",    "post",   "effects"};
+const char* const kTopOrder[] = {"character", "characters", "camera", "lights",
+                                 "stage",     "output",     "post",   "effects"};
+
+// The sections that are lists of objects ("effects[2]"), and the table of a list's entries.
+bool listSection(const std::string& name) {
+    return name == "effects" || name == "lights" || name == "characters";
+}
+std::string entryTable(const std::string& list) {
+    return list == "characters" ? "character" : list;
+}
 
 bool inline_(const json& v) {
     if (!v.is_array()) return !v.is_object();
@@ -99,7 +107,7 @@ std::vector<std::string> keyOrder(const std::vector<ParamInfo>& params) {
 // The object of `section` in `doc`, or null where the document has none.
 static const json* sectionObject(const json& doc, const std::string& section) {
     const auto [name, index] = splitSection(section);
-    const bool list = name == "effects" || name == "lights";
+    const bool list = listSection(name);
     if (list != (index != std::string::npos)) return nullptr;
     const auto it = doc.find(name);
     if (it == doc.end()) return nullptr;
@@ -114,7 +122,7 @@ std::vector<ParamInfo> sectionTable(const json& doc, const std::string& section)
             throw std::invalid_argument("no effect " + section);
         return effectParams((*e)["type"].get<std::string>(), *e);
     }
-    return sectionParams(splitSection(section).first);
+    return sectionParams(entryTable(splitSection(section).first));
 }
 
 Result<SceneDocument> SceneDocument::fromText(const std::string& text, const std::string& where) {
@@ -138,14 +146,14 @@ Result<SceneDocument> SceneDocument::load(const std::filesystem::path& file) {
 json* SceneDocument::object(json& doc, const std::string& section, bool create) {
     const auto [name, index] = splitSection(section);
     if (index == std::string::npos) {
-        if (name == "effects" || name == "lights") return nullptr;
+        if (listSection(name)) return nullptr;
         if (!doc.contains(name)) {
             if (!create) return nullptr;
             doc[name] = json::object();
         }
         return &doc[name];
     }
-    if (name != "effects" && name != "lights") return nullptr;
+    if (!listSection(name)) return nullptr;
     if (!doc.contains(name) || !doc[name].is_array() || index >= doc[name].size()) {
         if (!create || name != "lights") return nullptr;
         if (!doc.contains("lights")) doc["lights"] = json::array({json::object()});
@@ -160,6 +168,13 @@ std::vector<ParamInfo> SceneDocument::params(const std::string& section) const {
     if (const json* o = sectionObject(doc_, section))
         for (ParamInfo& p : table)
             if (o->contains(p.key)) p.fallback = (*o)[p.key];
+    // A character's name is one of the scene's (absent: the first).
+    for (ParamInfo& p : table)
+        if (p.type == ParamInfo::Type::CharacterName) {
+            for (const CharacterSpec& c : scene_.characters)
+                p.choices.push_back(c.name);
+            if (p.fallback.is_null()) p.fallback = scene_.characters.front().name;
+        }
     return table;
 }
 
@@ -204,7 +219,7 @@ std::string SceneDocument::text() const {
         const std::string& k = present[i];
         out << "  " << json(k).dump() << ": ";
         const json& v = doc_[k];
-        if (k == "effects" || k == "lights") {
+        if (listSection(k)) {
             if (v.empty()) {
                 out << "[]";
             } else {

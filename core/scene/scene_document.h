@@ -23,7 +23,8 @@ public:
     static Result<SceneDocument> fromText(const std::string& text, const std::string& where);
     static Result<SceneDocument> load(const std::filesystem::path& file);
 
-    // A section is "character", "camera", "lights[i]", "stage", "output", "post" or "effects[i]".
+    // A section is "character", "characters[i]", "camera", "lights[i]", "stage", "output", "post"
+    // or "effects[i]".
     // Its keys: the table's entries with, in `fallback`, what the file gives (else the default).
     std::vector<ParamInfo> params(const std::string& section) const;
     // Whether the file gives `key` in `section`.

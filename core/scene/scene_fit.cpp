@@ -1,5 +1,7 @@
 #include "core/scene/scene_fit.h"
 
+#include "core/scene/scene_hits.h"
+
 #include "core/anim/bone_groups.h"
 #include "core/anim/sampling.h"
 #include "core/anim/skinning.h"
@@ -61,11 +63,6 @@ void include(Bounds& b, glm::vec3 p) {
     b.high = glm::max(b.high, p);
 }
 
-anim::Pose poseAtSceneTime(const Scene& scene, const anim::Character& character, float time) {
-    return anim::samplePose(character, &sceneClip(scene, character),
-                            clipTimeAt(scene, character, time), anim::Wrap::Clamp);
-}
-
 // The frames at which the scene is sampled for its bounds and motion (every frame, or an even
 // subset of a long render).
 std::vector<uint32_t> sampledFrames(uint32_t frames) {
@@ -88,17 +85,18 @@ trajectory::Selection selectionOf(const EffectSpec& e) {
 
 // The peak speed of any bone of `bones` (their world origins, metres per second) over the frames
 // where `e` is live: at each of `liveFrames` (liveSampledFrames), from the frame before it (when
-// that is live too and the clip does not wrap between them).
-float peakBoneSpeed(const Scene& scene, const anim::Character& character, const EffectSpec& e,
-                    const std::vector<uint32_t>& liveFrames,
+// that is live too and the clip does not wrap between them). `c` is the character `e` follows.
+float peakBoneSpeed(const Scene& scene, size_t c, const anim::Character& character,
+                    const EffectSpec& e, const std::vector<uint32_t>& liveFrames,
                     const std::vector<std::string>& bones) {
     std::vector<int> nodes;
     for (const std::string& b : bones)
         if (std::optional<int> n = character.findNode(b)) nodes.push_back(*n);
-    const glm::mat4 placement = characterPlacement(scene);
+    const CharacterSpec& spec = scene.characters[c];
+    const glm::mat4 placement = characterPlacement(spec);
     const float dt = 1.0f / scene.output.fps;
     auto positionsAt = [&](uint32_t f) {
-        const anim::Pose pose = poseAtSceneTime(scene, character, float(f) * dt);
+        const anim::Pose pose = characterPose(scene, c, character, float(f) * dt);
         std::vector<glm::vec3> out;
         for (int n : nodes)
             out.push_back(glm::vec3(placement * pose.world[size_t(n)][3]));
@@ -109,8 +107,8 @@ float peakBoneSpeed(const Scene& scene, const anim::Character& character, const 
     std::vector<glm::vec3> held;
     for (uint32_t f : liveFrames) {
         if (f == 0 || !effectLive(scene, e, float(f - 1) * dt)) continue;
-        if (clipTimeAt(scene, character, float(f) * dt) <
-            clipTimeAt(scene, character, float(f - 1) * dt))
+        if (clipTimeAt(spec, character, float(f) * dt) <
+            clipTimeAt(spec, character, float(f - 1) * dt))
             continue; // a loop's wrap: the pose jumps back there
         const std::vector<glm::vec3> previous =
             heldFrame == f - 1 ? std::move(held) : positionsAt(f - 1);
@@ -123,12 +121,14 @@ float peakBoneSpeed(const Scene& scene, const anim::Character& character, const 
 }
 
 // Binds an effect that names no bone or mesh to the limb that moves fastest over its window.
-std::string bindFastestLimb(const Scene& scene, const anim::Character& character, EffectSpec& e) {
+std::string bindFastestLimb(const Scene& scene, std::span<const anim::Character> cast,
+                            EffectSpec& e) {
+    const size_t c = effectCharacter(scene, e);
+    const anim::Character& character = cast[c];
     std::string best;
     std::vector<std::string> bestBones;
     float bestSpeed = -1.0f;
-    const std::vector<uint32_t> liveFrames =
-        liveSampledFrames(scene, e, frameCount(scene, character));
+    const std::vector<uint32_t> liveFrames = liveSampledFrames(scene, e, frameCount(scene, cast));
     for (const std::string& limb : anim::limbGroupNames()) {
         std::vector<std::string> bones = anim::resolveBoneGroup(character, limb);
         if (bones.empty()) continue;
@@ -136,7 +136,7 @@ std::string bindFastestLimb(const Scene& scene, const anim::Character& character
         trajectory::Selection selection = selectionOf(e);
         selection.bones = bones;
         if (!trajectory::selectSource(character, selection)) continue;
-        const float speed = peakBoneSpeed(scene, character, e, liveFrames, bones);
+        const float speed = peakBoneSpeed(scene, c, character, e, liveFrames, bones);
         if (speed > bestSpeed) {
             best = limb;
             bestBones = std::move(bones);
@@ -166,16 +166,18 @@ uint32_t targetCount(const EffectSpec& e) {
 }
 
 // A character the scene sized outside the human range on purpose (character.height or .scale)
-// gets its effects' length defaults scaled with it, so a 10 m giant's smoke grid and ribbons are
-// as big on it as the defaults are on a human; lengths the file gives are kept.
-void scaleLengthDefaults(Scene& scene, const anim::Character& character,
+// gets the length defaults of the effects that follow it scaled with it, so a 10 m giant's smoke
+// grid and ribbons are as big on it as the defaults are on a human; lengths the file gives are
+// kept.
+void scaleLengthDefaults(Scene& scene, size_t c, const anim::Character& character,
                          std::vector<std::string>* notes) {
     if (scene.effects.empty()) return;
-    const float height = characterHeight(scene, character);
+    const float height = characterHeight(scene, c, character);
     if (!(height > 0.0f) || (height >= kSaneHeightLow && height <= kSaneHeightHigh)) return;
     const float unit = height / kDefaultHeight;
     std::vector<std::string> scaled;
     for (EffectSpec& e : scene.effects) {
+        if (effectCharacter(scene, e) != c) continue;
         for (const auto& [key, value] : e.kind().lengths()) {
             if (e.given(key)) continue;
             *value *= unit;
@@ -184,13 +186,33 @@ void scaleLengthDefaults(Scene& scene, const anim::Character& character,
         }
     }
     if (notes && !scaled.empty())
-        notes->push_back("the character is " + formatNumber(height) +
-                         " m tall: the effects' default " + join(scaled) + " scaled by " +
-                         formatNumber(unit) + " to match");
+        notes->push_back("the character" +
+                         (scene.characters.size() > 1 ? " \"" + scene.characters[c].name + "\""
+                                                      : std::string()) +
+                         " is " + formatNumber(height) + " m tall: the effects' default " +
+                         join(scaled) + " scaled by " + formatNumber(unit) + " to match");
 }
 
-void frameCamera(Scene& scene, const anim::Character& character) {
-    const Bounds body = animatedBounds(scene, character);
+// The way the framing looks at the cast from (see scene_fit.h): one character's facing, the sum
+// of several's, or where they cancel, the side of the line between the first two.
+glm::vec3 castFacing(const Scene& scene) {
+    auto facingOf = [](const CharacterSpec& c) {
+        const float yaw = glm::radians(c.yawDegrees);
+        return glm::vec3(std::sin(yaw), 0.0f, std::cos(yaw));
+    };
+    glm::vec3 sum(0.0f);
+    for (const CharacterSpec& c : scene.characters)
+        sum += facingOf(c);
+    if (scene.characters.size() == 1 || glm::length(sum) > 0.3f * float(scene.characters.size()))
+        return glm::length(sum) > 1e-6f ? glm::normalize(sum) : glm::vec3(0, 0, 1);
+    glm::vec3 across = scene.characters[1].position - scene.characters[0].position;
+    across.y = 0.0f;
+    if (glm::length(across) < 1e-6f) return facingOf(scene.characters.front());
+    return glm::normalize(glm::cross(glm::normalize(across), glm::vec3(0, 1, 0)));
+}
+
+void frameCamera(Scene& scene, std::span<const anim::Character> cast) {
+    const Bounds body = animatedBounds(scene, cast);
     if (body.empty()) return;
     const float height = std::max(body.size().y, 1e-3f);
     // Lengths scale with the character: its largest extent (a long, low creature gets a stage
@@ -200,7 +222,8 @@ void frameCamera(Scene& scene, const anim::Character& character) {
     framed.low -= glm::vec3(kEffectMargin * height);
     framed.high += glm::vec3(kEffectMargin * height);
 
-    const float yaw = glm::radians(scene.character.yawDegrees);
+    const glm::vec3 facingDirection = castFacing(scene);
+    const float yaw = std::atan2(facingDirection.x, facingDirection.z);
     const glm::mat3 turn = glm::mat3(glm::rotate(glm::mat4(1.0f), yaw, glm::vec3(0, 1, 0)));
     const glm::vec3 toCamera = turn * kThreeQuarterView;
     const glm::vec3 forward = -toCamera;
@@ -255,9 +278,17 @@ void frameCamera(Scene& scene, const anim::Character& character) {
 
 } // namespace
 
-float characterHeight(const Scene& scene, const anim::Character& character) {
+anim::Pose characterPose(const Scene& scene, size_t c, const anim::Character& character,
+                         float time) {
+    const CharacterSpec& spec = scene.characters[c];
+    return anim::samplePose(character, &sceneClip(spec, character),
+                            clipTimeAt(spec, character, performanceTime(scene, time)),
+                            anim::Wrap::Clamp);
+}
+
+float characterHeight(const Scene& scene, size_t c, const anim::Character& character) {
     if (character.clips.empty()) return 0.0f;
-    const Bounds b = poseBounds(character, poseAtSceneTime(scene, character, 0.0f));
+    const Bounds b = poseBounds(character, characterPose(scene, c, character, 0.0f));
     return b.empty() ? 0.0f : b.size().y;
 }
 
@@ -266,9 +297,9 @@ bool effectLive(const Scene& scene, const EffectSpec& e, float time) {
     return time + slack >= e.start && (!e.end || time <= *e.end + slack);
 }
 
-glm::mat4 characterPlacement(const Scene& scene) {
-    return glm::translate(glm::mat4(1.0f), scene.character.position) *
-           glm::rotate(glm::mat4(1.0f), glm::radians(scene.character.yawDegrees),
+glm::mat4 characterPlacement(const CharacterSpec& character) {
+    return glm::translate(glm::mat4(1.0f), character.position) *
+           glm::rotate(glm::mat4(1.0f), glm::radians(character.yawDegrees),
                        glm::vec3(0.0f, 1.0f, 0.0f));
 }
 
@@ -295,38 +326,45 @@ Bounds poseBounds(const anim::Character& character, const anim::Pose& pose, size
     return b;
 }
 
-Bounds animatedBounds(const Scene& scene, const anim::Character& character) {
-    const glm::mat4 placement = characterPlacement(scene);
+Bounds animatedBounds(const Scene& scene, std::span<const anim::Character> cast) {
     Bounds out = emptyBounds();
-    for (uint32_t f : sampledFrames(frameCount(scene, character))) {
-        const Bounds b = poseBounds(
-            character, poseAtSceneTime(scene, character, float(f) / scene.output.fps), 2048);
-        if (b.empty()) continue;
-        for (int corner = 0; corner < 8; ++corner)
-            include(out, glm::vec3(placement * glm::vec4((corner & 1) ? b.high.x : b.low.x,
-                                                         (corner & 2) ? b.high.y : b.low.y,
-                                                         (corner & 4) ? b.high.z : b.low.z, 1.0f)));
+    const std::vector<uint32_t> frames = sampledFrames(frameCount(scene, cast));
+    for (size_t c = 0; c < cast.size() && c < scene.characters.size(); ++c) {
+        const glm::mat4 placement = characterPlacement(scene.characters[c]);
+        for (uint32_t f : frames) {
+            const Bounds b = poseBounds(
+                cast[c], characterPose(scene, c, cast[c], float(f) / scene.output.fps), 2048);
+            if (b.empty()) continue;
+            for (int corner = 0; corner < 8; ++corner)
+                include(out,
+                        glm::vec3(placement * glm::vec4((corner & 1) ? b.high.x : b.low.x,
+                                                        (corner & 2) ? b.high.y : b.low.y,
+                                                        (corner & 4) ? b.high.z : b.low.z, 1.0f)));
+        }
     }
     return out;
 }
 
-float chooseCharacterScale(const Scene& scene, const anim::Character& character,
+float chooseCharacterScale(const Scene& scene, size_t c, const anim::Character& character,
                            const std::string& where, std::string* note) {
     if (note) note->clear();
     if (character.clips.empty()) return 1.0f;
-    const float height = characterHeight(scene, character);
+    const float height = characterHeight(scene, c, character);
+    const CharacterSpec& spec = scene.characters[c];
+    const std::string path = scene.characters.size() == 1 ? std::string("character")
+                                                          : "characters[" + std::to_string(c) + "]";
     float factor = 1.0f;
     std::string why;
-    if (scene.character.scale) {
-        factor = *scene.character.scale;
-        why = " (character.scale)";
-    } else if (scene.character.height) {
+    if (spec.scale) {
+        factor = *spec.scale;
+        why = " (" + path + ".scale)";
+    } else if (spec.height) {
         if (!(height > 0.0f)) return 1.0f; // nothing to measure: nothing to scale by
-        factor = *scene.character.height / height;
-        why = " (character.height)";
+        factor = *spec.height / height;
+        why = " (" + path + ".height)";
     } else if (height > 0.0f && (height < kSaneHeightLow || height > kSaneHeightHigh)) {
         factor = kDefaultHeight / height;
-        why = "; set character.height or character.scale to change";
+        why = "; set " + path + ".height or " + path + ".scale to change";
     }
     // A factor a float cannot hold (a scale of 1e-50, a height measured as infinite) scales
     // nothing rather than collapsing the character.
@@ -340,13 +378,15 @@ float chooseCharacterScale(const Scene& scene, const anim::Character& character,
     return factor;
 }
 
-Status fitScene(Scene& scene, const anim::Character& character, std::vector<std::string>* notes) {
-    if (Status names = checkNames(scene, character); !names) return names;
+Status fitScene(Scene& scene, std::span<const anim::Character> cast,
+                std::vector<std::string>* notes) {
+    if (Status names = checkNames(scene, cast); !names) return names;
     for (size_t i = 0; i < scene.effects.size(); ++i) {
         EffectSpec& e = scene.effects[i];
+        const anim::Character& character = cast[effectCharacter(scene, e)];
         const std::string path = "effects[" + std::to_string(i) + "] \"" + e.name + "\"";
         if (e.automaticBones) {
-            const std::string choice = bindFastestLimb(scene, character, e);
+            const std::string choice = bindFastestLimb(scene, cast, e);
             e.automaticBones = false;
             if (notes) notes->push_back(path + ": " + choice);
         } else if (!e.bones.empty()) {
@@ -376,18 +416,30 @@ Status fitScene(Scene& scene, const anim::Character& character, std::vector<std:
             *stride = std::max<uint32_t>(1, uint32_t(std::lround(double(count) / target)));
         }
     }
-    scaleLengthDefaults(scene, character, notes);
-    if (scene.camera.automatic) frameCamera(scene, character);
+    for (size_t c = 0; c < cast.size(); ++c)
+        scaleLengthDefaults(scene, c, cast[c], notes);
+    // The impacts' hits (on the performance without hit-stops), once.
+    if (!scene.hitsFound) {
+        scene.hits.clear();
+        Result<std::vector<Hit>> hits = findHits(scene, cast);
+        if (!hits) return hits.error();
+        scene.hits = std::move(hits).value();
+        scene.hitsFound = true;
+    }
+    if (scene.camera.automatic) frameCamera(scene, cast);
     return Ok{};
 }
 
-std::vector<std::string> motionlessEffects(const Scene& scene, const anim::Character& character,
-                                           uint32_t frames) {
+std::vector<std::string> motionlessEffects(const Scene& scene,
+                                           std::span<const anim::Character> cast, uint32_t frames) {
     std::vector<std::string> out;
     const float dt = 1.0f / scene.output.fps;
-    const glm::mat4 placement = characterPlacement(scene);
     const float renderEnd = float(frames) * dt;
     for (const EffectSpec& e : scene.effects) {
+        const size_t c = effectCharacter(scene, e);
+        if (c >= cast.size()) continue;
+        const anim::Character& character = cast[c];
+        const glm::mat4 placement = characterPlacement(scene.characters[c]);
         // Smoke paints its pigment where its vertices are even at rest, and the smear variant of
         // the afterimage draws the mesh itself: both show something without motion.
         if (e.kind().showsAtRest()) continue;
@@ -403,8 +455,8 @@ std::vector<std::string> motionlessEffects(const Scene& scene, const anim::Chara
         source.vertices = std::move(sample);
         auto positions = [&](float t) {
             const auto transforms = trajectory::vertexTransforms(
-                source, trajectory::sourcePalette(character, source,
-                                                  poseAtSceneTime(scene, character, t), placement));
+                source, trajectory::sourcePalette(
+                            character, source, characterPose(scene, c, character, t), placement));
             std::vector<glm::vec3> p(transforms.size());
             for (size_t v = 0; v < p.size(); ++v)
                 p[v] = anim::applyTransform(transforms[v], glm::vec3(source.vertices[v].position),

@@ -12,10 +12,12 @@
 //   * strides: an effect without "stride" takes the stride that leaves about kTargetLines lines
 //     (speed-lines) or kTargetParticles points (particles) of the vertices it selects, whatever
 //     the mesh's vertex count (smoke samples its vertices by max_emitters instead);
-//   * framing: a scene without "camera" is framed on the character's animated bounds over the
+//   * framing: a scene without "camera" is framed on the characters' animated bounds over the
 //     played range (at most 240 frames and about 2,048 vertices a primitive are sampled), from a
-//     three-quarter view, with the floor at the lowest point the character reaches and the shadow
-//     box, backdrop and near/far planes sized to those bounds.
+//     three-quarter view of the way they face (of one character: its facing; of several: their
+//     facings' sum, or, where they cancel, as fighters facing each other do, the side of the line
+//     between the first two), with the floor at the lowest point the characters reach and the
+//     shadow box, backdrop and near/far planes sized to those bounds.
 #pragma once
 
 #include "core/anim/character.h"
@@ -23,6 +25,7 @@
 #include "core/result.h"
 #include "core/scene/scene.h"
 
+#include <span>
 #include <string>
 #include <vector>
 
@@ -42,15 +45,19 @@ struct Bounds {
     glm::vec3 size() const { return high - low; }
 };
 
-// The character placed in the world (character.position, then yaw about +y).
-glm::mat4 characterPlacement(const Scene& scene);
+// A character placed in the world (its position, then yaw about +y).
+glm::mat4 characterPlacement(const CharacterSpec& character);
+// Character `c`'s pose (not placed) at scene time `time`: its clip at clipTimeAt. Every pose the
+// set-up, the simulation and the renderers sample goes through it.
+anim::Pose characterPose(const Scene& scene, size_t c, const anim::Character& character,
+                         float time);
 
 // The bounds of the character's skinned vertices in `pose` (in its own frame, not placed); at
 // most about `maxVertices` vertices a primitive are visited (an even stride through each).
 Bounds poseBounds(const anim::Character& character, const anim::Pose& pose,
                   size_t maxVertices = 4096);
-// The height of the character's skinned vertices at the first frame played (0 without vertices).
-float characterHeight(const Scene& scene, const anim::Character& character);
+// The height of character `c`'s skinned vertices at the first frame played (0 without vertices).
+float characterHeight(const Scene& scene, size_t c, const anim::Character& character);
 // Whether scene time `time` is inside effect `e`'s window, with half a frame of slack at each end
 // (so a boundary on a frame time is inside it): the rule every effect is played by.
 bool effectLive(const Scene& scene, const EffectSpec& e, float time);
@@ -61,25 +68,39 @@ bool effectLive(const Scene& scene, const EffectSpec& e, float time);
 constexpr size_t kMaxSampledFrames = 240;
 std::vector<uint32_t> liveSampledFrames(const Scene& scene, const EffectSpec& e, uint32_t frames);
 
-// The bounds of the placed character over the scene's played range (at most kMaxSampledFrames
+// The bounds of the placed characters over the scene's played range (at most kMaxSampledFrames
 // frames of it, spread evenly).
-Bounds animatedBounds(const Scene& scene, const anim::Character& character);
+Bounds animatedBounds(const Scene& scene, std::span<const anim::Character> cast);
+inline Bounds animatedBounds(const Scene& scene, const anim::Character& character) {
+    return animatedBounds(scene, std::span<const anim::Character>(&character, 1));
+}
 
-// The uniform scale loadCharacter applies: 1 inside the sane range; `note` (when not null) gets
-// the line that tells the user what was done (empty when nothing was). `where` names the file.
-float chooseCharacterScale(const Scene& scene, const anim::Character& character,
+// The uniform scale loadCharacter applies to character `c`: 1 inside the sane range; `note` (when
+// not null) gets the line that tells the user what was done (empty when nothing was). `where`
+// names the file.
+float chooseCharacterScale(const Scene& scene, size_t c, const anim::Character& character,
                            const std::string& where, std::string* note);
 
 // Resolves every effect's bone groups and patterns into bone names, binds effects that name no
 // bone or mesh to the fastest limb, chooses strides, frames the camera and sizes the stage
-// (whichever of these the scene leaves to it), and checks every name. Idempotent: what it set is
-// no longer automatic. `notes` (when not null) gets one line per choice made for the user.
-Status fitScene(Scene& scene, const anim::Character& character,
+// (whichever of these the scene leaves to it), and checks every name; each effect on the
+// character it follows. Idempotent: what it set is no longer automatic. `notes` (when not null)
+// gets one line per choice made for the user. The cast has one character per scene.characters
+// entry.
+Status fitScene(Scene& scene, std::span<const anim::Character> cast,
                 std::vector<std::string>* notes = nullptr);
+inline Status fitScene(Scene& scene, const anim::Character& character,
+                       std::vector<std::string>* notes = nullptr) {
+    return fitScene(scene, std::span<const anim::Character>(&character, 1), notes);
+}
 
 // Effects whose selected vertices never move while they are live over `frames` frames (or that
 // are never live): what they draw is empty. One entry per effect: its name and why.
-std::vector<std::string> motionlessEffects(const Scene& scene, const anim::Character& character,
-                                           uint32_t frames);
+std::vector<std::string> motionlessEffects(const Scene& scene,
+                                           std::span<const anim::Character> cast, uint32_t frames);
+inline std::vector<std::string>
+motionlessEffects(const Scene& scene, const anim::Character& character, uint32_t frames) {
+    return motionlessEffects(scene, std::span<const anim::Character>(&character, 1), frames);
+}
 
 } // namespace mfx::scene

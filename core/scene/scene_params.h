@@ -26,6 +26,9 @@ struct ParamInfo {
         Numbers, // minCount to maxCount numbers in [low, high]
         Strings, // an array of names
         Objects, // an array of minCount to maxCount objects, their keys "key[].<key>"
+        // The name of one of the scene's characters (their "name"s): `choices` holds them in a
+        // document's table (SceneDocument::params); the reader checks the name against the scene.
+        CharacterName,
     };
     std::string key;
     Type type = Type::Number;

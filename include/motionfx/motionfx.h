@@ -152,6 +152,9 @@ MFX_API const char* mfxEffectName(MfxEffects effects, uint32_t index);
 
 /* --- The character ------------------------------------------------------------------------- */
 
+/* A scene of several characters ("characters") gives these functions its first: the host draws
+ * and animates that one; the others play their clips and are drawn by mfxRecordFrame. */
+
 /* The scene's character as triangles, for a host that draws it with its own shading and has no
  * animation of its own: every primitive's vertices one after another. */
 MFX_API MfxResult mfxGetCharacterMeshSize(MfxEffects effects, uint32_t* vertexCount,

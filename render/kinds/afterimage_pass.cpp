@@ -64,8 +64,8 @@ std::vector<uint32_t> afterimageCopies(const std::vector<shared::SkinVertexIn>& 
 }
 
 AfterimagePass::AfterimagePass(const gpu::Context& ctx, const scene::Scene& scene,
-                               const anim::Character& character, VkSampleCountFlagBits samples)
-    : MeshEffectPass(ctx, character), fadeDepthSource_(ctx) {
+                               std::span<const anim::Character> cast, VkSampleCountFlagBits samples)
+    : MeshEffectPass(ctx, cast), fadeDepthSource_(ctx) {
     for (Selected& selected : selectedEffects(scene)) {
         const Kind* kind = selected.kind;
         Effect effect(MeshEffect(ctx, selected.index, meshEffectColour(*kind),
@@ -144,10 +144,16 @@ AfterimagePass::AfterimagePass(const gpu::Context& ctx, const scene::Scene& scen
 }
 
 void AfterimagePass::beginFrame(const sim::SceneSimulation& simulation, bool reset) {
-    // The whole character's motion (m^U of Smith 2016, Sec. 4.3): its root's travel this frame.
-    const glm::vec3 root = simulation.rootPosition(simulation.framePose());
-    characterMotion_ = reset ? glm::vec3(0.0f) : root - lastRoot_;
-    lastRoot_ = root;
+    // The whole character's motion (m^U of Smith 2016, Sec. 4.3): its root's travel this frame,
+    // for each character.
+    const size_t n = simulation.cast().size();
+    lastRoots_.resize(n, glm::vec3(0.0f));
+    characterMotions_.resize(n, glm::vec3(0.0f));
+    for (size_t c = 0; c < n; ++c) {
+        const glm::vec3 root = simulation.rootPosition(c, simulation.framePose(c));
+        characterMotions_[c] = reset ? glm::vec3(0.0f) : root - lastRoots_[c];
+        lastRoots_[c] = root;
+    }
 }
 
 void AfterimagePass::recordEffect(VkCommandBuffer cmd, const sim::SceneSimulation& simulation,
@@ -165,7 +171,9 @@ void AfterimagePass::recordEffect(VkCommandBuffer cmd, const sim::SceneSimulatio
 
     const scene::AfterimageSpec& a = effect.kind;
     shared::AfterimageConstants c{};
-    c.characterMotion = glm::vec4(characterMotion_, 0.0f);
+    const size_t follows = scene::effectCharacter(scene, scene.effects[effect.index]);
+    c.characterMotion = glm::vec4(
+        follows < characterMotions_.size() ? characterMotions_[follows] : glm::vec3(0.0f), 0.0f);
     c.vertexCount = effect.vertexCount;
     c.primitiveCount = effect.primitiveCount;
     c.historySlots = effect.historySlots;

@@ -61,11 +61,11 @@ public:
     // First: by default an opaque copy of the mesh, the smear writes depth.
     static constexpr int kDrawOrder = 10;
 
-    // The scene's afterimage_smear effects on `character` (which must outlive the pass), drawn
-    // into targets of `samples` samples. Effects whose selection leaves no vertex are left out
-    // (the simulation refuses such scenes first).
+    // The scene's afterimage_smear effects, each on the character of the cast it follows (the cast
+    // must outlive the pass), drawn into targets of `samples` samples. Effects whose selection
+    // leaves no vertex are left out (the simulation refuses such scenes first).
     AfterimagePass(const gpu::Context& ctx, const scene::Scene& scene,
-                   const anim::Character& character,
+                   std::span<const anim::Character> cast,
                    VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT);
 
     // EffectKindPass (render/mesh_effect_pass.h): it draws lines and arcs as well.
@@ -102,7 +102,8 @@ private:
     FadeDepthSource fadeDepthSource_;
     gpu::Buffer noJoins_; // the speed-line program's joins binding (unused by the afterimage)
     void beginFrame(const sim::SceneSimulation& simulation, bool reset) override;
-    glm::vec3 lastRoot_{0.0f}, characterMotion_{0.0f};
+    // Each character's root and its travel this frame (by cast member).
+    std::vector<glm::vec3> lastRoots_, characterMotions_;
 };
 
 // The copies of each bound vertex at one bind-pose position, as afterimage_weld.comp reads them:

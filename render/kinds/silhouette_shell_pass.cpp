@@ -72,9 +72,9 @@ ShellCadence shellCadence(const scene::SilhouetteShellSpec& shell, float fps) {
 }
 
 SilhouetteShellPass::SilhouetteShellPass(const gpu::Context& ctx, const scene::Scene& scene,
-                                         const anim::Character& character,
+                                         std::span<const anim::Character> cast,
                                          VkSampleCountFlagBits samples)
-    : MeshEffectPass(ctx, character) {
+    : MeshEffectPass(ctx, cast) {
     for (Selected& selected : selectedEffects(scene)) {
         const Kind* kind = selected.kind;
         // A triangle with two corners at one point has no edge to sweep: its strip would be a

@@ -68,10 +68,11 @@ public:
     static constexpr const char* kPassName = "silhouette_shell";
     static constexpr int kDrawOrder = 30;
 
-    // The scene's silhouette_shell effects on `character` (which must outlive the pass), drawn
-    // into targets of `samples` samples. Effects whose selection leaves no triangle are left out.
+    // The scene's silhouette_shell effects, each on the character of the cast it follows (the cast
+    // must outlive the pass), drawn into targets of `samples` samples. Effects whose selection
+    // leaves no triangle are left out.
     SilhouetteShellPass(const gpu::Context& ctx, const scene::Scene& scene,
-                        const anim::Character& character,
+                        std::span<const anim::Character> cast,
                         VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT);
 
     // After the recording has finished executing, what effect `effect` (its index in

@@ -66,8 +66,9 @@ std::vector<uint32_t> sweptVolumeEdges(const std::vector<shared::SkinVertexIn>& 
 }
 
 SweptVolumePass::SweptVolumePass(const gpu::Context& ctx, const scene::Scene& scene,
-                                 const anim::Character& character, VkSampleCountFlagBits samples)
-    : MeshEffectPass(ctx, character) {
+                                 std::span<const anim::Character> cast,
+                                 VkSampleCountFlagBits samples)
+    : MeshEffectPass(ctx, cast) {
     for (Selected& selected : selectedEffects(scene)) {
         const Kind* kind = selected.kind;
         Effect effect(MeshEffect(ctx, selected.index, meshEffectColour(*kind),

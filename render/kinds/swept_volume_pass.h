@@ -56,11 +56,11 @@ public:
     static constexpr const char* kPassName = "swept_volume";
     static constexpr int kDrawOrder = 20;
 
-    // The scene's swept_volume effects on `character` (which must outlive the pass), drawn into
-    // targets of `samples` samples. Effects whose selection leaves no vertex are left out (the
-    // simulation refuses such scenes first).
+    // The scene's swept_volume effects, each on the character of the cast it follows (the cast must
+    // outlive the pass), drawn into targets of `samples` samples. Effects whose selection leaves no
+    // vertex are left out (the simulation refuses such scenes first).
     SweptVolumePass(const gpu::Context& ctx, const scene::Scene& scene,
-                    const anim::Character& character,
+                    std::span<const anim::Character> cast,
                     VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT);
 
     // After the recording has finished executing, what effect `effect` (its index in

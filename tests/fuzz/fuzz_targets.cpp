@@ -58,11 +58,11 @@ void readSceneInput(std::span<const uint8_t> bytes) {
     Result<scene::Scene> parsed = scene::parseScene(text, "fuzz.json");
     if (parsed) {
         scene::Scene s = std::move(parsed).value();
-        s.character.source = "fighter";
-        Result<anim::Character> character = scene::loadCharacter(s);
-        if (character && scene::fitScene(s, character.value()))
-            (void)scene::motionlessEffects(s, character.value(),
-                                           scene::frameCount(s, character.value()));
+        for (scene::CharacterSpec& c : s.characters)
+            c.source = "fighter";
+        Result<scene::Cast> cast = scene::loadCast(s);
+        if (cast && scene::fitScene(s, cast.value())) // the hits too, where it has impacts
+            (void)scene::motionlessEffects(s, cast.value(), scene::frameCount(s, cast.value()));
     }
     Result<scene::SceneDocument> document = scene::SceneDocument::fromText(text, "fuzz.json");
     if (!document) return;

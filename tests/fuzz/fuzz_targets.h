@@ -22,9 +22,10 @@ const std::filesystem::path& scratchFolder();
 // The bytes as a .gltf/.glb file in the scratch folder, through anim::importGltf.
 void importGltfInput(std::span<const uint8_t> bytes);
 
-// The bytes as a scene file: parsed and read (scene::parseScene), its character replaced by the
-// built-in fighter (no file is read), loaded and checked (loadCharacter: clip, bone groups, mesh
-// names), fitted (fitScene: fastest limbs, strides, camera), its motionless effects found; and the
+// The bytes as a scene file: parsed and read (scene::parseScene), its characters replaced by the
+// built-in fighter (no file is read), loaded and checked (loadCast: clips, bone groups, mesh
+// names), fitted (fitScene: fastest limbs, strides, hits, camera), its motionless effects found;
+// and the
 // same text as the viewer's editable document with each section's parameter table.
 void readSceneInput(std::span<const uint8_t> bytes);
 

@@ -61,10 +61,11 @@ struct SmokeGridSpec {
     // Sparse: the world position of the domain's low corner, so its box is origin + cells x
     // cell size; absent, the domain is centred on its effects' paths, standing on the floor.
     std::optional<glm::vec3> origin;
-    // The character as a moving solid the smoke flows around (docs/fluid.md, "Solids"): its body
+    // The characters as moving solids the smoke flows around (docs/fluid.md, "Solids"): their body
     // capsules (core/anim/body_capsules.h), those of `collideBones` (entries as an effect's
-    // "bones"; empty: every one but those of the bones the grid's effects emit from), each at
-    // least `collideThickness` across. On by default, on either domain.
+    // "bones", of the character the effect follows; empty: every one but those of the bones the
+    // grid's effects emit from, and every capsule of the other characters), each at least
+    // `collideThickness` across. On by default, on either domain.
     bool collide = true;
     std::vector<std::string> collideBones;
     float collideThickness = 0.0f;
