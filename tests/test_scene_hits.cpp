@@ -104,6 +104,9 @@ TEST(SceneHits, AKickThatReachesLandsOnceWhereTheCapsulesFirstTouch) {
     const anim::SegmentPoints closest = anim::closestPoints(a.a, a.b, b.a, b.b);
     const float gap = glm::distance(closest.p, closest.q) - a.radius - b.radius;
     RecordProperty("gapAtHit", std::to_string(gap));
+    std::printf("hit at %.4f s, frame %u: %s on %s, %.2f m/s; the capsules' gap there %.2f mm\n",
+                double(h.time), h.frame, h.attackerBone.c_str(), h.targetBone.c_str(),
+                double(h.speed), double(gap) * 1e3);
     // Within the bisection's millionth of a frame of the leg's travel (a few m/s: micrometres),
     // and the clip sampled at that time rather than blended linearly over the frame: 5 mm.
     EXPECT_LT(std::abs(gap), 5e-3f);
