@@ -153,7 +153,8 @@ MFX_API const char* mfxEffectName(MfxEffects effects, uint32_t index);
 /* --- The character ------------------------------------------------------------------------- */
 
 /* A scene of several characters ("characters") gives these functions its first: the host draws
- * and animates that one; the others play their clips and are drawn by mfxRecordFrame. */
+ * and animates that one; the others play their clips and are drawn by mfxRecordFrame. A scene's
+ * hit-stops hold the clips it plays, not the host's own animation. */
 
 /* The scene's character as triangles, for a host that draws it with its own shading and has no
  * animation of its own: every primitive's vertices one after another. */
