@@ -115,6 +115,8 @@ int runBenchEffects(const cli::ParsedArgs& parsed) {
         for (size_t e = 1; e < with.scene.effects.size(); ++e)
             effect += std::string("+") + with.scene.effects[e].type();
         SceneArgument alone{with.scene, with.cast};
+        // The characters alone keep the scene's hit-stops (its hits stay, their impacts gone:
+        // scene::hitImpact), so both runs play the same motion.
         alone.scene.effects.clear();
         Row row{effect, files[i]};
         const VkSampleCountFlagBits wanted = VkSampleCountFlagBits(samples.value());

@@ -5,6 +5,7 @@
 #include "core/scene/effect_source.h"
 #include "core/scene/kinds/impact_effect.h"
 #include "core/scene/scene.h"
+#include "core/scene/scene_hits.h"
 #include "core/trajectory/surface_source.h"
 #include "core/trajectory/trajectory_source.h"
 
@@ -23,6 +24,7 @@ void printHits(const scene::Scene& s) {
     if (!impacts) return;
     std::printf("hits         %zu\n", s.hits.size());
     for (const scene::Hit& h : s.hits) {
+        if (!scene::hitImpact(s, h)) continue;
         char stop[32] = "";
         if (h.holdFrames > 0)
             std::snprintf(stop, sizeof stop, ", hit-stop %u frames", h.holdFrames);

@@ -3,6 +3,7 @@
 #include "core/scene/effect_source.h"
 #include "core/scene/kinds/impact_effect.h"
 #include "core/scene/scene_fit.h"
+#include "core/scene/scene_hits.h"
 
 #include "core/anim/bone_groups.h"
 #include "core/anim/sampling.h"
@@ -472,7 +473,7 @@ uint32_t SceneSimulation::recordBursts(VkCommandBuffer cmd, SmokeGrid& grid, flo
     std::vector<shared::FluidEmitter> records;
     for (const scene::Hit& hit : scene_.hits) {
         if (!(hit.time > from && hit.time <= to)) continue;
-        const auto* impact = scene_.effects[hit.effect].as<scene::ImpactSpec>();
+        const scene::ImpactSpec* impact = scene::hitImpact(scene_, hit);
         if (!impact || impact->smokeImpulse <= 0.0f) continue;
         const glm::vec3 p = hit.point - g.origin();
         if (glm::any(glm::lessThan(p, glm::vec3(0.0f))) || glm::any(glm::greaterThan(p, size)))

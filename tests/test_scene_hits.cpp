@@ -182,6 +182,20 @@ TEST(SceneHits, TheShakeMovesTheCameraAfterAHitOnlyAndDiesOut) {
     EXPECT_LE(largest, 0.05f * std::sqrt(3.0f));
 }
 
+// A scene whose effects were removed after its hits were found (as `bench effects` times the
+// characters alone): the hits stay for their hit-stops, but nothing reads the impacts that are gone
+// (no shake; the simulation and the frame play past the hit).
+TEST(SceneHits, HitsWhoseImpactIsGoneHoldTheClipsAndDoNothingElse) {
+    Fitted f = fitted(duel(1.0f, R"(, "shake": 0.05, "hit_stop_frames": 3)"));
+    ASSERT_EQ(f.scene.hits.size(), 1u);
+    const scene::Hit hit = f.scene.hits[0];
+    f.scene.effects.clear();
+    EXPECT_EQ(scene::hitImpact(f.scene, hit), nullptr);
+    EXPECT_EQ(scene::cameraShake(f.scene, hit.time + 0.01f), glm::vec3(0.0f));
+    EXPECT_EQ(scene::characterPose(f.scene, 0, f.cast[0], float(hit.frame) / 30.0f).world,
+              scene::characterPose(f.scene, 0, f.cast[0], float(hit.frame + 3) / 30.0f).world);
+}
+
 // The sparks' closed form against the equation it solves, dv/dt = g - k v, integrated by fourth-
 // order Runge-Kutta in 10,000 steps: within 1e-4 of the distance flown, with and without drag.
 TEST(SceneHits, TheSparksClosedFormSolvesItsEquationOfMotion) {
@@ -328,6 +342,21 @@ TEST_F(ImpactGpu, AHitBurstsIntoTheSmokeWhereItLands) {
     std::printf("near the hit: %s\n", measured.c_str());
     EXPECT_GT(pigmentWith, pigmentWithout + 1.0);
     EXPECT_GT(alongWith, alongWithout + 10.0);
+}
+
+TEST_F(ImpactGpu, AFrameWithoutTheImpactsOfItsHitsPlaysPastThem) {
+    Result<scene::Scene> s =
+        scene::parseScene(duel(1.0f, R"(, "shake": 0.05, "hit_stop_frames": 3)"), "duel.json");
+    ASSERT_TRUE(s) << s.error().message;
+    scene::Scene scene = s.value();
+    scene::Cast cast = {anim::makeFighter(), anim::makeFighter()};
+    ASSERT_TRUE(scene::fitScene(scene, cast).ok());
+    ASSERT_EQ(scene.hits.size(), 1u);
+    scene.effects.clear();
+    Result<DrawnScene> drawn = drawScene(ctx(), scene, 160, 90, VK_SAMPLE_COUNT_1_BIT);
+    ASSERT_TRUE(drawn) << drawn.error().message;
+    drawn.value().playTo(ctx(), scene.hits[0].frame + 4);
+    EXPECT_EQ(drawn.value().played, scene.hits[0].frame + 5);
 }
 
 // The frame draws the impact where the hit lands: the frame after the hit, the pixels around the

@@ -182,11 +182,15 @@ Result<std::vector<Hit>> findHits(const Scene& scene, std::span<const anim::Char
     return hits;
 }
 
+const ImpactSpec* hitImpact(const Scene& scene, const Hit& hit) {
+    return hit.effect < scene.effects.size() ? scene.effects[hit.effect].as<ImpactSpec>() : nullptr;
+}
+
 glm::vec3 cameraShake(const Scene& scene, float time) {
     glm::vec3 offset(0.0f);
     for (size_t k = 0; k < scene.hits.size(); ++k) {
         const Hit& h = scene.hits[k];
-        const auto* impact = scene.effects[h.effect].as<ImpactSpec>();
+        const ImpactSpec* impact = hitImpact(scene, h);
         if (!impact || impact->shake <= 0.0f) continue;
         const float age = time - h.time;
         if (age < 0.0f || age >= impact->shakeSeconds) continue;

@@ -15,6 +15,7 @@
 #pragma once
 
 #include "core/anim/character.h"
+#include "core/scene/kinds/impact_effect.h"
 #include "core/scene/scene.h"
 
 #include <span>
@@ -30,6 +31,11 @@ constexpr uint64_t kMaxHitTests = 50'000'000;
 // Every hit of the scene's impacts in time order (scene.hits must be empty: the performance is
 // sampled without hit-stops). Effects' bones must be resolved (fitScene).
 Result<std::vector<Hit>> findHits(const Scene& scene, std::span<const anim::Character> cast);
+
+// The impact a hit belongs to, or null where the scene no longer has it (effects removed after
+// the hits were found, as a benchmark of the characters alone does): every consumer of
+// scene.hits asks through it.
+const ImpactSpec* hitImpact(const Scene& scene, const Hit& hit);
 
 // The camera's shake at scene time `time` (world units, added to its position and target): each
 // hit of an impact with a "shake" jolts the camera along the blow and then jitters it, dying out
