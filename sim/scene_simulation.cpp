@@ -479,11 +479,8 @@ uint32_t SceneSimulation::recordBursts(VkCommandBuffer cmd, SmokeGrid& grid, flo
         if (glm::any(glm::lessThan(p, glm::vec3(0.0f))) || glm::any(glm::greaterThan(p, size)))
             continue;
         if (records.size() + kBurstEmitters > size_t(kBurstsPerStep) * kBurstEmitters) break;
-        const glm::vec3 axis = glm::length(hit.direction) > 1e-6f ? glm::normalize(hit.direction)
-                                                                  : glm::vec3(0.0f, 1.0f, 0.0f);
-        const glm::vec3 helper =
-            std::abs(axis.y) < 0.9f ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
-        const glm::vec3 u = glm::normalize(glm::cross(axis, helper)), v = glm::cross(axis, u);
+        const scene::BlowAxes blow = scene::blowAxes(hit.direction);
+        const glm::vec3 axis = blow.along, u = blow.u, v = blow.v;
         const float r = impact->smokeRadius, speed = impact->smokeImpulse;
         // Strong enough to set the air's velocity and pigment within the one step.
         const float strength = 8.0f * scene_.output.fps * float(g.settings().stepsPerFrame);

@@ -14,10 +14,10 @@ namespace mfx::scene {
 
 namespace {
 
-// A character's body capsules (those of `bones` when not empty) and the nodes they hang on.
+// Of a character's body capsules `all`, those on `bones` (every one when `bones` is empty).
 std::vector<anim::BodyCapsule> capsulesOf(const anim::Character& character,
+                                          std::vector<anim::BodyCapsule> all,
                                           const std::vector<std::string>& bones) {
-    std::vector<anim::BodyCapsule> all = anim::fitBodyCapsules(character);
     if (bones.empty()) return all;
     std::erase_if(all, [&](const anim::BodyCapsule& c) {
         return std::find(bones.begin(), bones.end(), character.nodes[size_t(c.node)].name) ==
@@ -78,6 +78,12 @@ Result<std::vector<Hit>> findHits(const Scene& scene, std::span<const anim::Char
     std::vector<Hit> hits;
     if (cast.size() != scene.characters.size()) return hits;
     std::vector<Strike> strikes;
+    // Each character's body capsules, fitted once (on the first strike that needs them).
+    std::vector<std::optional<std::vector<anim::BodyCapsule>>> bodies(cast.size());
+    auto body = [&](size_t c) -> const std::vector<anim::BodyCapsule>& {
+        if (!bodies[c]) bodies[c] = anim::fitBodyCapsules(cast[c]);
+        return *bodies[c];
+    };
     for (size_t i = 0; i < scene.effects.size(); ++i) {
         const EffectSpec& e = scene.effects[i];
         const ImpactSpec* impact = e.as<ImpactSpec>();
@@ -90,8 +96,8 @@ Result<std::vector<Hit>> findHits(const Scene& scene, std::span<const anim::Char
             s.effect = i;
             s.attacker = attacker;
             s.target = t;
-            s.attackerCapsules = capsulesOf(cast[attacker], e.bones);
-            s.targetCapsules = capsulesOf(cast[t], {});
+            s.attackerCapsules = capsulesOf(cast[attacker], body(attacker), e.bones);
+            s.targetCapsules = body(t);
             if (!s.attackerCapsules.empty() && !s.targetCapsules.empty())
                 strikes.push_back(std::move(s));
         }

@@ -26,14 +26,6 @@ scene::RibbonLook sparkLook(const scene::ImpactSpec& impact) {
     return look;
 }
 
-// A unit vector across `axis`, and the one across both.
-void across(glm::vec3 axis, glm::vec3& u, glm::vec3& v) {
-    const glm::vec3 helper =
-        std::abs(axis.y) < 0.9f ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
-    u = glm::normalize(glm::cross(axis, helper));
-    v = glm::cross(axis, u);
-}
-
 } // namespace
 
 ImpactPass::ImpactPass(const gpu::Context& ctx, const scene::Scene& scene,
@@ -174,12 +166,9 @@ uint32_t ImpactPass::draw(VkCommandBuffer cmd, const sim::SceneSimulation& simul
                 shared::ImpactDraw d{};
                 d.centre = glm::vec4(hit.point, MFX_IMPACT_RING);
                 if (impact.ring == scene::RingFacing::HitPlane) {
-                    glm::vec3 u3, v3;
-                    across(glm::length(hit.direction) > 1e-6f ? glm::normalize(hit.direction)
-                                                              : glm::vec3(0, 1, 0),
-                           u3, v3);
-                    d.axisU = glm::vec4(u3, half);
-                    d.axisV = glm::vec4(v3, 0.0f);
+                    const scene::BlowAxes blow = scene::blowAxes(hit.direction);
+                    d.axisU = glm::vec4(blow.u, half);
+                    d.axisV = glm::vec4(blow.v, 0.0f);
                 } else {
                     d.axisU = glm::vec4(0.0f, 0.0f, 0.0f, half);
                 }

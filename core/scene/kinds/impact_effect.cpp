@@ -77,16 +77,21 @@ float unitHash(uint32_t x) {
 
 } // namespace
 
+BlowAxes blowAxes(glm::vec3 direction) {
+    BlowAxes b;
+    if (glm::length(direction) > 1e-6f) b.along = glm::normalize(direction);
+    const glm::vec3 helper =
+        std::abs(b.along.y) < 0.9f ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
+    b.u = glm::normalize(glm::cross(b.along, helper));
+    b.v = glm::cross(b.along, b.u);
+    return b;
+}
+
 std::vector<SparkLaunch> impactSparks(const ImpactSpec& impact, glm::vec3 point,
                                       glm::vec3 direction, float time, uint32_t hitIndex) {
     std::vector<SparkLaunch> out;
-    const glm::vec3 axis =
-        glm::length(direction) > 1e-6f ? glm::normalize(direction) : glm::vec3(0.0f, 1.0f, 0.0f);
-    // Two unit vectors across the axis.
-    const glm::vec3 helper =
-        std::abs(axis.y) < 0.9f ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
-    const glm::vec3 u = glm::normalize(glm::cross(axis, helper));
-    const glm::vec3 v = glm::cross(axis, u);
+    const BlowAxes blow = blowAxes(direction);
+    const glm::vec3 axis = blow.along, u = blow.u, v = blow.v;
     const float cosSpread = std::cos(glm::radians(impact.sparkSpread));
     for (uint32_t i = 0; i < impact.sparks; ++i) {
         const uint32_t seed = hitIndex * 0x9e3779b9U + i * 4u;

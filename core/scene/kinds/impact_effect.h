@@ -82,6 +82,13 @@ struct ImpactSpec : EffectKind<ImpactSpec> {
 // The longest an impact's sparks, flash or ring live (seconds): what a pass keeps a hit for.
 float impactLifetime(const ImpactSpec& impact);
 
+// A blow's unit direction (straight up where it has none) and two unit vectors across it: the
+// frame its sparks' cone, its ring on the hit plane and its smoke burst are laid out in.
+struct BlowAxes {
+    glm::vec3 along{0.0f, 1.0f, 0.0f}, u{1.0f, 0.0f, 0.0f}, v{0.0f, 0.0f, 1.0f};
+};
+BlowAxes blowAxes(glm::vec3 direction);
+
 // One spark as a hit throws it: from the contact point, at the hit's time.
 struct SparkLaunch {
     glm::vec3 origin{0.0f};
