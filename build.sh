@@ -205,12 +205,13 @@ fuzz() {
     local seconds=$1
     local dir="$BUILD_DIR-fuzz"
     CC=clang CXX=clang++ build "$dir" -DMOTIONFX_FUZZ=ON -DMOTIONFX_BUILD_TESTS=OFF \
-        -DMOTIONFX_BUILD_APPS=OFF -- motionfx_fuzz_gltf motionfx_fuzz_scene
+        -DMOTIONFX_BUILD_APPS=OFF -- motionfx_fuzz_gltf motionfx_fuzz_scene motionfx_fuzz_png
     local -A seeds=(
         [gltf]="$ROOT/tests/fuzz/corpus/gltf $ROOT/../shared/gltf-bad $ROOT/../shared/assets"
         [scene]="$ROOT/tests/fuzz/corpus/scene $ROOT/docs/scenes"
+        [png]="$ROOT/tests/fuzz/corpus/png $ROOT/docs/scenes/gallery/textures"
     )
-    for harness in gltf scene; do
+    for harness in gltf scene png; do
         # New inputs go to the first folder (kept between runs); the seeds are read only.
         local corpus="$dir/corpus/$harness" findings="$dir/findings/$harness/"
         mkdir -p "$corpus" "$findings"

@@ -30,6 +30,11 @@ shots=(
     "ribbon_blade docs/scenes/gallery/ribbon_blade.json 40"
     "ribbon_tube docs/scenes/gallery/ribbon_tube.json 40"
     "ribbon_sheet docs/scenes/gallery/ribbon_sheet.json 40"
+    "texture_stretch docs/scenes/gallery/texture_stretch.json 40"
+    "texture_per_segment docs/scenes/gallery/texture_per_segment.json 40"
+    "texture_tiled docs/scenes/gallery/texture_tiled.json 40"
+    "texture_distance docs/scenes/gallery/texture_distance.json 40"
+    "texture_erosion docs/scenes/gallery/texture_erosion.json 44"
     "volume_rim docs/scenes/gallery/volume_rim.json 12"
     "particles_life docs/scenes/gallery/particles_life.json 42"
 )

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstring>
 #include <map>
 #include <string>
@@ -70,10 +71,12 @@ namespace {
 
 gpu::Buffer styleBuffer(const gpu::Context& ctx,
                         const std::vector<scene::GradientStop>& colourOverLife,
-                        const std::vector<scene::CurveStop>& widthOverLife) {
+                        const std::vector<scene::CurveStop>& widthOverLife,
+                        const std::vector<scene::CurveStop>& erosionOverLife = {}) {
     // Every stop filled: past the last given, the last again at life 1 (ribbon_style.glsl).
     shared::RibbonStyle style{};
     const size_t colours = colourOverLife.size(), widths = widthOverLife.size();
+    const size_t erosions = erosionOverLife.size();
     for (size_t i = 0; i < MFX_RIBBON_MAX_STOPS; ++i) {
         const int lane = int(i % 4);
         if (colours > 0) {
@@ -86,6 +89,11 @@ gpu::Buffer styleBuffer(const gpu::Context& ctx,
             style.widths[i / 4][lane] = w.value;
             style.widthAt[i / 4][lane] = i < widths ? w.at : 1.0f;
         }
+        if (erosions > 0) {
+            const scene::CurveStop& e = erosionOverLife[std::min(i, erosions - 1)];
+            style.erosion[i / 4][lane] = e.value;
+            style.erosionAt[i / 4][lane] = i < erosions ? e.at : 1.0f;
+        }
     }
     gpu::Buffer buffer = gpu::createBuffer(ctx, sizeof style, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                            gpu::MemoryUsage::Upload, "ribbon style");
@@ -96,7 +104,7 @@ gpu::Buffer styleBuffer(const gpu::Context& ctx,
 } // namespace
 
 gpu::Buffer ribbonStyleBuffer(const gpu::Context& ctx, const scene::RibbonLook& look) {
-    return styleBuffer(ctx, look.colourOverLife, look.widthOverLife);
+    return styleBuffer(ctx, look.colourOverLife, look.widthOverLife, look.texture.erosionOverLife);
 }
 
 gpu::Buffer volumeStyleBuffer(const gpu::Context& ctx, const scene::VolumeLook& look) {
@@ -133,6 +141,64 @@ FadeDepthSource::FadeDepthSource(const gpu::Context& ctx)
 gpu::DescriptorWrite FadeDepthSource::binding(const gpu::Image* sceneDepth) const {
     return gpu::bindImage(2, sceneDepth ? *sceneDepth : far_,
                           VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler_.get());
+}
+
+RibbonTextureSource::RibbonTextureSource(const gpu::Context& ctx)
+    : sampler_(gpu::createSampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_REPEAT)) {
+    scene::TextureImage white;
+    white.width = white.height = 1;
+    white.rgba = {255, 255, 255, 255};
+    white_ = upload(ctx, white, "no ribbon texture");
+    noDistances_ = effectStorage(ctx, 64, 0, "no ribbon distances");
+}
+
+gpu::Image RibbonTextureSource::upload(const gpu::Context& ctx, const scene::TextureImage& texture,
+                                       const char* name) {
+    gpu::ImageDesc desc;
+    desc.extent = {texture.width, texture.height, 1};
+    desc.format = VK_FORMAT_R8G8B8A8_SRGB; // PNG colours are sRGB; sampling gives linear ones
+    desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    desc.debugName = name;
+    gpu::Image image = gpu::createImage(ctx, desc);
+    gpu::uploadImage(ctx, image, std::as_bytes(std::span(texture.rgba)),
+                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    return image;
+}
+
+gpu::DescriptorWrite RibbonTextureSource::distances(const gpu::Buffer* distances) const {
+    return gpu::bindBuffer(4, distances ? *distances : noDistances_);
+}
+
+gpu::DescriptorWrite RibbonTextureSource::texture(const gpu::Image* texture) const {
+    return gpu::bindImage(5, texture ? *texture : white_, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                          sampler_.get());
+}
+
+void setRibbonTexture(shared::EffectDraw& draw, const scene::RibbonLook& look, float now,
+                      float ageSpan, float lifetime) {
+    const scene::RibbonTexture& t = look.texture;
+    draw.ribbonTexture = glm::vec4(0.0f);
+    if (t.file.empty()) return;
+    float scale = 1.0f;
+    switch (t.uv) {
+    case scene::TextureUv::Stretch:
+        scale = 1.0f / std::max(ageSpan, 1e-6f);
+        break;
+    case scene::TextureUv::PerSegment:
+        break;
+    case scene::TextureUv::Tiled:
+        scale = t.repeats / std::max(lifetime, 1e-6f);
+        break;
+    case scene::TextureUv::Distance:
+        scale = 1.0f / t.tileLength;
+        break;
+    }
+    // The offset of the moment: u grows towards the tail, so a texel flows that way as the offset
+    // falls, -scroll * now, kept in [0, 1) (a float of scroll * now loses the fraction after a long
+    // run); exactly 0 without scrolling.
+    const double offset = t.scroll == 0.0f ? 0.0 : -double(t.scroll) * double(now);
+    draw.ribbonTexture = glm::vec4(float(int(t.uv) + 1), scale, float(offset - std::floor(offset)),
+                                   t.erosionOverLife.empty() ? 0.0f : t.erosionSoftness);
 }
 
 gpu::Buffer sceneFrameBuffer(const gpu::Context& ctx, const char* name) {

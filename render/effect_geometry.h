@@ -7,6 +7,7 @@
 #pragma once
 
 #include "core/scene/kinds/trail_effects.h"
+#include "core/scene/ribbon_texture.h"
 
 #include "core/anim/skin_vertices.h"
 #include "core/gpu/program.h"
@@ -79,6 +80,34 @@ private:
     gpu::Image far_;
     gpu::UniqueSampler sampler_;
 };
+
+// What the speed-line programs read at bindings 4 and 5 (shaders/render/ribbon_texture.glsl): the
+// ribbon's distances along its lines (a storage buffer) and its texture (sRGB RGBA8, bilinear,
+// repeating), or stand-ins a draw without them binds (never read: its texture mode is 0).
+class RibbonTextureSource {
+public:
+    explicit RibbonTextureSource(const gpu::Context& ctx);
+    // The texture's texels in a sampled image.
+    static gpu::Image upload(const gpu::Context& ctx, const scene::TextureImage& texture,
+                             const char* name);
+    gpu::DescriptorWrite distances(const gpu::Buffer* distances) const;
+    gpu::DescriptorWrite texture(const gpu::Image* texture) const;
+    // Both stand-ins.
+    std::vector<gpu::DescriptorWrite> none() const {
+        return {distances(nullptr), texture(nullptr)};
+    }
+
+private:
+    gpu::Image white_;
+    gpu::Buffer noDistances_;
+    gpu::UniqueSampler sampler_;
+};
+
+// The texture's mode, scale, scroll and erosion in a speed-line draw's push constants
+// (EffectDraw::ribbonTexture) at scene time `now`; `ageSpan` is the live ribbon's (stretch) and
+// `lifetime` the trail's, in seconds. Mode 0 where the look has no texture.
+void setRibbonTexture(shared::EffectDraw& draw, const scene::RibbonLook& look, float now,
+                      float ageSpan, float lifetime);
 
 // A device-local storage buffer (at least 64 bytes, so an empty one is still valid) that can also
 // be copied to and from, with `extra` usage.

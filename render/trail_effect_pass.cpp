@@ -26,7 +26,7 @@ uint32_t TrailEffectPass::draw(VkCommandBuffer cmd, const sim::SceneSimulation& 
         if (style == styles_.end()) style = styles_.emplace(index, makeStyle(*effect.spec)).first;
         std::vector<gpu::DescriptorWrite> writes = {gpu::bindBuffer(0, frame_),
                                                     gpu::bindBuffer(1, style->second)};
-        for (const gpu::DescriptorWrite& w : extraBindings(effect))
+        for (const gpu::DescriptorWrite& w : extraBindings(simulation, effect))
             writes.push_back(w);
         const DrawSource source = drawSource(effect);
         const gpu::Program& program = *source.program;

@@ -42,8 +42,11 @@ protected:
 
     // The effect's look as program binding 1 (ribbonStyleBuffer or volumeStyleBuffer), made once.
     virtual gpu::Buffer makeStyle(const scene::EffectSpec& spec) const = 0;
-    // The bindings past the frame (0) and the style (1) for the effect's draws.
-    virtual std::vector<gpu::DescriptorWrite> extraBindings(const TrajectoryEffect& effect) const {
+    // The bindings past the frame (0) and the style (1) for the draws of `effect`, of
+    // `simulation`.
+    virtual std::vector<gpu::DescriptorWrite> extraBindings(const sim::SceneSimulation& simulation,
+                                                            const TrajectoryEffect& effect) {
+        (void)simulation;
         (void)effect;
         return {};
     }

@@ -79,6 +79,14 @@ TEST(FuzzCorpus, DocsScenesReplay) {
     EXPECT_GE(files, 10u);
 }
 
+TEST(FuzzCorpus, PngSeedsAndTheGalleryTexturesReplay) {
+    const size_t files = replay(
+        filesUnder({kSource / "tests/fuzz/corpus/png", kSource / "docs/scenes/gallery/textures"},
+                   {".png"}),
+        &fuzz::loadTextureInput);
+    EXPECT_GE(files, 10u);
+}
+
 TEST(FuzzCorpus, ScratchFolderHoldsTheBufferAndTheFileOutsideIt) {
     const fs::path& folder = fuzz::scratchFolder();
     EXPECT_TRUE(fs::is_regular_file(folder / "triangle.bin"));

@@ -10,6 +10,7 @@
 #include "core/scene/kinds/impact_effect.h"
 #include "core/scene/kinds/smoke_effect.h"
 #include "core/scene/kinds/trail_effects.h"
+#include "core/scene/ribbon_texture.h"
 #include "core/scene/scene_document.h"
 #include "core/scene/scene_fit.h"
 #include "core/scene/scene_params.h"
@@ -333,7 +334,10 @@ Result<std::string> readSceneText(const std::filesystem::path& file) {
 Result<Scene> loadScene(const std::filesystem::path& file) {
     Result<std::string> text = readSceneText(file);
     if (!text) return text.error();
-    return parseScene(text.value(), file.string());
+    Result<Scene> scene = parseScene(text.value(), file.string());
+    if (!scene) return scene;
+    if (Status textures = checkTextures(scene.value()); !textures) return textures.error();
+    return scene;
 }
 
 Scene kickScene() {

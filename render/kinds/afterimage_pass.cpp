@@ -65,7 +65,7 @@ std::vector<uint32_t> afterimageCopies(const std::vector<shared::SkinVertexIn>& 
 
 AfterimagePass::AfterimagePass(const gpu::Context& ctx, const scene::Scene& scene,
                                std::span<const anim::Character> cast, VkSampleCountFlagBits samples)
-    : MeshEffectPass(ctx, cast), fadeDepthSource_(ctx) {
+    : MeshEffectPass(ctx, cast), fadeDepthSource_(ctx), textureSource_(ctx) {
     for (Selected& selected : selectedEffects(scene)) {
         const Kind* kind = selected.kind;
         Effect effect(MeshEffect(ctx, selected.index, meshEffectColour(*kind),
@@ -261,11 +261,13 @@ uint32_t AfterimagePass::draw(VkCommandBuffer cmd, const sim::SceneSimulation& s
                                      sizeof(VkDrawIndexedIndirectCommand));
         } else {
             gpu::Program& program = lines ? lineDraw_ : arcDraw_;
-            // The lines have no joins (ribbonShape.x = 0): binding 3 is bound, never read.
+            // The lines have no joins (ribbonShape.x = 0) and no texture (ribbonTexture.x = 0):
+            // bindings 3 to 5 are bound, never read.
             if (lines)
                 program.bind(cmd,
                              {gpu::bindBuffer(0, frame_), gpu::bindBuffer(1, effect.style),
-                              fadeDepthSource_.binding(fadeDepth_), gpu::bindBuffer(3, noJoins_)});
+                              fadeDepthSource_.binding(fadeDepth_), gpu::bindBuffer(3, noJoins_),
+                              textureSource_.distances(nullptr), textureSource_.texture(nullptr)});
             else
                 program.bind(cmd, {gpu::bindBuffer(0, frame_), gpu::bindBuffer(1, effect.style)});
             program.push(cmd, d);

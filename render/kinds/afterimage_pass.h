@@ -100,6 +100,7 @@ private:
     gpu::Program record_, smear_, weld_, build_;
     gpu::Program smearDraw_, lineDraw_, arcDraw_;
     FadeDepthSource fadeDepthSource_;
+    RibbonTextureSource textureSource_; // the lines have no texture: stand-ins
     gpu::Buffer noJoins_; // the speed-line program's joins binding (unused by the afterimage)
     void beginFrame(const sim::SceneSimulation& simulation, bool reset) override;
     // Each character's root and its travel this frame (by cast member).

@@ -12,8 +12,8 @@ gpu::Buffer MotionParticlesPass::makeStyle(const scene::EffectSpec& spec) const 
     return ribbonStyleBuffer(ctx_, spec.as<scene::MotionParticlesSpec>()->look);
 }
 
-std::vector<gpu::DescriptorWrite>
-MotionParticlesPass::extraBindings(const TrajectoryEffect&) const {
+std::vector<gpu::DescriptorWrite> MotionParticlesPass::extraBindings(const sim::SceneSimulation&,
+                                                                     const TrajectoryEffect&) {
     return {fadeDepthSource_.binding(fadeDepth_)};
 }
 

@@ -21,7 +21,8 @@ public:
 
 private:
     gpu::Buffer makeStyle(const scene::EffectSpec& spec) const override;
-    std::vector<gpu::DescriptorWrite> extraBindings(const TrajectoryEffect& effect) const override;
+    std::vector<gpu::DescriptorWrite> extraBindings(const sim::SceneSimulation& simulation,
+                                                    const TrajectoryEffect& effect) override;
     void setLook(shared::EffectDraw& draw, const TrajectoryEffect& effect) const override;
 
     FadeDepthSource fadeDepthSource_;

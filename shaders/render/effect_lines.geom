@@ -28,10 +28,13 @@ layout(location = 1) in float vertexTau[];
 layout(location = 2) in float vertexLife[];
 layout(location = 3) in vec3 vertexNormal[];
 layout(location = 4) in vec4 vertexJoin[];
+layout(location = 5) in float vertexU[];
 
 layout(location = 0) out vec4 ribbonColour;
 layout(location = 1) out float across; // -1 .. 1 over the ribbon's width (cos of the tube angle)
 layout(location = 2) out vec3 tubeNormal; // world; the tube's, or 0 on a flat ribbon
+layout(location = 3) out vec2 texCoord;   // u along the line, v 0..1 across it
+layout(location = 4) out float life;
 
 float halfWidthAt(int k) {
     return draw.ribbonFlags.y > 0.5
@@ -42,6 +45,8 @@ float halfWidthAt(int k) {
 void emit(int k, vec3 offset, float acrossValue, vec3 normal) {
     ribbonColour = vertexColour[k];
     across = acrossValue;
+    texCoord = vec2(vertexU[k], 0.5 + 0.5 * acrossValue);
+    life = vertexLife[k];
     tubeNormal = normal;
     gl_Position = frame.viewProjection * vec4(gl_in[k].gl_Position.xyz + offset, 1.0);
     EmitVertex();

@@ -7,11 +7,12 @@
 // the outer edge and 1 on the inner (effect_lines.frag: the outer edge opaque and white-hot with
 // the core, the inner fading out). The colour is a speed-line's (effect_lines.vert). Consecutive
 // segments weld bit for bit (build_segment.comp), so the outer edge is the far end's path,
-// unbroken.
+// unbroken. The texture's u is the outer line's (ribbon_texture.glsl), v = `across`.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "effect_common.glsl"
 #include "ribbon_style.glsl"
+#include "ribbon_texture.glsl"
 #include "shared/trajectory.h"
 
 layout(location = 0) in vec4 position;
@@ -21,11 +22,18 @@ layout(location = 2) in vec4 colour;
 layout(location = 0) out vec4 ribbonColour;
 layout(location = 1) out float across;
 layout(location = 2) out vec3 tubeNormal;
+layout(location = 3) out vec2 texCoord;
+layout(location = 4) out float lifeOut;
 
 // The ring itself, for the other line's sample (a segment's slot starts at a multiple of its
 // 2 (S + 1) vertices; draw.ribbonShape.y = S + 1).
 layout(std430, binding = 3) readonly buffer Ring {
     TrajectoryVertex ring[];
+};
+// Each ring vertex's distance along its line (ribbon_distance.comp); read only with the texture's
+// distance mode.
+layout(std430, binding = 4) readonly buffer Distances {
+    float distances[];
 };
 
 void main() {
@@ -49,5 +57,10 @@ void main() {
     }
     across = outer ? 0.0 : 1.0;
     tubeNormal = vec3(0.0);
+    // Both lines' samples at one place along the segment share their time and tau.
+    uint outerIndex = outer ? index : index + perLine;
+    float distance = draw.ribbonTexture.x > 3.5 ? distances[outerIndex] : 0.0;
+    texCoord = vec2(ribbonU(normal.w, position.w, distance), across);
+    lifeOut = life;
     gl_Position = frame.viewProjection * vec4(p, 1.0);
 }

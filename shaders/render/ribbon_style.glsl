@@ -1,5 +1,5 @@
 // The speed-line ribbon's look over its life u = age / lifetime (0 at the head, 1 at the tail):
-// colour_over_life and width_over_life, piecewise linear between their stops
+// colour_over_life, width_over_life and the texture's erosion_over_life, piecewise linear between their stops
 // (scene::RibbonLook; core/scene/kinds/trail_effects.cpp colourAt and valueAt on the CPU).
 // Every one of the MFX_RIBBON_MAX_STOPS stops is filled (the last given repeated at life 1), so
 // the loops have a fixed length and no branch reads the uniform buffer: each step moves towards
@@ -33,6 +33,14 @@ vec4 colourOverLife(float u) {
     for (int i = 1; i < MFX_RIBBON_MAX_STOPS; ++i)
         c = mix(c, ribbon.colours[i], between(u, colourStopAt(i - 1), colourStopAt(i)));
     return c;
+}
+
+float erosionOverLife(float u) {
+    float e = ribbon.erosion[0][0];
+    for (int i = 1; i < MFX_RIBBON_MAX_STOPS; ++i)
+        e = mix(e, ribbon.erosion[i / 4][i % 4],
+                between(u, ribbon.erosionAt[(i - 1) / 4][(i - 1) % 4], ribbon.erosionAt[i / 4][i % 4]));
+    return e;
 }
 
 float widthOverLife(float u) {

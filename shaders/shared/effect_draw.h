@@ -25,6 +25,12 @@ struct EffectDraw {
     // piece's own direction (a ribbon without joins). y: sheets, S + 1 (the samples of a line in a
     // segment; effect_sheet.vert).
     vec4 ribbonShape;
+    // Speed-lines' texture (shaders/render/ribbon_texture.glsl; scene::RibbonTexture): x the UV
+    // mode, 0 none, 1 stretch, 2 per segment, 3 tiled, 4 distance; y u per unit of the mode's
+    // measure (stretch: 1 / the live ribbon's age span; tiled: repeats / lifetime; distance: 1 /
+    // tile length); z the scroll's u offset now, in [0, 1), exactly 0 without scrolling; w the
+    // erosion's soft edge (0: no erosion).
+    vec4 ribbonTexture;
 };
 
 // Push constants of ribbon_joins.comp: the live segments of one speed-line queue, chained.
@@ -33,6 +39,17 @@ struct RibbonJoinConstants {
     uint sourceVertices; // lines per segment
     uint perLine;        // S + 1 samples of each line in a segment
     uint segments;       // live segments, newest first, in the chain buffer
+    uint pad0;
+};
+
+// Push constants of ribbon_distance.comp: the segments of one speed-line queue whose samples'
+// distances along their lines are still to be found, oldest first.
+#define MFX_RIBBON_DISTANCE_GROUP_SIZE 64
+#define MFX_RIBBON_NO_SEGMENT 0xffffffffu
+struct RibbonDistanceConstants {
+    uint sourceVertices; // lines per segment
+    uint perLine;        // S + 1 samples of each line in a segment
+    uint segments;       // entries of the list
     uint pad0;
 };
 
@@ -46,17 +63,22 @@ struct RibbonStyle {
     vec4 colourAt[2];
     vec4 widths[2]; // the width's factor by life
     vec4 widthAt[2];
+    vec4 erosion[2]; // the texture's erosion threshold by life (all 0: none)
+    vec4 erosionAt[2];
 };
 
 MFX_SHARED_END
 
 #ifdef __cplusplus
-MFX_CHECK_SIZE(EffectDraw, 96);
+MFX_CHECK_SIZE(EffectDraw, 112);
+MFX_CHECK_LAYOUT(EffectDraw, ribbonTexture, 96);
 MFX_CHECK_LAYOUT(EffectDraw, ribbonShape, 80);
 MFX_CHECK_SIZE(RibbonJoinConstants, 16);
+MFX_CHECK_SIZE(RibbonDistanceConstants, 16);
 MFX_CHECK_LAYOUT(EffectDraw, rimLight, 64);
 MFX_CHECK_LAYOUT(EffectDraw, ribbonLight, 48);
-MFX_CHECK_SIZE(RibbonStyle, 224);
+MFX_CHECK_SIZE(RibbonStyle, 288);
+MFX_CHECK_LAYOUT(RibbonStyle, erosionAt, 256);
 MFX_CHECK_LAYOUT(RibbonStyle, colourAt, 128);
 MFX_CHECK_LAYOUT(RibbonStyle, widthAt, 192);
 #endif

@@ -1,6 +1,7 @@
 #include "tests/fuzz/fuzz_targets.h"
 
 #include "core/anim/gltf_import.h"
+#include "core/scene/ribbon_texture.h"
 #include "core/scene/scene.h"
 #include "core/scene/scene_document.h"
 #include "core/scene/scene_fit.h"
@@ -44,6 +45,16 @@ const std::filesystem::path& scratchFolder() {
         return Scratch{inside};
     }();
     return scratch.inside;
+}
+
+void loadTextureInput(std::span<const uint8_t> bytes) {
+    writeFile(scratchFolder() / "texture.png", bytes);
+    scene::Scene s;
+    s.file = (scratchFolder() / "scene.json").string();
+    const Result<scene::TextureImage> image = scene::loadTexture(s, "texture.png");
+    if (image &&
+        image.value().rgba.size() != size_t(image.value().width) * image.value().height * 4)
+        __builtin_trap(); // the texels are not what the size says
 }
 
 void importGltfInput(std::span<const uint8_t> bytes) {

@@ -29,4 +29,8 @@ void importGltfInput(std::span<const uint8_t> bytes);
 // same text as the viewer's editable document with each section's parameter table.
 void readSceneInput(std::span<const uint8_t> bytes);
 
+// The bytes as a ribbon texture: a file beside a scene in the scratch folder, loaded as a scene
+// loads it (scene::loadTexture: its checks, then the PNG decoder).
+void loadTextureInput(std::span<const uint8_t> bytes);
+
 } // namespace mfx::fuzz

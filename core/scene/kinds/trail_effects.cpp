@@ -1,6 +1,7 @@
 #include "core/scene/kinds/trail_effects.h"
 
 #include "core/scene/json_object.h"
+#include "core/scene/ribbon_texture.h"
 
 namespace mfx::scene {
 
@@ -142,6 +143,47 @@ void readRibbon(const Object& o, RibbonLook& r, bool sheets) {
     r.sheet = shape == "sheet";
 }
 
+std::vector<std::string> ribbonTextureKeys() {
+    return {"texture",        "texture_uv",        "texture_repeats", "texture_tile",
+            "texture_scroll", "erosion_over_life", "erosion_softness"};
+}
+
+const char* textureUvName(TextureUv uv) {
+    switch (uv) {
+    case TextureUv::Stretch:
+        return "stretch";
+    case TextureUv::PerSegment:
+        return "per_segment";
+    case TextureUv::Tiled:
+        return "tiled";
+    case TextureUv::Distance:
+        return "distance";
+    }
+    return "stretch";
+}
+
+void readRibbonTexture(const Object& o, RibbonTexture& t) {
+    t.file = o.string("texture", t.file);
+    if (const std::string problem = textureNameProblem(t.file); !problem.empty())
+        fail(o.at("texture"), problem);
+    const std::vector<TextureUv> modes = {TextureUv::Stretch, TextureUv::PerSegment,
+                                          TextureUv::Tiled, TextureUv::Distance};
+    std::vector<std::string> names;
+    for (TextureUv m : modes)
+        names.push_back(textureUvName(m));
+    const std::string uv = o.choice("texture_uv", textureUvName(t.uv), names);
+    for (TextureUv m : modes)
+        if (uv == textureUvName(m)) t.uv = m;
+    t.repeats = float(o.number("texture_repeats", t.repeats, 0.0, 1000.0, true));
+    t.tileLength = float(o.number("texture_tile", t.tileLength, 0.0, 100.0, true));
+    t.scroll = float(o.number("texture_scroll", t.scroll, -1000.0, 1000.0));
+    t.erosionOverLife = readStops<CurveStop>(
+        o, "erosion_over_life", "threshold", [](const Object& e, CurveStop& s) {
+            s.value = float(e.number("threshold", 0.0, 0.0, 1.0));
+        });
+    t.erosionSoftness = float(o.number("erosion_softness", t.erosionSoftness, 0.0, 1.0, true));
+}
+
 glm::vec4 colourAt(const std::vector<GradientStop>& stops, float u) {
     return valueOf(stops, u, &GradientStop::colour,
                    [](glm::vec4 a, glm::vec4 b, float f) { return glm::mix(a, b, f); });
@@ -156,6 +198,7 @@ std::unique_ptr<EffectKindSpec> SpeedLinesSpec::parse(const Object& o) {
     auto e = readTrailKind<SpeedLinesSpec>(o);
     e->width = float(o.number("width", e->width, 0.0, 1.0, true));
     readRibbon(o, e->ribbon, true);
+    readRibbonTexture(o, e->ribbon.texture);
     e->trail.twoEnds = e->ribbon.sheet;
     return e;
 }

@@ -44,6 +44,26 @@ struct CurveStop {
     float value = 1.0f;
 };
 inline constexpr size_t kMaxRibbonStops = 8;
+// How a speed-line ribbon's texture runs along it (u; v runs across it): once over the whole live
+// ribbon, from the head (u = 0) to its oldest sample (u = 1); once over each frame's segment;
+// `repeats` times over the trail's lifetime, by the samples' age (the pattern rides with the head
+// and stretches where the motion is fast); or every `tileLength` world units along the line, by
+// the distance each sample lies from where its line began (fixed on the path as it is drawn: the
+// same repeats per metre at any speed).
+enum class TextureUv { Stretch, PerSegment, Tiled, Distance };
+// A ribbon's texture (render/kinds/speed_lines_pass.h; core/scene/ribbon_texture.h loads it). Its
+// RGBA (sRGB) multiplies the ribbon's colour and alpha; its alpha is also the mask that erosion
+// eats away: a texel is kept while its alpha is above the threshold at its life.
+struct RibbonTexture {
+    std::string file; // a PNG, relative to the scene file's folder and inside it; empty: none
+    TextureUv uv = TextureUv::Stretch;
+    float repeats = 4.0f;     // tiled: repeats over the lifetime
+    float tileLength = 0.25f; // distance: world units a repeat covers
+    float scroll = 0.0f;      // repeats a second the texture flows along the ribbon, head to tail
+    // The erosion threshold (0..1) by life, 2-8 stops; empty: none.
+    std::vector<CurveStop> erosionOverLife;
+    float erosionSoftness = 0.1f; // the width of the threshold's soft edge, in texel alpha
+};
 struct RibbonLook {
     // RGBA by life, 2-8 stops, linear between them; empty: the trail's colour, faded with age.
     std::vector<GradientStop> colourOverLife;
@@ -67,6 +87,7 @@ struct RibbonLook {
     // its outer edge by `width` (world units, times width_over_life; at most to the inner line);
     // `facing` does not apply.
     bool sheet = false;
+    RibbonTexture texture; // speed-lines only (ribbonTextureKeys)
 };
 // How a lit effect surface looks (motion volumes, swept volumes, afterimage smears and arcs,
 // silhouette shells; shaders/render/effect_volume.*): its colour over its life, an HDR intensity,
@@ -87,6 +108,13 @@ void readVolumeLook(const detail::Object& o, VolumeLook& v);
 // `sheets`, "shape" may be "sheet").
 std::vector<std::string> ribbonKeys();
 void readRibbon(const detail::Object& o, RibbonLook& r, bool sheets = false);
+// The texture keys of speed-lines (texture, texture_uv, texture_repeats, texture_tile,
+// texture_scroll, erosion_over_life, erosion_softness) and their reading. The file's name is
+// checked here (relative, inside the scene's folder); the file itself when the scene is loaded
+// (core/scene/ribbon_texture.h).
+std::vector<std::string> ribbonTextureKeys();
+void readRibbonTexture(const detail::Object& o, RibbonTexture& t);
+const char* textureUvName(TextureUv uv);
 // The particles' share of them: colour_over_life, size_over_life (read into widthOverLife: the
 // sprite's size factor), intensity, blend and depth_fade.
 std::vector<std::string> particleLookKeys();
@@ -103,13 +131,15 @@ struct SpeedLinesSpec : TrailEffect<SpeedLinesSpec> {
 
     static std::vector<std::string> keys() {
         std::vector<std::string> k = trailKeys({"width"});
-        for (const std::string& r : ribbonKeys())
-            k.push_back(r);
+        for (const std::vector<std::string>& keys : {ribbonKeys(), ribbonTextureKeys()})
+            k.insert(k.end(), keys.begin(), keys.end());
         return k;
     }
     static std::unique_ptr<EffectKindSpec> parse(const detail::Object& o);
     StrideTarget strideTarget() const override { return StrideTarget::Lines; }
-    std::vector<std::pair<const char*, float*>> lengths() override { return {{"width", &width}}; }
+    std::vector<std::pair<const char*, float*>> lengths() override {
+        return {{"width", &width}, {"texture_tile", &ribbon.texture.tileLength}};
+    }
     bool fadesAgainstDepth() const override { return ribbon.depthFade > 0.0f; }
 };
 
