@@ -1,5 +1,7 @@
 #include "apps/view_session.h"
 
+#include "core/scene/kinds/trail_effects.h"
+#include "core/scene/ribbon_texture.h"
 #include "core/scene/scene_fit.h"
 
 #include <algorithm>
@@ -92,6 +94,11 @@ std::vector<std::filesystem::path> ViewSession::files() const {
     for (const scene::CharacterSpec& c : s.characters)
         if (std::filesystem::path character = scene::characterFile(s, c); !character.empty())
             out.push_back(character);
+    // The ribbons' textures: a texture painted again is seen at once.
+    for (const scene::EffectSpec& e : s.effects)
+        if (const auto* lines = e.as<scene::SpeedLinesSpec>();
+            lines && !lines->ribbon.texture.file.empty())
+            out.push_back(scene::textureFile(s, lines->ribbon.texture.file));
     return out;
 }
 

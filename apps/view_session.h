@@ -37,8 +37,8 @@ public:
     Status reload(std::vector<std::string>* lines = nullptr);
     // As reload(), from `scene` as read (a scene the panel edited) instead of the files.
     Status replace(scene::Scene scene, std::vector<std::string>* lines = nullptr);
-    // The files the scene was read from: the scene file and the character file it names (none
-    // for the built-in default scene and fighter).
+    // The files the scene was read from: the scene file, the character files and the ribbon
+    // textures it names (none for the built-in default scene and fighter).
     std::vector<std::filesystem::path> files() const;
 
     // The camera drawn: the scene's, or where the user moved it.

@@ -8,6 +8,7 @@
 #include "core/gpu/commands.h"
 #include "core/scene/scene_document.h"
 #include "gpu_test.h"
+#include "render/image_output.h"
 
 #include <chrono>
 #include <cmath>
@@ -167,6 +168,42 @@ TEST_F(PanelEdits, TwoHundredRandomEditsPlayWithoutCrashOrValidationError) {
                 "character), %.1f s\n",
                 played, refused, notPlayed, seconds);
     EXPECT_GE(played, 120) << "most random edits in range are played";
+}
+
+// A ribbon's texture named in the panel: a file that is not there is refused in one line naming
+// the key (the old scene plays on), one that is there is drawn and watched with the scene file.
+TEST_F(PanelEdits, ATextureNamedInThePanelIsCheckedAndWatched) {
+    const std::filesystem::path dir =
+        std::filesystem::path(MFX_TEST_OUTPUT_DIR) / "panel_edits_texture";
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    const std::string file = (dir / "scene.json").string();
+    std::ofstream(file) << R"({"output": {"frames": 4},
+                              "effects": [{"type": "speed_lines", "stride": 40}]})";
+    const std::vector<uint8_t> texels(4 * 4 * 4, 255);
+    ASSERT_TRUE(render::writePng((dir / "stripes.png").string(), 4, 4, texels).ok());
+    Result<scene::SceneDocument> doc = scene::SceneDocument::load(file);
+    ASSERT_TRUE(doc.ok()) << doc.error().message;
+    cli::ParsedArgs parsed;
+    parsed.positional = {file};
+    Result<app::SceneArgument> first = app::readSceneArgument(parsed, "64x36", nullptr);
+    ASSERT_TRUE(first.ok()) << first.error().message;
+    app::ViewSession view(ctx(), parsed, "64x36", std::move(first).value(), VK_SAMPLE_COUNT_1_BIT);
+    ASSERT_TRUE(view.start().ok());
+    EXPECT_EQ(view.files().size(), 1u);
+
+    ASSERT_TRUE(doc.value().set("effects[0]", "texture", "missing.png").ok());
+    Status missing = view.replace(doc.value().scene());
+    ASSERT_FALSE(missing);
+    EXPECT_NE(missing.error().message.find("effects[0].texture: no file"), std::string::npos)
+        << missing.error().message;
+
+    ASSERT_TRUE(doc.value().set("effects[0]", "texture", "stripes.png").ok());
+    ASSERT_TRUE(view.replace(doc.value().scene()).ok());
+    const std::vector<std::filesystem::path> files = view.files();
+    ASSERT_EQ(files.size(), 2u);
+    EXPECT_EQ(std::filesystem::weakly_canonical(files[1]),
+              std::filesystem::weakly_canonical(dir / "stripes.png"));
 }
 
 } // namespace

@@ -8,6 +8,7 @@
 #include "core/gpu/resources.h"
 
 #include <algorithm>
+#include <cctype>
 #include <functional>
 
 namespace mfx::test {
@@ -99,8 +100,11 @@ TEST_P(SyncValidation, SceneFramesRecordNoHazard) {
     Result<scene::Scene> s = docScene(GetParam());
     ASSERT_TRUE(s.ok()) << s.error().message;
     // The versus scene past its hit (frame 11) and hit-stop: the impact's sparks, flash and ring
-    // drawn and its burst written into the smoke's emitters.
-    const uint32_t frames = std::string(GetParam()) == "versus" ? 18 : 6;
+    // drawn and its burst written into the smoke's emitters. The textured gallery scenes past
+    // their effects' start (frame 30): a ribbon tiled by distance (its distances found and read)
+    // and a sheet scrolled and eroded.
+    const std::string name = GetParam();
+    const uint32_t frames = name == "versus" ? 18 : name.rfind("gallery/texture", 0) == 0 ? 34 : 6;
     s.value().output.frames = frames;
     Result<DrawnScene> drawn = drawScene(ctx(), s.value(), 160, 96);
     ASSERT_TRUE(drawn.ok()) << drawn.error().message;
@@ -111,8 +115,17 @@ TEST_P(SyncValidation, SceneFramesRecordNoHazard) {
 }
 
 // The hero (toon character, lines, slash arc, smoke, bloom, tone map), "all" (every trail
-// effect kind with the smoke) and "versus" (two characters, an impact and its burst).
-INSTANTIATE_TEST_SUITE_P(Scenes, SyncValidation, ::testing::Values("hero", "all", "versus"));
+// effect kind with the smoke), "versus" (two characters, an impact and its burst) and two
+// textured ribbons.
+INSTANTIATE_TEST_SUITE_P(Scenes, SyncValidation,
+                         ::testing::Values("hero", "all", "versus", "gallery/texture_distance",
+                                           "gallery/texture_erosion"),
+                         [](const ::testing::TestParamInfo<const char*>& test) {
+                             std::string name = test.param;
+                             for (char& c : name)
+                                 if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                             return name;
+                         });
 
 } // namespace
 } // namespace mfx::test
