@@ -123,7 +123,8 @@ TEST(CharacterScale, BadSizeKeysAreRefusedNamingTheKey) {
 TEST(FitScene, AGiantOnPurposeGetsItsLengthDefaultsScaled) {
     const scene::Scene parsed = parse(R"({"character": {"height": 10}, "effects": [
         {"type": "smoke", "bones": ["foot_r"]},
-        {"type": "speed_lines", "bones": ["foot_r"], "width": 0.05}]})");
+        {"type": "speed_lines", "bones": ["foot_r"], "width": 0.05},
+        {"type": "speed_lines", "bones": ["foot_r"], "texture": "t.png"}]})");
     scene::Scene s = parsed;
     std::string note;
     Result<anim::Character> giant = scene::loadCharacter(s, 0, &note);
@@ -136,10 +137,16 @@ TEST(FitScene, AGiantOnPurposeGetsItsLengthDefaultsScaled) {
     EXPECT_NEAR(smokeOf(s.effects[0]).radius, smokeOf(parsed.effects[0]).radius * unit, 1e-5f);
     ASSERT_TRUE(s.effects[1].is<scene::SpeedLinesSpec>());
     EXPECT_EQ(s.effects[1].as<scene::SpeedLinesSpec>()->width, 0.05f); // given: kept
+    // A texture's tile scales with the width it lies on.
+    const auto* textured = s.effects[2].as<scene::SpeedLinesSpec>();
+    EXPECT_NEAR(textured->ribbon.texture.tileLength, scene::RibbonTexture{}.tileLength * unit,
+                1e-5f);
+    EXPECT_NEAR(textured->width, scene::SpeedLinesSpec{}.width * unit, 1e-5f);
     ASSERT_FALSE(notes.empty());
     EXPECT_NE(notes.back().find("the character is 10 m tall: the effects' default"),
               std::string::npos)
         << notes.back();
+    EXPECT_NE(notes.back().find("texture_tile"), std::string::npos) << notes.back();
     // Fitting again scales nothing twice; a human-sized character scales nothing at all.
     const float once = smokeOf(s.effects[0]).grid.cellSize;
     ASSERT_TRUE(scene::fitScene(s, giant.value()).ok());

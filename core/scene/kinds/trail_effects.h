@@ -138,6 +138,8 @@ struct SpeedLinesSpec : TrailEffect<SpeedLinesSpec> {
     static std::unique_ptr<EffectKindSpec> parse(const detail::Object& o);
     StrideTarget strideTarget() const override { return StrideTarget::Lines; }
     std::vector<std::pair<const char*, float*>> lengths() override {
+        // The tile's length only where there is a texture to tile (no note scales a key unused).
+        if (ribbon.texture.file.empty()) return {{"width", &width}};
         return {{"width", &width}, {"texture_tile", &ribbon.texture.tileLength}};
     }
     bool fadesAgainstDepth() const override { return ribbon.depthFade > 0.0f; }
