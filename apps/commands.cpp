@@ -1,6 +1,5 @@
 #include "apps/commands.h"
 
-#include "core/scene/ribbon_texture.h"
 #include "core/scene/scene_fit.h"
 #include "fluid/body_solids.h"
 #include "render/image_output.h"
@@ -120,8 +119,6 @@ Result<SceneArgument> prepareSceneArgument(const cli::ParsedArgs& parsed, const 
     if (parsed.has("fps"))
         if (auto fps = cli::parseNumber(parsed.value("fps"), 1.0, 240.0, "--fps"))
             output.fps = float(fps.value());
-    // The textures (loadScene checked them; a scene edited in the viewer's panel was not loaded).
-    if (Status textures = scene::checkTextures(out.scene); !textures) return textures.error();
     std::vector<std::string> scaleNotes;
     Result<scene::Cast> cast = scene::loadCast(out.scene, &scaleNotes);
     if (!cast) return cast.error();

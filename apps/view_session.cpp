@@ -57,6 +57,9 @@ Status ViewSession::reload(std::vector<std::string>* lines) {
 }
 
 Status ViewSession::replace(scene::Scene scene, std::vector<std::string>* lines) {
+    // The textures: a scene the panel edited, or a document read again, was parsed, not loaded
+    // (loadScene checks them for every other scene).
+    if (Status textures = scene::checkTextures(scene); !textures) return textures.error();
     return use(prepareSceneArgument(parsed_, defaultSize_, std::move(scene), lines));
 }
 

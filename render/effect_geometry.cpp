@@ -75,26 +75,23 @@ gpu::Buffer styleBuffer(const gpu::Context& ctx,
                         const std::vector<scene::CurveStop>& erosionOverLife = {}) {
     // Every stop filled: past the last given, the last again at life 1 (ribbon_style.glsl).
     shared::RibbonStyle style{};
-    const size_t colours = colourOverLife.size(), widths = widthOverLife.size();
-    const size_t erosions = erosionOverLife.size();
-    for (size_t i = 0; i < MFX_RIBBON_MAX_STOPS; ++i) {
-        const int lane = int(i % 4);
-        if (colours > 0) {
-            const scene::GradientStop& c = colourOverLife[std::min(i, colours - 1)];
-            style.colours[i] = c.colour;
-            style.colourAt[i / 4][lane] = i < colours ? c.at : 1.0f;
+    const size_t colours = colourOverLife.size();
+    // A curve's stops into its values and places (four to a vec4).
+    auto fillCurve = [](const std::vector<scene::CurveStop>& stops, glm::vec4* values,
+                        glm::vec4* at) {
+        for (size_t i = 0; i < MFX_RIBBON_MAX_STOPS && !stops.empty(); ++i) {
+            const scene::CurveStop& s = stops[std::min(i, stops.size() - 1)];
+            values[i / 4][int(i % 4)] = s.value;
+            at[i / 4][int(i % 4)] = i < stops.size() ? s.at : 1.0f;
         }
-        if (widths > 0) {
-            const scene::CurveStop& w = widthOverLife[std::min(i, widths - 1)];
-            style.widths[i / 4][lane] = w.value;
-            style.widthAt[i / 4][lane] = i < widths ? w.at : 1.0f;
-        }
-        if (erosions > 0) {
-            const scene::CurveStop& e = erosionOverLife[std::min(i, erosions - 1)];
-            style.erosion[i / 4][lane] = e.value;
-            style.erosionAt[i / 4][lane] = i < erosions ? e.at : 1.0f;
-        }
+    };
+    for (size_t i = 0; i < MFX_RIBBON_MAX_STOPS && colours > 0; ++i) {
+        const scene::GradientStop& c = colourOverLife[std::min(i, colours - 1)];
+        style.colours[i] = c.colour;
+        style.colourAt[i / 4][int(i % 4)] = i < colours ? c.at : 1.0f;
     }
+    fillCurve(widthOverLife, style.widths, style.widthAt);
+    fillCurve(erosionOverLife, style.erosion, style.erosionAt);
     gpu::Buffer buffer = gpu::createBuffer(ctx, sizeof style, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                            gpu::MemoryUsage::Upload, "ribbon style");
     std::memcpy(buffer.mapped, &style, sizeof style);

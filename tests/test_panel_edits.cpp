@@ -14,6 +14,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <random>
 
 namespace mfx::test {
@@ -98,6 +99,26 @@ json randomValue(const ParamInfo& p, const std::vector<ParamInfo>& table, std::m
     return json();
 }
 
+// The viewer's session on the scene file `file`, read and started as `motionfx view FILE` does
+// (at 64x36); null, with the failure reported, where it cannot be. The session refers to the
+// arguments, kept beside it.
+struct StartedView {
+    cli::ParsedArgs parsed;
+    std::unique_ptr<app::ViewSession> session;
+};
+std::unique_ptr<StartedView> startView(const gpu::Context& ctx, const std::string& file) {
+    auto started = std::make_unique<StartedView>();
+    started->parsed.positional = {file};
+    Result<app::SceneArgument> first = app::readSceneArgument(started->parsed, "64x36", nullptr);
+    EXPECT_TRUE(first.ok()) << first.error().message;
+    if (!first) return nullptr;
+    started->session = std::make_unique<app::ViewSession>(
+        ctx, started->parsed, "64x36", std::move(first).value(), VK_SAMPLE_COUNT_1_BIT);
+    const Status running = started->session->start();
+    EXPECT_TRUE(running.ok()) << running.error().message;
+    return running ? std::move(started) : nullptr;
+}
+
 TEST_F(PanelEdits, TwoHundredRandomEditsPlayWithoutCrashOrValidationError) {
     const std::filesystem::path dir = std::filesystem::path(MFX_TEST_OUTPUT_DIR) / "panel_edits";
     std::filesystem::create_directories(dir);
@@ -105,12 +126,9 @@ TEST_F(PanelEdits, TwoHundredRandomEditsPlayWithoutCrashOrValidationError) {
     std::ofstream(file) << kEveryKind;
     Result<scene::SceneDocument> base = scene::SceneDocument::load(file);
     ASSERT_TRUE(base.ok()) << base.error().message;
-    cli::ParsedArgs parsed;
-    parsed.positional = {file};
-    Result<app::SceneArgument> first = app::readSceneArgument(parsed, "64x36", nullptr);
-    ASSERT_TRUE(first.ok()) << first.error().message;
-    app::ViewSession view(ctx(), parsed, "64x36", std::move(first).value(), VK_SAMPLE_COUNT_1_BIT);
-    ASSERT_TRUE(view.start().ok());
+    const std::unique_ptr<StartedView> viewer = startView(ctx(), file);
+    ASSERT_TRUE(viewer);
+    app::ViewSession& view = *viewer->session;
     gpu::CommandBuffer commands = gpu::CommandBuffer::create(ctx(), ctx().graphicsQueue());
     auto drawFrame = [&](bool advance) {
         view.record(commands.begin(), advance);
@@ -184,12 +202,9 @@ TEST_F(PanelEdits, ATextureNamedInThePanelIsCheckedAndWatched) {
     ASSERT_TRUE(render::writePng((dir / "stripes.png").string(), 4, 4, texels).ok());
     Result<scene::SceneDocument> doc = scene::SceneDocument::load(file);
     ASSERT_TRUE(doc.ok()) << doc.error().message;
-    cli::ParsedArgs parsed;
-    parsed.positional = {file};
-    Result<app::SceneArgument> first = app::readSceneArgument(parsed, "64x36", nullptr);
-    ASSERT_TRUE(first.ok()) << first.error().message;
-    app::ViewSession view(ctx(), parsed, "64x36", std::move(first).value(), VK_SAMPLE_COUNT_1_BIT);
-    ASSERT_TRUE(view.start().ok());
+    const std::unique_ptr<StartedView> viewer = startView(ctx(), file);
+    ASSERT_TRUE(viewer);
+    app::ViewSession& view = *viewer->session;
     EXPECT_EQ(view.files().size(), 1u);
 
     ASSERT_TRUE(doc.value().set("effects[0]", "texture", "missing.png").ok());

@@ -219,11 +219,14 @@ void SpeedLinesPass::setLook(shared::EffectDraw& draw, const TrajectoryEffect& e
     setRibbonLook(draw, lines.ribbon);
     draw.ribbonShape.x = joinsFor(effect) ? 1.0f : 0.0f;
     draw.ribbonShape.y = float(effect.queue->subSamples() + 1);
-    // The live ribbon's age span: from now back to its oldest sample, a frame before its oldest
-    // segment's time (stretch maps the texture once over it).
-    const std::vector<trajectory::LiveSegment> live = effect.queue->liveSegments();
+    // Stretch maps the texture once over the live ribbon's age span: from now back to its oldest
+    // sample, a frame before its oldest segment's time.
     const float now = draw.timing.x, dt = draw.timing.w;
-    const float span = live.empty() ? dt : now - (live.back().birth - dt);
+    float span = dt;
+    if (lines.ribbon.texture.uv == scene::TextureUv::Stretch) {
+        const std::vector<trajectory::LiveSegment> live = effect.queue->liveSegments();
+        if (!live.empty()) span = now - (live.back().birth - dt);
+    }
     // A distance-tiled texture without its distances (none found yet) is not drawn as one.
     setRibbonTexture(draw, lines.ribbon, now, span, draw.timing.y);
     if (tiledByDistance(effect) && !distances_.count(effect.queue.get()))

@@ -1,5 +1,6 @@
 #include "core/scene/kinds/trail_effects.h"
 
+#include "core/enum_names.h"
 #include "core/scene/json_object.h"
 #include "core/scene/ribbon_texture.h"
 
@@ -148,32 +149,28 @@ std::vector<std::string> ribbonTextureKeys() {
             "texture_scroll", "erosion_over_life", "erosion_softness"};
 }
 
+namespace {
+
+constexpr NamedValue<TextureUv> kTextureUvNames[] = {{TextureUv::Stretch, "stretch"},
+                                                     {TextureUv::PerSegment, "per_segment"},
+                                                     {TextureUv::Tiled, "tiled"},
+                                                     {TextureUv::Distance, "distance"}};
+
+} // namespace
+
 const char* textureUvName(TextureUv uv) {
-    switch (uv) {
-    case TextureUv::Stretch:
-        return "stretch";
-    case TextureUv::PerSegment:
-        return "per_segment";
-    case TextureUv::Tiled:
-        return "tiled";
-    case TextureUv::Distance:
-        return "distance";
-    }
-    return "stretch";
+    return nameOf(uv, kTextureUvNames);
 }
 
 void readRibbonTexture(const Object& o, RibbonTexture& t) {
     t.file = o.string("texture", t.file);
     if (const std::string problem = textureNameProblem(t.file); !problem.empty())
         fail(o.at("texture"), problem);
-    const std::vector<TextureUv> modes = {TextureUv::Stretch, TextureUv::PerSegment,
-                                          TextureUv::Tiled, TextureUv::Distance};
     std::vector<std::string> names;
-    for (TextureUv m : modes)
-        names.push_back(textureUvName(m));
-    const std::string uv = o.choice("texture_uv", textureUvName(t.uv), names);
-    for (TextureUv m : modes)
-        if (uv == textureUvName(m)) t.uv = m;
+    for (const auto& [value, name] : kTextureUvNames)
+        names.push_back(name);
+    t.uv =
+        mfx::valueOf(o.choice("texture_uv", textureUvName(t.uv), names), kTextureUvNames).value();
     t.repeats = float(o.number("texture_repeats", t.repeats, 0.0, 1000.0, true));
     t.tileLength = float(o.number("texture_tile", t.tileLength, 0.0, 100.0, true));
     t.scroll = float(o.number("texture_scroll", t.scroll, -1000.0, 1000.0));
