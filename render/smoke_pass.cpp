@@ -4,6 +4,8 @@
 #include "shaders/embedded.h"
 #include "shaders/shared/smoke_draw.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <stdexcept>
 
@@ -45,17 +47,47 @@ shared::SmokeStyle smokeStyle(const scene::SmokeShading& shading, const scene::L
     return style;
 }
 
+// An sRGB-encoded value (as the picture shows it) in linear light, the scene target's.
+float srgbToLinear(float c) {
+    return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+glm::vec3 srgbToLinear(glm::vec3 c) {
+    return {srgbToLinear(c.r), srgbToLinear(c.g), srgbToLinear(c.b)};
+}
+
+// The cartoon look's style (shaders/render/smoke_cartoon.glsl): band k of n the ramp's colour at
+// k / (n - 1), the threshold, billows at `time`, rim and ink.
+shared::SmokeStyle cartoonStyle(const scene::CartoonSmoke& cartoon, const scene::LightSpec& key,
+                                float time) {
+    shared::SmokeStyle style{};
+    const std::vector<scene::GradientStop>& ramp =
+        cartoon.colours.empty() ? scene::cartoonColours() : cartoon.colours;
+    const uint32_t bands = std::clamp(cartoon.bands, 2u, 4u);
+    for (uint32_t k = 0; k < bands; ++k)
+        style.ramp[k] = glm::vec4(
+            srgbToLinear(glm::vec3(scene::colourAt(ramp, float(k) / float(bands - 1)))), 1.0f);
+    style.params = glm::vec4(cartoon.rim, float(bands), key.intensity, MFX_SMOKE_PRESET_CARTOON);
+    style.light = glm::vec4(key.colour, 0.0f);
+    style.surface = glm::vec4(cartoon.threshold, cartoon.billow, cartoon.billowScale,
+                              time * cartoon.billowSpeed);
+    style.outline = glm::vec4(srgbToLinear(cartoon.outlineColour), cartoon.outlineWidth);
+    return style;
+}
+
 uint32_t divisorOf(SmokeResolution resolution) {
     return resolution == SmokeResolution::Full ? 1u : 2u;
 }
 
 // The march's programs (shaders/render/smoke_march.glsl) for a fluid buffer of 1 / divisor of the
 // picture: the fragment march over the box's faces, and the compute march.
-gpu::GraphicsProgramDesc fragmentMarchDesc(uint32_t divisor, bool sparse) {
+gpu::GraphicsProgramDesc fragmentMarchDesc(uint32_t divisor, bool sparse, bool cartoon) {
     gpu::GraphicsProgramDesc march;
-    march.name = sparse ? "smoke_sparse" : "smoke";
+    march.name = cartoon ? (sparse ? "smoke_cartoon_sparse" : "smoke_cartoon")
+                         : (sparse ? "smoke_sparse" : "smoke");
     march.vertex = shaders::smoke_vert;
-    march.fragment = sparse ? shaders::smoke_frag_sparse : shaders::smoke_frag;
+    march.fragment =
+        cartoon ? (sparse ? shaders::smoke_frag_cartoon_sparse : shaders::smoke_frag_cartoon)
+                : (sparse ? shaders::smoke_frag_sparse : shaders::smoke_frag);
     march.pushConstantSize = sizeof(shared::SmokeDraw);
     march.specialization = {divisor};
     march.colorFormats = {kFluidColorFormat, kFluidDistanceFormat};
@@ -63,10 +95,13 @@ gpu::GraphicsProgramDesc fragmentMarchDesc(uint32_t divisor, bool sparse) {
     return march;
 }
 
-gpu::ComputeProgramDesc computeMarchDesc(uint32_t divisor, bool sparse) {
+gpu::ComputeProgramDesc computeMarchDesc(uint32_t divisor, bool sparse, bool cartoon) {
     gpu::ComputeProgramDesc march;
-    march.name = sparse ? "smoke_march_sparse" : "smoke_march";
-    march.spirv = sparse ? shaders::smoke_march_comp_sparse : shaders::smoke_march_comp;
+    march.name = cartoon ? (sparse ? "smoke_cartoon_march_sparse" : "smoke_cartoon_march")
+                         : (sparse ? "smoke_march_sparse" : "smoke_march");
+    march.spirv = cartoon ? (sparse ? shaders::smoke_march_comp_cartoon_sparse
+                                    : shaders::smoke_march_comp_cartoon)
+                          : (sparse ? shaders::smoke_march_comp_sparse : shaders::smoke_march_comp);
     march.pushConstantSize = sizeof(shared::SmokeDraw);
     march.specialization = {divisor};
     return march;
@@ -95,7 +130,7 @@ SmokePass::SmokePass(const gpu::Context& ctx) : ctx_(ctx) {
     light_ = gpu::createComputeProgram(ctx, light);
     // The default's pipelines made up front.
     const uint32_t divisor = divisorOf(SmokeLook{}.resolution);
-    marchProgram(programsFor(divisor), divisor, computeMarch(SmokeLook{}), false);
+    marchProgram(programsFor(divisor), divisor, computeMarch(SmokeLook{}), false, false);
 }
 
 bool SmokePass::computeMarch(const SmokeLook& look) const {
@@ -104,19 +139,33 @@ bool SmokePass::computeMarch(const SmokeLook& look) const {
 }
 
 gpu::Program& SmokePass::marchProgram(Programs& programs, uint32_t divisor, bool compute,
-                                      bool sparse) {
-    std::optional<gpu::Program>& slot = programs.march[compute ? 1 : 0][sparse ? 1 : 0];
+                                      bool sparse, bool cartoon) {
+    std::optional<gpu::Program>& slot =
+        programs.march[compute ? 1 : 0][sparse ? 1 : 0][cartoon ? 1 : 0];
     if (!slot)
-        slot = compute ? gpu::createComputeProgram(ctx_, computeMarchDesc(divisor, sparse))
-                       : gpu::createGraphicsProgram(ctx_, fragmentMarchDesc(divisor, sparse));
+        slot = compute
+                   ? gpu::createComputeProgram(ctx_, computeMarchDesc(divisor, sparse, cartoon))
+                   : gpu::createGraphicsProgram(ctx_, fragmentMarchDesc(divisor, sparse, cartoon));
     return *slot;
+}
+
+gpu::Program& SmokePass::cartoonComposite(Programs& programs, uint32_t divisor) {
+    if (!programs.cartoonComposite) {
+        gpu::GraphicsProgramDesc composite = fragmentMarchDesc(divisor, false, false);
+        composite.name = "smoke_cartoon_composite";
+        composite.fragment = shaders::smoke_cartoon_composite_frag;
+        composite.colorFormats = {kSceneColorFormat};
+        composite.blend = gpu::BlendMode::PremultipliedAlpha;
+        programs.cartoonComposite = gpu::createGraphicsProgram(ctx_, composite);
+    }
+    return *programs.cartoonComposite;
 }
 
 SmokePass::Programs& SmokePass::programsFor(uint32_t divisor) {
     auto it = programs_.find(divisor);
     if (it != programs_.end()) return it->second;
     Programs programs;
-    gpu::GraphicsProgramDesc composite = fragmentMarchDesc(divisor, false);
+    gpu::GraphicsProgramDesc composite = fragmentMarchDesc(divisor, false, false);
     composite.name = "smoke_composite";
     composite.fragment = shaders::smoke_composite_frag;
     composite.colorFormats = {kSceneColorFormat};
@@ -270,7 +319,8 @@ uint32_t SmokePass::draw(VkCommandBuffer cmd, RenderTarget& target,
         const scene::SmokeSpec* smoke =
             grid.effects.empty() ? nullptr : simulation.trajectories()[grid.effects[0]].smoke;
         volumes.push_back({grid.grid.pigmentVolume(), grid.grid.options().grid, grid.grid.origin(),
-                           smoke ? smoke->shading : scene::SmokeShading{}});
+                           smoke ? smoke->shading : scene::SmokeShading{},
+                           simulation.frameTime(simulation.recordedFrame())});
     }
     if (volumes.empty()) return 0;
     scene::LightSpec key =
@@ -302,7 +352,10 @@ void SmokePass::draw(VkCommandBuffer cmd, RenderTarget& target, std::span<const 
                                             VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                             gpu::MemoryUsage::Upload, "smoke style"));
     for (size_t i = 0; i < volumes.size(); ++i) {
-        const shared::SmokeStyle style = smokeStyle(volumes[i].shading, key);
+        const scene::SmokeShading& shading = volumes[i].shading;
+        const shared::SmokeStyle style = shading.preset == scene::SmokePreset::Cartoon
+                                             ? cartoonStyle(shading.cartoon, key, volumes[i].time)
+                                             : smokeStyle(shading, key);
         std::memcpy(styles_[i].mapped, &style, sizeof style);
     }
     findPigmentBounds(cmd, volumes, look);
@@ -340,11 +393,17 @@ void SmokePass::draw(VkCommandBuffer cmd, RenderTarget& target, std::span<const 
                               VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
                               VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
         beginCompositing(cmd, target);
-        programs.composite.bind(cmd, {gpu::bindImage(0, fluid_.color, read, nearest),
-                                      gpu::bindImage(1, fluid_.distance, read, nearest),
-                                      gpu::bindBuffer(2, bounds_[i]),
-                                      gpu::bindImage(3, target.depth, read, nearest)});
-        programs.composite.push(cmd, d);
+        std::vector<gpu::DescriptorWrite> writes = {
+            gpu::bindImage(0, fluid_.color, read, nearest),
+            gpu::bindImage(1, fluid_.distance, read, nearest), gpu::bindBuffer(2, bounds_[i]),
+            gpu::bindImage(3, target.depth, read, nearest)};
+        gpu::Program* composite = &programs.composite;
+        if (cartoon(v)) {
+            composite = &cartoonComposite(programs, divisor);
+            writes.push_back(gpu::bindBuffer(4, styles_[i]));
+        }
+        composite->bind(cmd, writes);
+        composite->push(cmd, d);
         vkCmdDraw(cmd, kBoxVertices, 1, 0, 0);
         vkCmdEndRendering(cmd);
     }
@@ -354,7 +413,7 @@ void SmokePass::march(VkCommandBuffer cmd, RenderTarget& target, size_t i, const
                       const shared::SmokeDraw& draw, Programs& programs, uint32_t divisor,
                       bool compute) {
     const bool sparse = volume.pigment.layout == fluid::PigmentLayout::BrickAtlas;
-    gpu::Program& program = marchProgram(programs, divisor, compute, sparse);
+    gpu::Program& program = marchProgram(programs, divisor, compute, sparse, cartoon(volume));
     const VkImageLayout read = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     std::vector<gpu::DescriptorWrite> writes = {
         gpu::bindImage(1, target.depth, read, nearestSampler_.get()),
@@ -397,6 +456,9 @@ void SmokePass::march(VkCommandBuffer cmd, RenderTarget& target, size_t i, const
         attachments[a].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
     }
     attachments[1].clearValue.color.float32[0] = float(MFX_SMOKE_NO_DISTANCE);
+    // The cartoon look's margin where no ray was marched: far outside its surface.
+    if (cartoon(volume))
+        attachments[0].clearValue.color.float32[0] = -volume.shading.cartoon.threshold;
     VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
     rendering.renderArea = {{0, 0}, {fluidSize.width, fluidSize.height}};
     rendering.layerCount = 1;

@@ -98,16 +98,19 @@ public:
         fluid::GridShape shape;
         glm::vec3 origin{0.0f};
         scene::SmokeShading shading;
+        float time = 0.0f; // scene seconds (the cartoon look's billows boil with it)
     };
     void draw(VkCommandBuffer cmd, RenderTarget& target, std::span<const Volume> volumes,
               const SceneCamera& camera, const scene::LightSpec& key, const SmokeLook& look = {});
 
 private:
     // The march and composite programs for one fluid buffer divisor (1 or 2), each march made
-    // when first used: [compute][sparse] (SmokeMarch; the sparse atlas's variant).
+    // when first used: [compute][sparse][cartoon] (SmokeMarch; the sparse atlas's variant; the
+    // cartoon look's surface march, composited by its own program).
     struct Programs {
-        std::optional<gpu::Program> march[2][2];
+        std::optional<gpu::Program> march[2][2][2];
         gpu::Program composite;
+        std::optional<gpu::Program> cartoonComposite;
     };
     // The smoke's premultiplied colour and the scene distance its march used.
     struct FluidBuffer {
@@ -118,7 +121,10 @@ private:
 
     Programs& programsFor(uint32_t divisor);
     bool computeMarch(const SmokeLook& look) const;
-    gpu::Program& marchProgram(Programs& programs, uint32_t divisor, bool compute, bool sparse);
+    gpu::Program& marchProgram(Programs& programs, uint32_t divisor, bool compute, bool sparse,
+                               bool cartoon);
+    gpu::Program& cartoonComposite(Programs& programs, uint32_t divisor);
+    static bool cartoon(const Volume& v) { return v.shading.preset == scene::SmokePreset::Cartoon; }
     // Volume i's march into the fluid buffer, by `programs` (those of `divisor`).
     void march(VkCommandBuffer cmd, RenderTarget& target, size_t i, const Volume& volume,
                const shared::SmokeDraw& draw, Programs& programs, uint32_t divisor, bool compute);

@@ -139,6 +139,8 @@ public:
     }
     uint32_t frameCount() const { return frames_; }
     float frameTime(uint32_t frame) const { return float(frame) / scene_.output.fps; }
+    // The frame last recorded (recordFrame's), 0 before the first.
+    uint32_t recordedFrame() const { return currentFrame_; }
 
     // Records frame `frame`; frames are recorded in order, each after the previous one finished.
     // With `pose` (a host's animation: every node's world matrix, before placement()), the first

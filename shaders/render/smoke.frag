@@ -11,7 +11,12 @@ layout(location = 1) out float outDistance; // marchedDistance() of the scene di
 
 void main() {
     float marched;
+#ifdef MFX_SMOKE_CARTOON // (built as smoke_frag_cartoon: the surface's margin, light and distance)
+    outColor = marchCartoon(ivec2(gl_FragCoord.xy),
+                            rayDirection(gl_FragCoord.xy * float(kDivisor)), marched);
+#else
     outColor = march(ivec2(gl_FragCoord.xy), rayDirection(gl_FragCoord.xy * float(kDivisor)),
                      marched);
+#endif
     outDistance = marched;
 }

@@ -27,12 +27,20 @@ void main() {
     bool empty = !pigmentBox(draw, bounds, boxLow, boxHigh);
     vec2 box = crossBox(1.0 / dir, boxLow, boxHigh);
     if (empty || !(box.y > box.x)) {
+#ifdef MFX_SMOKE_CARTOON // far outside the surface
+        imageStore(outColor, texel, vec4(-style.surface.x, 0.0, 0.0, 0.0));
+#else
         imageStore(outColor, texel, vec4(0.0));
+#endif
         imageStore(outDistance, texel, vec4(MFX_SMOKE_NO_DISTANCE));
         return;
     }
     float marched;
+#ifdef MFX_SMOKE_CARTOON // (built as smoke_march_comp_cartoon)
+    vec4 colour = marchCartoon(texel, dir, marched);
+#else
     vec4 colour = march(texel, dir, marched);
+#endif
     imageStore(outColor, texel, colour);
     imageStore(outDistance, texel, vec4(marched));
 }

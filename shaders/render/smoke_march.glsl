@@ -119,11 +119,10 @@ float lightTransmittance(vec3 p) {
     return texture(lightVolume, inBox * (used / size)).r;
 }
 
-// The march of the ray through `texel`'s centre (its colour), and the scene distance it marched to.
-vec4 march(ivec2 texel, vec3 dir, out float marched) {
+// The scene pixel of `texel`'s block of kDivisor x kDivisor pixels with the nearest (or, not
+// `nearest`, the farthest) depth.
+ivec2 blockPixel(ivec2 texel, bool nearest) {
     ivec2 size = textureSize(sceneDepth, 0);
-    // The scene pixel of this texel's block it marches to.
-    bool nearest = ((texel.x + texel.y) & 1) == 0;
     ivec2 chosen = min(texel * kDivisor, size - 1);
     float chosenDepth = texelFetch(sceneDepth, chosen, 0).r;
     for (int k = 1; k < kDivisor * kDivisor; ++k) {
@@ -134,7 +133,13 @@ vec4 march(ivec2 texel, vec3 dir, out float marched) {
             chosenDepth = depth;
         }
     }
-    float sceneDistance = sceneDistanceAt(chosen);
+    return chosen;
+}
+
+// The march of the ray through `texel`'s centre (its colour), and the scene distance it marched to.
+vec4 march(ivec2 texel, vec3 dir, out float marched) {
+    // The scene pixel of this texel's block it marches to.
+    float sceneDistance = sceneDistanceAt(blockPixel(texel, ((texel.x + texel.y) & 1) == 0));
     vec3 eye = draw.eye.xyz;
     vec3 inv = 1.0 / dir;
     vec2 box = crossBox(inv, boxLow, boxHigh);
@@ -185,5 +190,9 @@ vec4 march(ivec2 texel, vec3 dir, out float marched) {
     }
     return vec4(colour, 1.0 - transmittance);
 }
+
+#ifdef MFX_SMOKE_CARTOON
+#include "smoke_cartoon.glsl"
+#endif
 
 #endif

@@ -46,13 +46,20 @@ struct SmokeDraw {
 #define MFX_SMOKE_PRESET_SMOKE 0.0
 #define MFX_SMOKE_PRESET_FIRE 1.0
 #define MFX_SMOKE_PRESET_ENERGY 2.0
+#define MFX_SMOKE_PRESET_CARTOON 3.0
 
-// How the march shades one volume (uniform buffer, std140, binding 3 of smoke_march.glsl).
+// How the march shades one volume (uniform buffer, std140, binding 3 of smoke_march.glsl and of
+// smoke_cartoon_composite.frag).
 struct SmokeStyle {
-    vec4 ramp[4]; // rgb: the colour at pigment alpha w (rising); used by fire and energy
-    vec4 params;  // x: glow (emitted light at full density); y: cel bands (0: smooth); z: key
-                  // light intensity; w: MFX_SMOKE_PRESET_*
+    vec4 ramp[4]; // rgb: the colour at pigment alpha w (rising); used by fire and energy. The
+                  // cartoon look: band k's colour (linear), shadow first
+    vec4 params;  // x: glow (emitted light at full density; cartoon: rim); y: cel bands (0:
+                  // smooth; cartoon: its bands); z: key light intensity; w: MFX_SMOKE_PRESET_*
     vec4 light;   // rgb: the key light's colour; w: the phase function's anisotropy g
+    // The cartoon look (scene::CartoonSmoke; shaders/render/smoke_cartoon.glsl):
+    vec4 surface; // x: threshold; y: billow; z: billow scale (m); w: the billows' phase (time x
+                  // billow speed)
+    vec4 outline; // rgb: ink colour (linear); w: width (pixels of the picture)
 };
 
 MFX_SHARED_END
@@ -65,8 +72,10 @@ MFX_CHECK_LAYOUT(PigmentBoundsDispatch, threshold, 16);
 MFX_CHECK_SIZE(SmokeDraw, 128);
 MFX_CHECK_LAYOUT(SmokeDraw, gridOrigin, 64);
 MFX_CHECK_LAYOUT(SmokeDraw, light, 112);
-MFX_CHECK_SIZE(SmokeStyle, 96);
+MFX_CHECK_SIZE(SmokeStyle, 128);
 MFX_CHECK_LAYOUT(SmokeStyle, params, 64);
+MFX_CHECK_LAYOUT(SmokeStyle, surface, 96);
+MFX_CHECK_LAYOUT(SmokeStyle, outline, 112);
 #endif
 
 #endif

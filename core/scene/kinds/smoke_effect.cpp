@@ -41,7 +41,16 @@ std::vector<std::string> SmokeSpec::keys() {
                       "collide_thickness",
                       "turbulence",
                       "turbulence_scale",
-                      "turbulence_speed"});
+                      "turbulence_speed",
+                      "threshold",
+                      "bands",
+                      "colours",
+                      "outline_width",
+                      "outline_colour",
+                      "rim",
+                      "billow",
+                      "billow_scale",
+                      "billow_speed"});
 }
 
 const std::vector<std::string>& smokePressureSolvers() {
@@ -70,6 +79,46 @@ SmokeShading smokeShading(SmokePreset preset) {
     s.glow = preset == SmokePreset::Fire ? 3.0f : preset == SmokePreset::Energy ? 4.0f : 0.0f;
     return s;
 }
+
+const std::vector<GradientStop>& cartoonColours() {
+    static const std::vector<GradientStop> stops = {{0.0f, {0.62f, 0.07f, 0.0f, 1.0f}},
+                                                    {0.5f, {1.0f, 0.42f, 0.0f, 1.0f}},
+                                                    {1.0f, {1.0f, 0.87f, 0.0f, 1.0f}}};
+    return stops;
+}
+
+namespace {
+
+const char* const kCartoonKeys[] = {"threshold",    "rim",           "billow",
+                                    "billow_scale", "billow_speed",  "bands",
+                                    "colours",      "outline_width", "outline_colour"};
+const char* const kSmoothKeys[] = {"glow", "cel_bands", "anisotropy"};
+
+// The cartoon look's keys (SmokeShading::cartoon); refused on the other looks, as the other
+// looks' light keys are refused on it.
+void readCartoon(const Object& o, SmokeShading& shading) {
+    if (shading.preset != SmokePreset::Cartoon) {
+        for (const char* key : kCartoonKeys)
+            if (o.given(key)) detail::fail(o.at(key), "only for \"look\": \"cartoon\"");
+        return;
+    }
+    for (const char* key : kSmoothKeys)
+        if (o.given(key))
+            detail::fail(o.at(key), "not for \"look\": \"cartoon\" (its light is in \"bands\" "
+                                    "of \"colours\", with \"rim\" and \"outline_width\")");
+    CartoonSmoke& c = shading.cartoon;
+    c.threshold = float(o.number("threshold", c.threshold, 0.0, 1.0, true));
+    c.bands = o.integer("bands", c.bands, 2, 4);
+    c.colours = readGradientStops(o, "colours", "where on the ramp (0: shadow, 1: light)");
+    c.outlineWidth = float(o.number("outline_width", c.outlineWidth, 0.0, 16.0));
+    c.outlineColour = glm::vec3(o.colour("outline_colour", glm::vec4(c.outlineColour, 1.0f)));
+    c.rim = float(o.number("rim", c.rim, 0.0, 1.0));
+    c.billow = float(o.number("billow", c.billow, 0.0, 0.9));
+    c.billowScale = float(o.number("billow_scale", c.billowScale, 0.0, 10.0, true));
+    c.billowSpeed = float(o.number("billow_speed", c.billowSpeed, 0.0, 100.0));
+}
+
+} // namespace
 
 std::unique_ptr<EffectKindSpec> SmokeSpec::parse(const Object& o) {
     auto e = std::make_unique<SmokeSpec>();
@@ -145,13 +194,17 @@ std::unique_ptr<EffectKindSpec> SmokeSpec::parse(const Object& o) {
     e->surfaceStep = float(o.number("surface_step", e->surfaceStep, 0.0, 1.0, true));
     e->maxEmitters = o.integer("max_emitters", e->maxEmitters, 1, 4096);
     e->sleepThreshold = float(o.number("sleep_threshold", e->sleepThreshold, 0.0, 1.0, true));
-    const std::string look = o.choice("look", "smoke", {"smoke", "fire", "energy"});
-    e->shading = smokeShading(look == "fire"     ? SmokePreset::Fire
-                              : look == "energy" ? SmokePreset::Energy
-                                                 : SmokePreset::Smoke);
-    e->shading.glow = float(o.number("glow", e->shading.glow, 0.0, 1000.0));
-    if (o.has("cel_bands")) e->shading.celBands = o.integer("cel_bands", 0, 2, 4);
-    e->shading.anisotropy = float(o.number("anisotropy", e->shading.anisotropy, -0.9, 0.9));
+    const std::string look = o.choice("look", "smoke", {"smoke", "fire", "energy", "cartoon"});
+    e->shading = smokeShading(look == "fire"      ? SmokePreset::Fire
+                              : look == "energy"  ? SmokePreset::Energy
+                              : look == "cartoon" ? SmokePreset::Cartoon
+                                                  : SmokePreset::Smoke);
+    if (e->shading.preset != SmokePreset::Cartoon) {
+        e->shading.glow = float(o.number("glow", e->shading.glow, 0.0, 1000.0));
+        if (o.has("cel_bands")) e->shading.celBands = o.integer("cel_bands", 0, 2, 4);
+        e->shading.anisotropy = float(o.number("anisotropy", e->shading.anisotropy, -0.9, 0.9));
+    }
+    readCartoon(o, e->shading);
     return e;
 }
 

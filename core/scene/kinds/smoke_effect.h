@@ -18,8 +18,37 @@ enum class Emission { Vertices, Surface };
 // How the smoke is shaded (render/smoke_pass.h, shaders/render/smoke_march.glsl). Presets:
 // smoke: the pigment's colour, lit by the key light with self-shadowing, no light of its own;
 // fire: a colour ramp by density (dark red where thin to yellow-white where dense) that glows,
-//   hotter where denser; energy: a cyan-to-white ramp that glows.
-enum class SmokePreset { Smoke, Fire, Energy };
+//   hotter where denser; energy: a cyan-to-white ramp that glows; cartoon: a hard surface where
+//   the density crosses a threshold, shaded in flat bands with an ink outline (CartoonSmoke).
+enum class SmokePreset { Smoke, Fire, Energy, Cartoon };
+
+// The cartoon look (render/smoke_pass.h, shaders/render/smoke_cartoon.glsl; after Selle, Mohr &
+// Chenney, "Cartoon rendering of smoke animations", NPAR 2004, and McGuire & Fein, "Real-time
+// rendering of cartoon smoke and clouds", NPAR 2006): the surface where the pigment's alpha
+// crosses `threshold`, the threshold raised and lowered by `billow` of itself by noise so the
+// silhouette reads as round puffs, its normal from the density's gradient, lit by the key light
+// (its diffuse share times the smoke's own shadow, plus a rim towards the silhouette) and that
+// light quantised into `bands` flat tones from the `colours` ramp (shadow at 0, light at 1), with
+// an ink outline of `outlineWidth` pixels at the silhouette and where the surface steps in depth.
+struct CartoonSmoke {
+    float threshold = 0.06f; // pigment alpha where the surface lies
+    uint32_t bands = 3;      // 2-4 flat tones
+    // The ramp from shadow (at 0) to light (at 1); band k of n takes its colour at k / (n - 1).
+    // Empty: kCartoonColours.
+    std::vector<GradientStop> colours;
+    float outlineWidth = 2.0f; // pixels of the output (0: none)
+    glm::vec3 outlineColour{0.07f, 0.03f, 0.05f};
+    float rim = 0.35f;        // light added towards the silhouette, (1 - n.v)^2 x rim
+    float billow = 0.55f;     // the threshold varies by up to this share of itself
+    float billowScale = 0.2f; // the puffs' size (m)
+    float billowSpeed = 0.6f; // how fast the puffs' outline boils (noise periods per second)
+};
+// The cartoon look's default ramp: a golden light, a saturated orange, a deep red shadow (fire
+// cartoon smoke, as fighting games draw their blasts), chosen to read against the default
+// stage's blue-grey wall and grey floor and the fighter's red top: no blue in any of them, so
+// every band stands off the blue-grey stage.
+const std::vector<GradientStop>& cartoonColours();
+
 struct SmokeShading {
     SmokePreset preset = SmokePreset::Smoke;
     float glow = 0.0f;     // emitted light (HDR) at full density; default by preset: 0, 3, 4
@@ -27,6 +56,7 @@ struct SmokeShading {
     // g of the Henyey-Greenstein phase function: > 0 scatters forwards (smoke lit from behind
     // glows), < 0 backwards, 0 evenly.
     float anisotropy = 0.3f;
+    CartoonSmoke cartoon; // the cartoon preset's surface, bands and outline
 };
 // The preset's defaults (glow) for `preset`.
 SmokeShading smokeShading(SmokePreset preset);
@@ -98,7 +128,11 @@ struct SmokeSpec : TrailEffect<SmokeSpec> {
     static std::vector<std::string> keys();
     static std::unique_ptr<EffectKindSpec> parse(const detail::Object& o);
     std::vector<std::pair<const char*, float*>> lengths() override {
-        return {{"cell_size", &grid.cellSize}, {"radius", &radius}};
+        std::vector<std::pair<const char*, float*>> out = {{"cell_size", &grid.cellSize},
+                                                           {"radius", &radius}};
+        if (shading.preset == SmokePreset::Cartoon)
+            out.emplace_back("billow_scale", &shading.cartoon.billowScale);
+        return out;
     }
     // Smoke paints its pigment where its vertices are, even at rest.
     bool showsAtRest() const override { return true; }

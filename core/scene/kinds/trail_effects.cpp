@@ -51,23 +51,26 @@ std::vector<std::string> ribbonKeys() {
 
 namespace {
 
-// Stops of an array of 2-8 objects {"at": u, <valueKey>: ...}, `at` rising from 0 to 1.
+// Stops of an array of 2-8 objects {"at": u, <valueKey>: ...}, `at` rising from 0 to 1 over
+// `span`.
 template <class Stop, class ReadValue>
 std::vector<Stop> readStops(const Object& o, const std::string& key, const char* valueKey,
-                            ReadValue readValue) {
+                            ReadValue readValue, const char* span = "where in life") {
     std::vector<Stop> stops;
     if (!o.has(key)) return stops;
     const std::vector<Object> entries = o.objects(key, 2, kMaxRibbonStops);
     for (size_t i = 0; i < entries.size(); ++i) {
         const Object& e = entries[i];
         e.onlyKeys({"at", valueKey});
-        if (!e.has("at")) fail(e.at("at"), "missing; each stop says where in life (0..1) it is");
+        if (!e.has("at"))
+            fail(e.at("at"), std::string("missing; each stop says ") + span + " (0..1) it is");
         if (!e.has(valueKey)) fail(e.at(valueKey), "missing");
         Stop stop;
         stop.at = float(e.number("at", 0.0, 0.0, 1.0));
         if (i > 0 && stop.at < stops.back().at)
             fail(e.at("at"), formatNumber(stop.at) + " is before the previous stop's " +
-                                 formatNumber(stops.back().at) + "; stops go from head to tail");
+                                 formatNumber(stops.back().at) +
+                                 "; \"at\" rises from stop to stop");
         readValue(e, stop);
         stops.push_back(stop);
     }
@@ -90,9 +93,7 @@ Value valueOf(const std::vector<Stop>& stops, float u, Value Stop::*member, Mix 
 // colour_over_life, <size>_over_life with its stops' <size> values, intensity, blend and
 // depth_fade.
 void readLook(const Object& o, RibbonLook& r, const char* size) {
-    r.colourOverLife = readStops<GradientStop>(
-        o, "colour_over_life", "colour",
-        [](const Object& e, GradientStop& s) { s.colour = e.colour("colour", s.colour); });
+    r.colourOverLife = readGradientStops(o, "colour_over_life", "where in life");
     r.intensity = float(o.number("intensity", r.intensity, 0.0, 1000.0));
     r.additive =
         o.choice("blend", r.additive ? "additive" : "alpha", {"alpha", "additive"}) == "additive";
@@ -105,6 +106,13 @@ void readLook(const Object& o, RibbonLook& r, const char* size) {
 }
 
 } // namespace
+
+std::vector<GradientStop> readGradientStops(const Object& o, const std::string& key,
+                                            const char* span) {
+    return readStops<GradientStop>(
+        o, key, "colour",
+        [](const Object& e, GradientStop& s) { s.colour = e.colour("colour", s.colour); }, span);
+}
 
 std::vector<std::string> volumeLookKeys() {
     return {"colour_over_life", "intensity", "blend", "rim", "rim_colour"};

@@ -119,6 +119,10 @@ const char* textureUvName(TextureUv uv);
 // sprite's size factor), intensity, blend and depth_fade.
 std::vector<std::string> particleLookKeys();
 void readParticleLook(const detail::Object& o, RibbonLook& r);
+// A colour ramp read as colour_over_life's stops are (2-8 objects {"at", "colour"}, "at" rising
+// from 0 to 1), `span` saying what "at" places a stop on; empty where `key` is absent.
+std::vector<GradientStop> readGradientStops(const detail::Object& o, const std::string& key,
+                                            const char* span);
 // The colour or the factor at life u.
 glm::vec4 colourAt(const std::vector<GradientStop>& stops, float u);
 float valueAt(const std::vector<CurveStop>& stops, float u);
