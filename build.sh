@@ -24,7 +24,7 @@ PACKAGES=(
     libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools
     libglm-dev libtinygltf-dev nlohmann-json3-dev libeigen3-dev libgtest-dev libstb-dev
     libglfw3-dev libimgui-dev libx11-dev xvfb ffmpeg
-    libopenvdb-dev libboost-iostreams-dev python3-openvdb python3-pil openexr godot3-runner
+    libopenvdb-dev libboost-iostreams-dev python3-openvdb python3-pil python3-numpy openexr godot3-runner
 )
 
 # The fuzzers need clang and its libFuzzer runtime; only `fuzz` installs them.

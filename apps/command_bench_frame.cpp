@@ -7,6 +7,9 @@
 // cell size, in the same process: both tables, then the smoke's GPU ms a step of each and their
 // ratio, memory and active bricks. The smoke's ray-march is set against the device's copy
 // bandwidth measured in the same run: the bytes of the pigment volumes it reads over its time.
+// With --smoke-looks, the scene again with its smoke in each look (smoke, fire, energy, cartoon),
+// one after another in the same process: the smoke pass's GPU ms of each and its ratio to the
+// plain smoke look's.
 #include "apps/bench_report.h"
 #include "apps/commands.h"
 #include "apps/progress.h"
@@ -205,6 +208,53 @@ scene::Scene sparseScene(scene::Scene s, uint32_t cells) {
     return s;
 }
 
+// The scene with every smoke effect in look `preset` (its defaults).
+scene::Scene lookScene(scene::Scene s, scene::SmokePreset preset) {
+    for (scene::EffectSpec& e : s.effects)
+        if (scene::SmokeSpec* smoke = e.as<scene::SmokeSpec>())
+            smoke->shading = scene::smokeShading(preset);
+    return s;
+}
+
+// The smoke pass of the scene in each look, run after one another; a table and its JSON.
+Result<nlohmann::json> compareSmokeLooks(const gpu::Context& ctx, const SceneArgument& argument,
+                                         uint32_t warmup, uint32_t samples,
+                                         render::SmokeMarch march) {
+    struct Look {
+        const char* name;
+        scene::SmokePreset preset;
+    };
+    const Look looks[] = {{"smoke", scene::SmokePreset::Smoke},
+                          {"fire", scene::SmokePreset::Fire},
+                          {"energy", scene::SmokePreset::Energy},
+                          {"cartoon", scene::SmokePreset::Cartoon}};
+    nlohmann::json out = nlohmann::json::object();
+    std::printf("\nthe smoke pass (render/smoke: bounds, light, march, composite) in each look, "
+                "same run\n%-10s %14s %14s %16s\n",
+                "look", "smoke GPU ms", "frame GPU ms", "smoke / smoke's");
+    double plain = 0.0;
+    for (const Look& look : looks) {
+        SceneArgument variant;
+        variant.scene = lookScene(argument.scene, look.preset);
+        variant.cast = argument.cast;
+        int exitCode = kExitOk;
+        const std::unique_ptr<sim::SceneSimulation> sim =
+            createSceneSimulation(ctx, variant, exitCode);
+        if (!sim) return Error{std::string("the scene in look ") + look.name + " did not start"};
+        const FrameRun run = runFrames(ctx, *sim, warmup, samples, march,
+                                       (std::string("benchmarking look ") + look.name).c_str());
+        const auto smoke = run.rows.find("render/smoke");
+        const double ms = smoke == run.rows.end() ? 0.0 : median(smoke->second);
+        if (look.preset == scene::SmokePreset::Smoke) plain = ms;
+        const double ratio = plain > 0.0 ? ms / plain : 0.0;
+        std::printf("%-10s %14.2f %14.2f %16.2f\n", look.name, ms, median(run.frameGpu), ratio);
+        out[look.name] = {{"smoke_ms", ms},
+                          {"gpu_ms", median(run.frameGpu)},
+                          {"over_smoke_look", ratio}};
+    }
+    return out;
+}
+
 } // namespace
 
 int runBenchFrame(const cli::ParsedArgs& parsed) {
@@ -306,6 +356,15 @@ int runBenchFrame(const cli::ParsedArgs& parsed) {
         std::printf("sparse / dense: %.2f a step\n", denseStep > 0 ? sparseStep / denseStep : 0.0);
         json["sparse_run"] = runJson(sparseRun);
         json["sparse_over_dense_step"] = denseStep > 0 ? sparseStep / denseStep : 0.0;
+    }
+    if (parsed.has("smoke-looks")) {
+        Result<nlohmann::json> looks =
+            compareSmokeLooks(ctx, argument, warmup.value(), samples.value(), *march);
+        if (!looks.ok()) {
+            printError(looks.error().message);
+            return kExitFailure;
+        }
+        json["smoke_looks"] = looks.value();
     }
     if (jsonFile.is_open()) jsonFile << json.dump(2) << "\n";
     if (parsed.has("markdown")) {

@@ -242,6 +242,9 @@ CommandLine benchFrameCommandLine() {
         .option("sparse", "N",
                 "also run the scene with its smoke on a sparse domain of N^3 cells (a multiple "
                 "of 8, same cell size) and compare the smoke's GPU ms a step, same run")
+        .option("smoke-looks", "",
+                "also run the scene with its smoke in each look (smoke, fire, energy, cartoon), "
+                "one after another in the same process, and compare the smoke pass's GPU ms")
         .option("smoke-march", "auto|fragment|compute",
                 "the shader that marches the smoke: a fragment pass over the pigment's box or a "
                 "compute pass (default auto: fragment on a CPU device, compute on a GPU)")

@@ -24,6 +24,7 @@ shots=(
     "smoke_fire docs/scenes/gallery/smoke_fire.json 20"
     "smoke_energy docs/scenes/gallery/smoke_energy.json 20"
     "smoke_cel docs/scenes/gallery/smoke_cel.json 20"
+    "smoke_cartoon docs/scenes/gallery/smoke_cartoon.json 20"
     "smoke_plain_30 docs/scenes/gallery/smoke_smoke.json 30"
     "smoke_turbulence docs/scenes/gallery/smoke_turbulence.json 30"
     "ribbon_camera docs/scenes/gallery/ribbon_camera.json 40"

@@ -129,7 +129,7 @@ vec4 marchCartoon(ivec2 texel, vec3 dir, out float surfaceDistance) {
     int bestAt = -1;
     bool afterTaken = false; // whether `after` is the sample after the best one
     float previous = -threshold;
-    float hitT = -1.0;
+    int hitAt = -1; // the first sample inside the surface
     int afterHit = 0;
     for (int i = first; i < end; ++i) {
         float t = gridEnter + (float(i) + 0.5) * step;
@@ -157,21 +157,10 @@ vec4 marchCartoon(ivec2 texel, vec3 dir, out float surfaceDistance) {
             before = previous;
             afterTaken = false;
         }
-        if (hitT < 0.0 && f > 0.0) {
-            // The crossing between the previous sample (f <= 0) and this one, by bisection.
-            float low = t - step, high = t;
-            for (int k = 0; k < 5; ++k) {
-                float mid = 0.5 * (low + high);
-                if (surfaceField(eye + mid * dir) > 0.0)
-                    high = mid;
-                else
-                    low = mid;
-            }
-            hitT = 0.5 * (low + high);
-        }
+        if (hitAt < 0 && f > 0.0) hitAt = i;
         // Past the surface, only the margin's peak is still wanted: a few samples on, or until f
         // falls.
-        if (hitT >= 0.0 && (++afterHit > 4 || f < previous)) break;
+        if (hitAt >= 0 && (++afterHit > 4 || f < previous)) break;
         previous = f;
     }
     if (bestAt < 0) return vec4(-threshold, 0.0, 0.0, 0.0);
@@ -185,8 +174,21 @@ vec4 marchCartoon(ivec2 texel, vec3 dir, out float surfaceDistance) {
         bestT += offset * step;
     }
     if (margin <= 0.0) return vec4(margin, 0.0, 0.0, 0.0);
-    // A grazing ray whose samples all fell outside the surface meets it at the peak.
-    if (hitT < 0.0) hitT = bestT;
+    // The crossing between the first sample inside and the one before it (f <= 0), by bisection
+    // (after the loop, so that on a SIMD device the lanes bisect together, not each at its own
+    // step of the march); a grazing ray whose samples all fell outside meets it at the peak.
+    float hitT = bestT;
+    if (hitAt >= 0) {
+        float high = gridEnter + (float(hitAt) + 0.5) * step, low = high - step;
+        for (int k = 0; k < 5; ++k) {
+            float mid = 0.5 * (low + high);
+            if (surfaceField(eye + mid * dir) > 0.0)
+                high = mid;
+            else
+                low = mid;
+        }
+        hitT = 0.5 * (low + high);
+    }
     vec3 p = eye + hitT * dir;
     vec3 n = surfaceNormal(p);
     vec3 light = normalize(draw.light.xyz);
